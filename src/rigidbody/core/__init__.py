@@ -1,0 +1,15 @@
+"""Shared mathematics of the four analyses.
+
+:mod:`rigidbody.core.elliptic`
+    Jacobi elliptic functions and elliptic integrals in the papers' modulus ``k``.
+:mod:`rigidbody.core.euler`
+    3-1-3 Euler angles, direction cosines, quaternions, kinematic equations.
+:mod:`rigidbody.core.averaging`
+    Spectrally convergent period averages over motions written in Jacobi functions.
+:mod:`rigidbody.core.ode`
+    ``solve_ivp`` wrapper returning named trajectories with a clear status.
+"""
+
+from . import averaging, elliptic, euler, ode
+
+__all__ = ["averaging", "elliptic", "euler", "ode"]

@@ -1,0 +1,332 @@
+r"""The unperturbed Lagrange top: first integrals, the cubic Q(u), its roots and the maps (1.6)/(2.8).
+
+Akulenko, Leshchenko, Chernousko (1979), "Perturbed motions of a rigid body close to the Lagrange
+case", PMM 43(5). Equation numbers refer to that paper.
+
+Conventions: 3-1-3 Euler angles (psi, theta, phi) as in :mod:`rigidbody.core.euler`; the body z axis is
+the symmetry axis; the centre of mass is at distance l on +z, so the potential energy is
+``mgl cos(theta)`` (theta = 0: the top stands upright above the pivot).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "Top",
+    "cubic_coefficients",
+    "from_roots",
+    "integrals",
+    "roots",
+    "vieta",
+]
+
+
+@dataclass(frozen=True)
+class Top:
+    r"""A heavy dynamically symmetric top with a fixed point (the Lagrange case).
+
+    Parameters
+    ----------
+    A : float
+        Equatorial moment of inertia about the fixed point O, ``A > 0``.
+    C : float
+        Axial moment of inertia about O, ``C > 0``.
+    mgl : float
+        Weight times the distance from O to the centre of mass, ``mgl > 0`` (the centre of mass
+        lies on the positive symmetry axis).
+
+    Notes
+    -----
+    Units are arbitrary but consistent; the paper's figures use ``A = 1.5, C = 1, mgl = 0.5``.
+    ``C > 2A`` is not excluded here (a rigid body about a fixed point need not satisfy the
+    triangle inequality of central moments).
+    """
+
+    A: float
+    C: float
+    mgl: float
+
+    def __post_init__(self) -> None:
+        for name in ("A", "C", "mgl"):
+            val = getattr(self, name)
+            if isinstance(val, bool) or not isinstance(val, (int, float, np.floating, np.integer)):
+                raise TypeError(f"Top.{name} must be a real number, got {type(val).__name__}")
+            if not math.isfinite(float(val)) or float(val) <= 0.0:
+                raise ValueError(f"Top.{name} must be finite and > 0, got {val!r}")
+            object.__setattr__(self, name, float(val))
+
+
+def _check_top(top: Any) -> Top:
+    if not isinstance(top, Top):
+        raise TypeError(f"top must be a lagrange.Top, got {type(top).__name__}")
+    return top
+
+
+def integrals(top: Top, p: Any, q: Any, r: Any, phi: Any, theta: Any) -> tuple[Any, Any, Any]:
+    r"""First integrals (1.2) of the Lagrange top.
+
+    .. math::
+        G_z = A\sin\theta(p\sin\varphi + q\cos\varphi) + Cr\cos\theta,\quad
+        H = \tfrac12[A(p^2+q^2) + Cr^2] + mgl\cos\theta,\quad r.
+
+    Parameters
+    ----------
+    top : Top
+    p, q, r : float or array_like
+        Body components of the angular velocity.
+    phi, theta : float or array_like
+        Proper rotation and nutation angles (rad).
+
+    Returns
+    -------
+    Gz, H, r
+        Vertical component of the angular momentum, total energy, axial spin (broadcast arrays,
+        or floats for scalar input).
+    """
+    top = _check_top(top)
+    p, q, r, phi, theta = (np.asarray(x, dtype=float) for x in (p, q, r, phi, theta))
+    st, ct = np.sin(theta), np.cos(theta)
+    Gz = top.A * st * (p * np.sin(phi) + q * np.cos(phi)) + top.C * r * ct
+    H = 0.5 * (top.A * (p * p + q * q) + top.C * r * r) + top.mgl * ct
+    out = np.broadcast_arrays(Gz, H, r)
+    if all(np.ndim(x) == 0 for x in out):
+        return float(Gz), float(H), float(r)
+    return tuple(np.array(x) for x in out)  # type: ignore[return-value]
+
+
+def vieta(top: Top, Gz: Any, H: Any, r: Any) -> tuple[Any, Any, Any]:
+    r"""Right-hand sides of (1.6): the elementary symmetric functions of the roots.
+
+    Returns ``(s1, s2, s3) = (u1+u2+u3, u1u2+u1u3+u2u3, u1u2u3)`` as functions of (Gz, H, r):
+
+    .. math::
+        s_1 = \frac{H}{mgl} - \frac{Cr^2}{2mgl} + \frac{C^2r^2}{2Amgl},\quad
+        s_2 = \frac{G_zCr}{Amgl} - 1,\quad
+        s_3 = -\frac{H}{mgl} + \frac{Cr^2}{2mgl} + \frac{G_z^2}{2Amgl}.
+    """
+    A, C, mgl = top.A, top.C, top.mgl
+    s1 = H / mgl - C * r * r / (2 * mgl) + C * C * r * r / (2 * A * mgl)
+    s2 = Gz * C * r / (A * mgl) - 1.0
+    s3 = -H / mgl + C * r * r / (2 * mgl) + Gz * Gz / (2 * A * mgl)
+    return s1, s2, s3
+
+
+def cubic_coefficients(top: Top, Gz: float, H: float, r: float) -> tuple[float, float, float, float]:
+    r"""Coefficients ``(c3, c2, c1, c0)`` of the cubic Q(u) of (1.5), highest power first.
+
+    ``Q(u) = (2 mgl / A) (u - u1)(u - u2)(u - u3)``; ``u'^2 = Q(u)`` along the motion (u = cos theta).
+    """
+    s1, s2, s3 = vieta(top, Gz, H, r)
+    f = 2.0 * top.mgl / top.A
+    return f, -f * s1, f * s2, -f * s3
+
+
+def _monic(u: float, s1: float, s2: float, s3: float) -> float:
+    return ((u - s1) * u + s2) * u - s3
+
+
+def _newton_polish(u: float, s1: float, s2: float, s3: float, lo: float, hi: float) -> float:
+    """Two safeguarded Newton steps on the monic cubic (only accepted if they stay in [lo, hi])."""
+    for _ in range(2):
+        f = _monic(u, s1, s2, s3)
+        d = (3.0 * u - 2.0 * s1) * u + s2
+        if d == 0.0 or f == 0.0:
+            break
+        un = u - f / d
+        if not (lo <= un <= hi) or abs(_monic(un, s1, s2, s3)) >= abs(f):
+            break
+        u = un
+    return u
+
+
+def _bisect(s1: float, s2: float, s3: float, lo: float, hi: float, increasing: bool) -> float:
+    """Root of the monic cubic in [lo, hi] where it is monotone with the given sense (bisection to ulp)."""
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid <= lo or mid >= hi:
+            break
+        f = _monic(mid, s1, s2, s3)
+        if f == 0.0:
+            return mid
+        if (f > 0.0) == increasing:
+            hi = mid
+        else:
+            lo = mid
+    return 0.5 * (lo + hi)
+
+
+def _roots_scalar(top: Top, Gz: float, H: float, r: float) -> tuple[float, float, float]:
+    s1, s2, s3 = vieta(top, Gz, H, r)
+    scale = 1.0 + abs(s1) + abs(s2) + abs(s3)
+    tol = 64.0 * np.finfo(float).eps * scale
+    # P(u) = u^3 - s1 u^2 + s2 u - s3 satisfies P(1) = -(Gz - Cr)^2/(2 A mgl) <= 0,
+    # P(-1) = -(Gz + Cr)^2/(2 A mgl) <= 0 and P(cos theta) = A u'^2 / (2 mgl) >= 0 on a real motion.
+    disc = s1 * s1 - 3.0 * s2  # critical points of P: (s1 -+ sqrt(disc)) / 3
+    if disc < 0.0:
+        raise ValueError(
+            f"(Gz, H, r) = ({Gz!r}, {H!r}, {r!r}) is not attainable: the cubic (1.5) has one real root"
+        )
+    sq = math.sqrt(disc)
+    c_lo = (s1 - sq) / 3.0  # local maximum of P
+    c_hi = (s1 + sq) / 3.0  # local minimum of P
+    um = min(max(c_lo, -1.0), 1.0)
+    pmax = _monic(um, s1, s2, s3)
+    if pmax < -tol:
+        raise ValueError(
+            f"(Gz, H, r) = ({Gz!r}, {H!r}, {r!r}) is not attainable by a real top: Q(u) < 0 on [-1, 1] "
+            "(energy H too low for the given Gz and r)"
+        )
+    # u3: the largest root, in [max(1, c_hi), s1 + 2] (u1 + u2 >= -2); P increasing there.
+    lo3 = max(1.0, c_hi)
+    hi3 = max(lo3, s1 + 2.0)
+    if _monic(lo3, s1, s2, s3) >= 0.0:
+        u3 = lo3
+    else:
+        while _monic(hi3, s1, s2, s3) < 0.0:  # guard against rounding in s1 + 2
+            hi3 = hi3 + 1.0 + abs(hi3)
+        u3 = _bisect(s1, s2, s3, lo3, hi3, True)
+        u3 = _newton_polish(u3, s1, s2, s3, lo3, hi3)
+    # deflate: u1 + u2 = s1 - u3, u1 u2 = s3 / u3 (u3 >= 1 > 0)
+    m = 0.5 * (s1 - u3)
+    prod = s3 / u3
+    d2 = m * m - prod  # = ((u2 - u1)/2)^2, the ill-conditioned part near regular precession
+    half = math.sqrt(d2) if d2 > 0.0 else 0.0
+    if half > 1e-4 * (1.0 + abs(m)):
+        # distinct roots: refine each inside its bracket around the local maximum of P
+        u1 = m - half
+        u2 = m + half
+        lo1, hi1 = -1.0, min(um, 1.0)
+        if lo1 <= u1 <= hi1 and _monic(lo1, s1, s2, s3) <= 0.0 <= _monic(hi1, s1, s2, s3):
+            u1 = _newton_polish(_bisect(s1, s2, s3, lo1, hi1, True), s1, s2, s3, lo1, hi1)
+        lo2, hi2 = max(um, -1.0), 1.0
+        if lo2 <= u2 <= hi2 and _monic(hi2, s1, s2, s3) <= 0.0 <= _monic(lo2, s1, s2, s3):
+            u2 = _newton_polish(_bisect(s1, s2, s3, lo2, hi2, False), s1, s2, s3, lo2, hi2)
+    else:
+        u1 = m - half
+        u2 = m + half
+    # enforce the admissible ordering -1 <= u1 <= u2 <= 1 <= u3 against rounding (1.5)
+    u1 = min(max(u1, -1.0), 1.0)
+    u2 = min(max(u2, u1), 1.0)
+    u3 = max(u3, 1.0)
+    return u1, u2, u3
+
+
+def roots(top: Top, Gz: Any, H: Any, r: Any) -> tuple[Any, Any, Any]:
+    r"""Roots ``u1 <= u2 <= 1 <= u3`` of the cubic Q(u) (1.5) from the integrals (Gz, H, r).
+
+    The largest root is found by bisection on its bracket ``[max(1, c+), s1 + 2]`` (c+ the local
+    minimum of the cubic) and Newton-polished; ``u1, u2`` follow by deflation with Vieta (1.6),
+    so a nearly double pair (regular precession, ``u1 ~ u2``; sleeping top, ``u2 ~ 1 ~ u3``) costs no
+    accuracy beyond the inherent ``sqrt(machine eps)`` conditioning of a double root. Results are
+    clipped to the admissible ranges ``-1 <= u1 <= u2 <= 1 <= u3`` of (1.5).
+
+    Parameters
+    ----------
+    top : Top
+    Gz, H, r : float or array_like
+        First integrals (1.2).
+
+    Returns
+    -------
+    u1, u2, u3 : float or numpy.ndarray
+
+    Raises
+    ------
+    ValueError
+        If (Gz, H, r) is not attainable by a real motion (Q(u) < 0 on all of [-1, 1]).
+    """
+    top = _check_top(top)
+    Gz, H, r = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (Gz, H, r)))
+    if not (np.all(np.isfinite(Gz)) and np.all(np.isfinite(H)) and np.all(np.isfinite(r))):
+        raise ValueError("Gz, H, r must be finite")
+    if Gz.ndim == 0:
+        return _roots_scalar(top, float(Gz), float(H), float(r))
+    out = np.empty((3, *Gz.shape))
+    for idx in np.ndindex(Gz.shape):
+        out[(slice(None), *idx)] = _roots_scalar(top, float(Gz[idx]), float(H[idx]), float(r[idx]))
+    return out[0], out[1], out[2]
+
+
+def _check_delta(d: Any, name: str) -> Any:
+    da = np.asarray(d, dtype=float)
+    if not np.all((da == 1.0) | (da == -1.0)):
+        raise ValueError(f"{name} must be +1 or -1, got {d!r}")
+    return da
+
+
+def root_radical(u1: Any, u2: Any, u3: Any) -> Any:
+    r"""``R = [(1 - u1^2)(1 - u2^2)(u3^2 - 1)]^{1/2}`` of (2.8) (negative factors from rounding clipped)."""
+    f = np.maximum(1.0 - u1 * u1, 0.0) * np.maximum(1.0 - u2 * u2, 0.0) * np.maximum(u3 * u3 - 1.0, 0.0)
+    return np.sqrt(f)
+
+
+def from_roots(
+    top: Top, u1: Any, u2: Any, u3: Any, delta1: Any = -1, delta2: Any = 1
+) -> tuple[Any, Any, Any]:
+    r"""The integrals (Gz, H, r) from the roots, formula (2.8).
+
+    .. math::
+        G_z &= (Amgl)^{1/2}(s_1 + s_3 + \delta_1R)^{1/2}\,\delta_2\,\mathrm{sign}(1+s_2),\\
+        H &= \tfrac12 mgl[s_1(1+A/C) + (\delta_1R - s_3)(1-A/C)],\\
+        r &= \delta_2 C^{-1}(Amgl)^{1/2}(s_1+s_3-\delta_1R)^{1/2},
+
+    with ``s1 = u1+u2+u3``, ``s2 = u1u2+u1u3+u2u3``, ``s3 = u1u2u3``,
+    ``R = [(1-u1^2)(1-u2^2)(u3^2-1)]^{1/2}``, ``delta1 = sign(Gz^2 - C^2 r^2)``, ``delta2 = sign r``.
+    (2.8) is verified: it inverts (1.6) exactly, since ``Gz^2 + C^2r^2 = 2Amgl(s1+s3)``,
+    ``Gz C r = Amgl(1+s2)`` and ``(s1+s3)^2 - (1+s2)^2 = R^2``.
+
+    Parameters
+    ----------
+    top : Top
+    u1, u2, u3 : float or array_like
+        Roots with ``-1 <= u1 <= u2 <= 1 <= u3``.
+    delta1, delta2 : {+1, -1}
+        The signs of (2.8). The paper's figure cases (a top spun about its axis) have ``delta1 = -1``.
+
+    Returns
+    -------
+    Gz, H, r
+    """
+    top = _check_top(top)
+    u1, u2, u3 = (np.asarray(x, dtype=float) for x in (u1, u2, u3))
+    d1 = _check_delta(delta1, "delta1")
+    d2 = _check_delta(delta2, "delta2")
+    tol = 1e-12
+    if np.any(u1 < -1.0 - tol) or np.any(u1 > u2 + tol) or np.any(u2 > 1.0 + tol) or np.any(u3 < 1.0 - tol):
+        raise ValueError(
+            "roots must satisfy -1 <= u1 <= u2 <= 1 <= u3 (1.5); got "
+            f"u1={u1!r}, u2={u2!r}, u3={u3!r}"
+        )
+    A, C, mgl = top.A, top.C, top.mgl
+    s1 = u1 + u2 + u3
+    s2 = u1 * u2 + u1 * u3 + u2 * u3
+    s3 = u1 * u2 * u3
+    R = root_radical(u1, u2, u3)
+    g_arg = s1 + s3 + d1 * R
+    r_arg = s1 + s3 - d1 * R
+    amg = math.sqrt(A * mgl)
+    Gz = amg * np.sqrt(np.maximum(g_arg, 0.0)) * d2 * np.where(1.0 + s2 >= 0.0, 1.0, -1.0)
+    H = 0.5 * mgl * (s1 * (1.0 + A / C) + (d1 * R - s3) * (1.0 - A / C))
+    r = d2 * amg / C * np.sqrt(np.maximum(r_arg, 0.0))
+    if np.ndim(Gz) == 0 and np.ndim(H) == 0 and np.ndim(r) == 0:
+        return float(Gz), float(H), float(r)
+    Gz, H, r = np.broadcast_arrays(Gz, H, r)
+    return np.array(Gz), np.array(H), np.array(r)
+
+
+def deltas(top: Top, Gz: Any, r: Any) -> tuple[Any, Any]:
+    r"""The signs ``delta1 = sign(Gz^2 - C^2 r^2)`` and ``delta2 = sign r`` of (2.8).
+
+    Zero is mapped to +1 (both branches of (2.8) coincide there).
+    """
+    w = np.asarray(Gz, dtype=float) ** 2 - (top.C * np.asarray(r, dtype=float)) ** 2
+    d1 = np.where(w >= 0.0, 1.0, -1.0)
+    d2 = np.where(np.asarray(r, dtype=float) >= 0.0, 1.0, -1.0)
+    if np.ndim(d1) == 0 and np.ndim(d2) == 0:
+        return float(d1), float(d2)
+    return d1, d2
