@@ -19,7 +19,7 @@ def _figures(args: argparse.Namespace) -> int:
     from rigidbody.paperfigs import registry
 
     reg = registry()
-    if args.list or not reg:
+    if args.list or (not reg and not args.only):
         if not reg:
             print("no figure sets are registered yet")
         for fs in reg.values():

@@ -65,7 +65,7 @@ def n_nodes(k: float | None = None, *, mc: float | None = None, period: str = "2
     kk = float(special.ellipkm1(mcf))
     kkp = float(special.ellipkm1(float(m)))  # K' = K(k') : parameter of k' is mc, its complement is m
     n = _LOG_TOL * kk / (math.pi * kkp) * _period_factor(period)
-    n = max(16, int(math.ceil(n)))
+    n = max(16, math.ceil(n))
     return n + (-n) % 4
 
 
@@ -98,7 +98,7 @@ def phase_grid(
         n = n_nodes(k, mc=mc, period=period)
     if not isinstance(n, (int, np.integer)) or n < 2:
         raise ValueError(f"n must be an integer >= 2, got {n!r}")
-    m, mca = _m_mc(k, mc)
+    _, mca = _m_mc(k, mc)
     if float(mca) == 0.0:
         raise ValueError("the period is infinite at k = 1 (separatrix): no period average exists")
     kk = float(special.ellipkm1(float(mca)))

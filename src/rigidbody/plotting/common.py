@@ -71,7 +71,9 @@ def unit_sphere(
     return ax
 
 
-def time_series(t: Any, series: dict[str, Any], *, xlabel: str = "t", axes: Any = None, title: str | None = None) -> Any:
+def time_series(
+    t: Any, series: dict[str, Any], *, xlabel: str = "t", axes: Any = None, title: str | None = None
+) -> Any:
     """Plot named arrays against ``t``, one panel each; return the array of axes."""
     import matplotlib.pyplot as plt
 
