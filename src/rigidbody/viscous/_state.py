@@ -1,0 +1,54 @@
+"""Validation of the initial state (n0, ndot0, Omega0) shared by simulate, axis_path and turn."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+__all__ = ["initial_state"]
+
+_UNIT_TOL = 1e-10
+
+
+def initial_state(n0: Any, ndot0: Any, Omega0: Any) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """Return ``(n0, ndot0, v0, Omega0)`` validated: ``|n0| = 1`` and ``ndot0 ⊥ n0`` to 1e-10.
+
+    ``n0`` is renormalised (its norm may differ from 1 by rounding); the component of ``ndot0`` along
+    ``n0`` (below the tolerance) is removed.
+    """
+    n = np.asarray(n0, dtype=float)
+    nd = np.asarray(ndot0, dtype=float)
+    if n.shape != (3,):
+        raise ValueError(f"n0 must be a 3-vector, got shape {n.shape}")
+    if nd.shape != (3,):
+        raise ValueError(f"ndot0 must be a 3-vector, got shape {nd.shape}")
+    if not (np.all(np.isfinite(n)) and np.all(np.isfinite(nd))):
+        raise ValueError("n0 and ndot0 must be finite")
+    nn = math.sqrt(float(n @ n))
+    if abs(nn - 1.0) > _UNIT_TOL:
+        raise ValueError(f"n0 must be a unit vector (|n0| = 1 within {_UNIT_TOL}), got |n0| = {nn!r}")
+    n = n / nn
+    v0 = math.sqrt(float(nd @ nd))
+    along = float(n @ nd)
+    if abs(along) > _UNIT_TOL * max(v0, 1.0):
+        raise ValueError(f"ndot0 must be perpendicular to n0 (n0·ndot0 = 0), got n0·ndot0 = {along!r}")
+    nd = nd - along * n
+    v0 = math.sqrt(float(nd @ nd))
+    try:
+        Om = float(Omega0)
+    except (TypeError, ValueError):
+        raise TypeError(f"Omega0 must be a real number, got {type(Omega0).__name__}") from None
+    if not math.isfinite(Om):
+        raise ValueError(f"Omega0 must be finite, got {Omega0!r}")
+    return n, nd, v0, Om
+
+
+def perpendicular(n: np.ndarray) -> np.ndarray:
+    """A unit vector perpendicular to the unit vector ``n`` (deterministic choice)."""
+    i = int(np.argmin(np.abs(n)))
+    e = np.zeros(3)
+    e[i] = 1.0
+    p = np.cross(n, e)
+    return p / np.linalg.norm(p)

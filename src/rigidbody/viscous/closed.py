@@ -1,0 +1,200 @@
+"""Closed forms of Krivtsov (2000): first integrals (3.3)-(3.5), curvature (4.5), quasi-coordinates (5.1)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .model import Body, Medium, _check
+
+__all__ = [
+    "F4",
+    "Omega",
+    "curvature",
+    "f3",
+    "limits",
+    "omega2",
+    "quasi_coordinates",
+    "spiral_radius",
+    "v",
+]
+
+
+def _time(t: Any) -> np.ndarray:
+    arr = np.asarray(t, dtype=float)
+    if np.any(np.isnan(arr)) or np.any(arr < 0):
+        raise ValueError("t must be >= 0 (t = inf is allowed and gives the limit t -> infinity)")
+    return arr
+
+
+def _out(x: np.ndarray) -> Any:
+    return float(x) if np.ndim(x) == 0 else x
+
+
+def _Omega0(Omega0: Any) -> float:
+    try:
+        val = float(Omega0)
+    except (TypeError, ValueError):
+        raise TypeError(f"Omega0 must be a real number, got {type(Omega0).__name__}") from None
+    if not math.isfinite(val):
+        raise ValueError(f"Omega0 must be finite, got {Omega0!r}")
+    return val
+
+
+def _v0(v0: Any) -> float:
+    try:
+        val = float(v0)
+    except (TypeError, ValueError):
+        raise TypeError(f"v0 must be a real number, got {type(v0).__name__}") from None
+    if not (math.isfinite(val) and val >= 0):
+        raise ValueError(f"v0 = |ndot0| must be finite and >= 0, got {v0!r}")
+    return val
+
+
+def Omega(body: Body, medium: Medium, Omega0: float, t: Any) -> Any:
+    """Spin ``Ω = ω·n``, eq. (3.3): ``Ω0 exp(-B3 t/θ3)``. Vectorised in ``t >= 0``."""
+    _check(body, medium)
+    tt = _time(t)
+    return _out(_Omega0(Omega0) * np.exp(-(medium.B3 / body.theta3) * tt))
+
+
+def v(body: Body, medium: Medium, v0: float, t: Any) -> Any:
+    """Speed of the axis tip ``v = |ṅ|``, eqs. (3.3)-(3.4): ``v0 exp(-B12 t/θ12)``."""
+    _check(body, medium)
+    tt = _time(t)
+    return _out(_v0(v0) * np.exp(-(medium.B12 / body.theta12) * tt))
+
+
+def f3(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> Any:
+    """``f³ = n·(ṅ×n̈) = (θ3/θ12) Ω v²``, eq. (3.5)."""
+    om = np.asarray(Omega(body, medium, Omega0, t))
+    vv = np.asarray(v(body, medium, v0, t))
+    return _out(body.theta3 / body.theta12 * om * vv * vv)
+
+
+def F4(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> Any:
+    """``F⁴ = n̈·n̈ = f⁶/v² + v̇² + v⁴``, section 3 (after 3.6).
+
+    Evaluated as ``v² ((θ3 Ω/θ12)² + (B12/θ12)² + v²)``, which is regular at ``v = 0``.
+    """
+    om = np.asarray(Omega(body, medium, Omega0, t))
+    vv = np.asarray(v(body, medium, v0, t))
+    w = body.theta3 / body.theta12 * om
+    a = medium.B12 / body.theta12
+    return _out(vv * vv * (w * w + a * a + vv * vv))
+
+
+def omega2(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> Any:
+    """``ω·ω = v² + Ω²``, end of section 3."""
+    om = np.asarray(Omega(body, medium, Omega0, t))
+    vv = np.asarray(v(body, medium, v0, t))
+    return _out(vv * vv + om * om)
+
+
+def _log_k(body: Body, medium: Medium, Omega0: float, v0: float, tt: np.ndarray) -> np.ndarray:
+    lam = medium.B12 / body.theta12 - medium.B3 / body.theta3
+    with np.errstate(invalid="ignore"):  # inf*0 cannot occur: tt finite or lam != 0 handled below
+        x = math.log(body.theta3 * abs(Omega0) / (body.theta12 * v0)) + lam * tt
+    if lam == 0.0:
+        x = np.full_like(tt, math.log(body.theta3 * abs(Omega0) / (body.theta12 * v0)))
+    return x
+
+
+def curvature(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> Any:
+    """Spherical (geodesic) curvature of the axis path, eq. (4.5).
+
+    ``k = (θ3 Ω0)/(θ12 v0) exp((B12/θ12 - B3/θ3) t)``, with the sign of ``Ω0``: ``k > 0`` turns the
+    path counterclockwise seen from outside the sphere (towards ``g = n×τ``).
+
+    Parameters
+    ----------
+    body, medium : Body, Medium
+    Omega0 : float
+        Initial spin ``Ω0 = ω0·n0``.
+    v0 : float
+        Initial speed of the axis tip ``|ṅ0| >= 0``.
+    t : array_like
+        Times ``>= 0``.
+
+    Returns
+    -------
+    float or ndarray
+        ``k(t)``. ``Ω0 = 0`` gives 0 (a great circle). ``v0 = 0`` with ``Ω0 != 0`` gives ``±inf``: the
+        axis stands still (a circle of radius 0). Overflow for huge ``t`` saturates to ``±inf``.
+
+    Raises
+    ------
+    ValueError
+        ``v0 = 0`` and ``Ω0 = 0``: a body at rest has no path, its curvature is undefined.
+    """
+    _check(body, medium)
+    tt = _time(t)
+    Om0, vv0 = _Omega0(Omega0), _v0(v0)
+    if vv0 == 0.0:
+        if Om0 == 0.0:
+            raise ValueError("curvature is undefined for a body at rest (v0 = 0 and Omega0 = 0)")
+        return _out(np.full_like(tt, math.copysign(math.inf, Om0)))
+    if Om0 == 0.0:
+        return _out(np.zeros_like(tt))
+    x = _log_k(body, medium, Om0, vv0, tt)
+    with np.errstate(over="ignore"):
+        return _out(math.copysign(1.0, Om0) * np.exp(x))
+
+
+def spiral_radius(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> Any:
+    """Radius of a turn of the spiral, eq. (5.2): ``R = 1/K = 1/sqrt(1 + k²)``.
+
+    ``R = sin ρ`` is the chordal radius of the osculating small circle (angular radius ``ρ``,
+    ``cot ρ = |k|``). Computed in log form: finite for all ``t``; ``v0 = 0`` gives ``R = 0``.
+    """
+    _check(body, medium)
+    tt = _time(t)
+    Om0, vv0 = _Omega0(Omega0), _v0(v0)
+    if vv0 == 0.0:
+        if Om0 == 0.0:
+            raise ValueError("spiral radius is undefined for a body at rest (v0 = 0 and Omega0 = 0)")
+        return _out(np.zeros_like(tt))
+    if Om0 == 0.0:
+        return _out(np.ones_like(tt))
+    x = _log_k(body, medium, Om0, vv0, tt)
+    return _out(np.exp(-0.5 * np.logaddexp(0.0, 2.0 * x)))
+
+
+def quasi_coordinates(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> tuple[Any, Any, Any]:
+    """Quasi-coordinates ``(s, ξ, ζ)``, eq. (5.1) in its verified form.
+
+    ``ṡ = v``, ``ξ̇ = v k = (θ3/θ12) Ω``, ``ζ̇ = Ω``, all zero at ``t = 0``:
+
+    * ``s = (θ12 v0/B12)(1 - exp(-B12 t/θ12))`` — arc length of the axis path;
+    * ``ξ = (θ3² Ω0/(θ12 B3))(1 - exp(-B3 t/θ3))`` — turning angle of the path's tangent
+      (printed with ``B12`` in the denominator: a misprint, see docs/errata.md);
+    * ``ζ = (θ3 Ω0/B3)(1 - exp(-B3 t/θ3))`` — turning of the body about ``n`` relative to a
+      parallel-transported frame.
+
+    ``t = inf`` gives :func:`limits`.
+    """
+    _check(body, medium)
+    tt = _time(t)
+    Om0, vv0 = _Omega0(Omega0), _v0(v0)
+    a = medium.B12 / body.theta12
+    b = medium.B3 / body.theta3
+    e_a = -np.expm1(-a * tt)
+    e_b = -np.expm1(-b * tt)
+    s = vv0 / a * e_a
+    zeta = Om0 / b * e_b
+    xi = body.theta3 / body.theta12 * zeta
+    return _out(s), _out(xi), _out(zeta)
+
+
+def limits(body: Body, medium: Medium, Omega0: float, v0: float) -> tuple[float, float, float]:
+    """Limits of (5.1) as ``t → ∞``: ``s∞ = θ12 v0/B12`` (length of the spiral),
+    ``ξ∞ = θ3² Ω0/(θ12 B3)`` (total turning of the spiral), ``ζ∞ = θ3 Ω0/B3`` (total turn of the body
+    about ``n`` relative to parallel transport)."""
+    _check(body, medium)
+    Om0, vv0 = _Omega0(Omega0), _v0(v0)
+    s_inf = body.theta12 * vv0 / medium.B12
+    zeta_inf = body.theta3 * Om0 / medium.B3
+    xi_inf = body.theta3 / body.theta12 * zeta_inf
+    return s_inf, xi_inf, zeta_inf

@@ -1,0 +1,275 @@
+"""The axis path on the unit sphere rebuilt from v(t) and k(t) alone (Darboux frame), and one turn
+of the spiral with its solid angle (the solid-angle theorem, section 5)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..core.ode import Event, integrate
+from ._state import initial_state
+from .closed import curvature, quasi_coordinates, spiral_radius
+from .model import Body, Medium, _check
+
+__all__ = ["Turn", "axis_path", "turn"]
+
+
+class _Frame:
+    """Darboux-frame equations in the compactified time ``u = 1 - exp(-γ t)``.
+
+    ``dn/dt = v τ``, ``dτ/dt = -v n + w g``, ``dg/dt = -w τ`` with ``w = v k = (θ3/θ12) Ω``; only
+    ``v`` and ``w`` enter, never ``k`` alone, so ``k → ∞`` is harmless. With ``d/du = d/dt / (γ (1-u))``
+    the coefficients are ``cv(u) = (v0/γ) (1-u)^(a/γ - 1)``, ``cw(u) = (w0/γ) (1-u)^(b/γ - 1)``,
+    ``a = B12/θ12``, ``b = B3/θ3``, ``γ = min(a, b)`` (``a`` if ``Ω0 = 0``): bounded on ``[0, 1]``.
+    """
+
+    def __init__(self, body: Body, medium: Medium, v0: float, Omega0: float) -> None:
+        a = medium.B12 / body.theta12
+        b = medium.B3 / body.theta3
+        self.gamma = min(a, b) if Omega0 != 0.0 else a
+        self.cv0 = v0 / self.gamma
+        self.cw0 = body.theta3 / body.theta12 * Omega0 / self.gamma
+        self.pv = a / self.gamma - 1.0
+        self.pw = b / self.gamma - 1.0
+
+    def u_of_t(self, t: np.ndarray) -> np.ndarray:
+        return -np.expm1(-self.gamma * t)
+
+    def t_of_u(self, u: float) -> float:
+        return math.inf if u >= 1.0 else -math.log1p(-u) / self.gamma
+
+    def coeffs(self, u: float) -> tuple[float, float]:
+        x = 1.0 - u
+        if x <= 0.0:
+            x = 0.0
+        cv = self.cv0 * (x**self.pv if self.pv != 0.0 else 1.0)
+        cw = self.cw0 * (x**self.pw if self.pw != 0.0 else 1.0)
+        return cv, cw
+
+    def rhs(self, u: float, y: np.ndarray) -> list[float]:
+        n1, n2, n3, t1, t2, t3, g1, g2, g3 = y[:9]
+        cv, cw = self.coeffs(u)
+        return [
+            cv * t1, cv * t2, cv * t3,
+            -cv * n1 + cw * g1, -cv * n2 + cw * g2, -cv * n3 + cw * g3,
+            -cw * t1, -cw * t2, -cw * t3,
+        ]
+
+
+def _initial_frame(n: np.ndarray, nd: np.ndarray, v0: float) -> np.ndarray:
+    tau = nd / v0
+    g = np.cross(n, tau)
+    return np.concatenate([n, tau, g])
+
+
+def _times(t_eval: Any) -> np.ndarray:
+    t = np.atleast_1d(np.asarray(t_eval, dtype=float))
+    if t.ndim != 1 or t.size == 0:
+        raise ValueError("t_eval must be a non-empty 1-D array of times")
+    if np.any(np.isnan(t)) or np.any(t < 0):
+        raise ValueError("t_eval must hold times >= 0 (np.inf allowed: the end of the path)")
+    return t
+
+
+def axis_path(
+    body: Body,
+    medium: Medium,
+    n0: Any,
+    ndot0: Any,
+    Omega0: float,
+    t_eval: Any,
+    *,
+    rtol: float = 1e-12,
+    atol: float = 1e-14,
+    frame: bool = False,
+) -> Any:
+    """Rebuild the path ``n(t)`` of the symmetry axis from ``v(t)`` (3.4) and ``k(t)`` (4.5) alone.
+
+    Integrates the Darboux frame ``(n, τ, g = n×τ)`` of a curve on the unit sphere,
+    ``n' = τ, τ' = -n + k g, g' = -k τ`` (``'`` = d/ds, ``k = n·(n'×n'')`` of eq. 4.3), written in time
+    with ``ds/dt = v`` and ``v k = (θ3/θ12) Ω``, in the compactified time ``u = 1 - exp(-γt)``,
+    ``γ = min(B12/θ12, B3/θ3)``: the right-hand side stays bounded as ``k → ∞`` and ``t → ∞``
+    (``u → 1``; the path has the finite length ``s∞``). No dynamics is integrated.
+
+    Parameters
+    ----------
+    body, medium : Body, Medium
+    n0, ndot0, Omega0
+        Initial axis, its velocity (⊥ ``n0``) and spin, as in :func:`simulate`; only the initial point
+        ``n0``, tangent ``ndot0/|ndot0|``, ``v0 = |ndot0|`` and ``Ω0`` are used.
+    t_eval : array_like
+        Times ``>= 0`` (any order; ``np.inf`` gives the end point of the path).
+    rtol, atol : float
+        DOP853 tolerances in ``u``; the defaults give ~1e-12 rad.
+    frame : bool
+        Also return ``τ`` and ``g``.
+
+    Returns
+    -------
+    n : ndarray, shape (3, len(t_eval))
+        Or ``(n, tau, g)`` if ``frame``. ``v0 = 0``: the axis is fixed, ``n = n0`` (``τ, g`` are NaN).
+    """
+    _check(body, medium)
+    n, nd, v0, Om0 = initial_state(n0, ndot0, Omega0)
+    t = _times(t_eval)
+    if v0 == 0.0:
+        nn = np.repeat(n[:, None], t.size, axis=1)
+        if frame:
+            nan = np.full_like(nn, np.nan)
+            return nn, nan, nan.copy()
+        return nn
+    fr = _Frame(body, medium, v0, Om0)
+    u = fr.u_of_t(t)
+    order = np.argsort(u, kind="stable")
+    us = u[order]
+    y0 = _initial_frame(n, nd, v0)
+    out = np.empty((9, t.size))
+    if us[-1] > 0.0:
+        sol = integrate(fr.rhs, (0.0, float(us[-1])), y0, t_eval=us, rtol=rtol, atol=atol, time_name="u")
+        if not sol.success:
+            raise RuntimeError(f"axis_path: integration failed: {sol.message}")
+        out[:, order] = sol.y
+    else:
+        out[:] = y0[:, None]
+    if frame:
+        return out[0:3], out[3:6], out[6:9]
+    return out[0:3]
+
+
+@dataclass(frozen=True)
+class Turn:
+    """One turn of the spiral and the solid-angle theorem ``Δφ = χ + Δζ`` (section 5).
+
+    Attributes
+    ----------
+    t1, t2 : float
+        Start and end of the turn.
+    centre : ndarray (3,)
+        The osculating centre ``c1 = sgn(k)(k n + g)/sqrt(1+k²)`` at ``t1`` about which the turn is
+        counted.
+    chi : float
+        Signed solid angle enclosed by the turn closed with the meridian arc through ``c1`` (exact,
+        from the path geometry: ``∫ c1·(n×dn)/(1 + c1·n)``); positive counterclockwise seen from outside.
+    chi_approx_start, chi_approx_end : float
+        ``sgn(k) 2π(1 - sqrt(1 - R²))`` with ``R`` of (5.2) at ``t1`` and at ``t2``.
+    R1, R2 : float
+        Spiral radius (5.2) at ``t1`` and ``t2``.
+    dzeta : float
+        ``ζ(t2) - ζ(t1)`` from (5.1).
+    dphi : float
+        ``χ + Δζ``: the body's axial turn over the turn (not reduced modulo 2π).
+    n : ndarray (3, m)
+        Samples of the axis path over the turn (for plots).
+    """
+
+    t1: float
+    t2: float
+    centre: np.ndarray
+    chi: float
+    chi_approx_start: float
+    chi_approx_end: float
+    R1: float
+    R2: float
+    dzeta: float
+    dphi: float
+    n: np.ndarray
+
+
+def turn(
+    body: Body,
+    medium: Medium,
+    n0: Any,
+    ndot0: Any,
+    Omega0: float,
+    t1: float = 0.0,
+    *,
+    rtol: float = 1e-12,
+    atol: float = 1e-14,
+    samples: int = 400,
+) -> Turn:
+    """One turn of the axis spiral starting at ``t1``, its solid angle and the axial rotation.
+
+    Definition of a turn: the centre is the osculating centre ``c1`` of the path at ``t1``; the turn ends
+    at the first ``t2 > t1`` at which the azimuth of ``n`` about ``c1`` has advanced by ``2π`` (sense of
+    ``k``), i.e. ``n`` is back on the half great circle from ``c1`` through ``n(t1)``. The loop is
+    closed by the arc of that meridian from ``n(t2)`` to ``n(t1)``. Then the solid-angle theorem
+    (Zhuravlev) gives the body's axial turn in absolute space ``Δφ = χ + Δζ``; the paper's approximation
+    is ``χ ≈ 2π(1 - sqrt(1 - R²))``, ``R`` from (5.2).
+
+    Parameters
+    ----------
+    body, medium, n0, ndot0, Omega0
+        As in :func:`axis_path`.
+    t1 : float
+        Start of the turn, ``>= 0``.
+    rtol, atol : float
+        Tolerances of the path integration.
+    samples : int
+        Number of path samples returned in ``Turn.n``.
+
+    Returns
+    -------
+    Turn
+
+    Raises
+    ------
+    ValueError
+        If the path has no complete turn after ``t1`` (``Ω0 = 0``, ``v0 = 0``, or the remaining total
+        turning of the spiral is too small).
+    """
+    _check(body, medium)
+    n, nd, v0, Om0 = initial_state(n0, ndot0, Omega0)
+    t1 = float(_times(t1)[0])
+    if not math.isfinite(t1):
+        raise ValueError("t1 must be finite")
+    if v0 == 0.0 or Om0 == 0.0:
+        raise ValueError("no turn: the path is a point (v0 = 0) or a great-circle arc (Omega0 = 0)")
+    fr = _Frame(body, medium, v0, Om0)
+    n1, tau1, g1 = (x[:, 0] for x in axis_path(body, medium, n, nd, Om0, [t1], rtol=rtol, atol=atol, frame=True))
+    sg = 1.0 if Om0 > 0 else -1.0
+    R1 = float(spiral_radius(body, medium, Om0, v0, t1))
+    # c1 = sgn(k)(k n + g)/sqrt(1+k^2) = cos(rho) n + sgn(k) sin(rho) g, sin(rho) = R (5.2): regular as |k| -> inf
+    cosr = math.sqrt(1.0 - R1 * R1) if R1 < 0.5 else abs(float(curvature(body, medium, Om0, v0, t1))) * R1
+    c = cosr * n1 + sg * R1 * g1
+    c /= np.linalg.norm(c)
+    c1, c2, c3 = c
+
+    def rhs(u: float, y: np.ndarray) -> list[float]:
+        d = fr.rhs(u, y)
+        n_1, n_2, n_3 = y[0], y[1], y[2]
+        dn1, dn2, dn3 = d[0], d[1], d[2]
+        cn = c1 * n_1 + c2 * n_2 + c3 * n_3
+        # c·(n×dn)
+        cx = c1 * (n_2 * dn3 - n_3 * dn2) + c2 * (n_3 * dn1 - n_1 * dn3) + c3 * (n_1 * dn2 - n_2 * dn1)
+        dalpha = cx / (1.0 - cn * cn)
+        dchi = cx / (1.0 + cn)
+        return [*d, dalpha, dchi]
+
+    ev = Event(lambda u, y: y[9] - sg * 2.0 * math.pi, "turn_end", terminal=True,
+               message="the azimuth about the centre advanced by 2*pi")
+    u1 = float(fr.u_of_t(np.asarray(t1)))
+    y0 = [*n1, *tau1, *g1, 0.0, 0.0]
+    sol = integrate(rhs, (u1, 1.0), y0, rtol=rtol, atol=atol, events=[ev], dense_output=True, time_name="u")
+    if sol.event != "turn_end":
+        raise ValueError(
+            f"no complete turn of the spiral after t1 = {t1}: the azimuth about the centre only reaches "
+            f"{sol.y[9, -1]:.6g} rad (the remaining total turning is too small)"
+        )
+    u2 = float(sol.t_events["turn_end"][0])
+    y2 = sol.y_events["turn_end"][0]
+    t2 = fr.t_of_u(u2)
+    chi = float(y2[10])
+    R2 = float(spiral_radius(body, medium, Om0, v0, t2))
+    z = quasi_coordinates(body, medium, Om0, v0, np.array([t1, t2]))[2]
+    dzeta = float(z[1] - z[0])
+    us = np.linspace(u1, u2, samples)
+    nn = sol.sol(us)[0:3]
+    return Turn(
+        t1=t1, t2=t2, centre=c, chi=chi,
+        chi_approx_start=sg * 2.0 * math.pi * (1.0 - math.sqrt(max(0.0, 1.0 - R1 * R1))),
+        chi_approx_end=sg * 2.0 * math.pi * (1.0 - math.sqrt(max(0.0, 1.0 - R2 * R2))),
+        R1=R1, R2=R2, dzeta=dzeta, dphi=chi + dzeta, n=nn,
+    )
