@@ -58,3 +58,14 @@ def test_errors():
         avg.jacobi_average(lambda s, c, d: s, 0.5, period="3K")
     with pytest.raises(ValueError, match="n must"):
         avg.phase_grid(0.5, n=1)
+
+
+@pytest.mark.parametrize("mc", [0.7, 1e-3, 1e-6, 2e-9, 1e-9, 1e-11])
+def test_phase_grid_agrees_with_careful_jacobi(mc):
+    # the fast path (raw ellipj for 1 - k^2 >= 1e-3) against the period-reduced evaluation with exact mc;
+    # both are accurate to a few ulp in absolute terms there
+    s, sn, cn, dn = avg.phase_grid(mc=mc, n=64)
+    s2, c2, d2, _ = ell.jacobi(s, mc=mc)
+    np.testing.assert_allclose(sn, s2, atol=1e-14)
+    np.testing.assert_allclose(cn, c2, atol=1e-14)
+    np.testing.assert_allclose(dn, d2, atol=1e-14)
