@@ -19,8 +19,10 @@ import numpy as np
 __all__ = [
     "Top",
     "cubic_coefficients",
+    "deltas",
     "from_roots",
     "integrals",
+    "root_radical",
     "roots",
     "vieta",
 ]
@@ -181,6 +183,11 @@ def _roots_scalar(top: Top, Gz: float, H: float, r: float) -> tuple[float, float
             f"(Gz, H, r) = ({Gz!r}, {H!r}, {r!r}) is not attainable by a real top: Q(u) < 0 on [-1, 1] "
             "(energy H too low for the given Gz and r)"
         )
+    if H - 0.5 * top.C * r * r < -top.mgl * (1.0 + 1e-12) - tol:
+        raise ValueError(
+            f"(Gz, H, r) = ({Gz!r}, {H!r}, {r!r}) is not attainable: H must be >= C r^2/2 - mgl "
+            "(kinetic energy of the axial spin plus the lowest potential energy)"
+        )
     # u3: the largest root, in [max(1, c_hi), s1 + 2] (u1 + u2 >= -2); P increasing there.
     lo3 = max(1.0, c_hi)
     hi3 = max(lo3, s1 + 2.0)
@@ -209,6 +216,11 @@ def _roots_scalar(top: Top, Gz: float, H: float, r: float) -> tuple[float, float
     else:
         u1 = m - half
         u2 = m + half
+    if u1 < -1.0 - 1e-6 or u2 > 1.0 + 1e-6:
+        raise ValueError(
+            f"(Gz, H, r) = ({Gz!r}, {H!r}, {r!r}) is not attainable by a real top: the cubic (1.5) has no "
+            f"pair of roots in [-1, 1] (got {u1!r}, {u2!r})"
+        )
     # enforce the admissible ordering -1 <= u1 <= u2 <= 1 <= u3 against rounding (1.5)
     u1 = min(max(u1, -1.0), 1.0)
     u2 = min(max(u2, u1), 1.0)

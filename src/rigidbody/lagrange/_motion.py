@@ -1,0 +1,104 @@
+r"""The unperturbed Lagrange motion in closed form: u(t) (1.3)-(1.4) and phi(t), psi(t) by (1.7)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ..core import elliptic as _ell
+from ..core.ode import Solution, integrate
+from ._averaging import modulus
+from ._top import Top, _check_top, integrals, roots
+
+__all__ = ["lagrange_motion", "nutation_frequency"]
+
+
+def nutation_frequency(top: Top, u1: float, u3: float) -> float:
+    r"""``alpha = [mgl (u3 - u1) / (2A)]^{1/2}`` of (1.3); the nutation period is ``2K(k)/alpha``."""
+    return math.sqrt(top.mgl * (u3 - u1) / (2.0 * top.A))
+
+
+def lagrange_motion(
+    top: Top,
+    state0: tuple[float, float, float, float, float, float],
+    t: Any,
+    *,
+    rtol: float = 1e-12,
+    atol: float = 1e-12,
+) -> Solution:
+    r"""The unperturbed (eps = 0) Lagrange motion from an initial state, by the paper's formulas.
+
+    ``u = cos(theta) = u1 + (u2 - u1) sn^2(alpha t + beta, k)`` (1.3)-(1.4) with the phase ``beta`` fixed
+    by ``u(0) = cos(theta0)`` and the sign of ``u'(0) = -sin(theta0) theta'(0)``; then ``psi``, ``phi`` by
+    the quadratures (1.7)
+
+    .. math:: \dot\psi = \frac{G_z - Cru}{A(1-u^2)},\qquad \dot\varphi = r - u\dot\psi,
+
+    integrated along the closed-form ``u(t)`` (high-order ODE quadrature, tolerance ``rtol``).
+
+    Parameters
+    ----------
+    top : Top
+    state0 : (p, q, r, phi, theta, psi)
+        Initial state; ``0 < theta0 < pi`` is required for psi, phi (Euler angles are singular at the
+        poles) and the motion must not pass through ``u = +-1``.
+    t : array_like
+        Increasing output times starting at 0 or later.
+
+    Returns
+    -------
+    rigidbody.core.ode.Solution
+        ``t``, ``u``, ``theta``, ``phi``, ``psi``, and the constants as attributes of ``fields``:
+        ``u1, u2, u3, k2, alpha, beta`` (scalars, stored as 0-d arrays).
+    """
+    top = _check_top(top)
+    p0, q0, r0, phi0, th0, psi0 = (float(x) for x in state0)
+    if not 0.0 < th0 < math.pi:
+        raise ValueError(f"theta0 must lie in (0, pi) for the Euler-angle quadratures (1.7), got {th0!r}")
+    t = np.asarray(t, dtype=float)
+    if t.ndim != 1 or t.size == 0 or np.any(np.diff(t) <= 0) or t[0] < 0:
+        raise ValueError("t must be a non-empty increasing 1-D array of times >= 0")
+    Gz, H, r = integrals(top, p0, q0, r0, phi0, th0)
+    u1, u2, u3 = roots(top, Gz, H, r)
+    k2, mc = modulus(u1, u2, u3)
+    alpha = nutation_frequency(top, u1, u3)
+    u0 = math.cos(th0)
+    dtheta0 = p0 * math.cos(phi0) - q0 * math.sin(phi0)
+    du0 = -math.sin(th0) * dtheta0
+    if u2 > u1:
+        x = min(max((u0 - u1) / (u2 - u1), 0.0), 1.0)
+        beta = float(_ell.F(math.asin(math.sqrt(x)), mc=mc))
+        if du0 < 0.0:
+            beta = -beta
+    else:
+        beta = 0.0
+    mc_ = max(mc, 0.0)
+
+    def u_of(tt: Any) -> Any:
+        snv = np.asarray(_ell.sn(alpha * np.asarray(tt) + beta, mc=mc_))
+        return u1 + (u2 - u1) * snv * snv
+
+    A, C = top.A, top.C
+
+    def rhs(tt: float, y: np.ndarray) -> list[float]:
+        u = float(u_of(tt))
+        dpsi = (Gz - C * r * u) / (A * (1.0 - u * u))
+        return [dpsi, r - u * dpsi]
+
+    sol = integrate(rhs, (0.0, float(t[-1])), [psi0, phi0], t_eval=t if t[0] == 0.0 else np.r_[0.0, t],
+                    rtol=rtol, atol=atol)
+    psi, phi = sol.y[0], sol.y[1]
+    tt = sol.t
+    if t[0] != 0.0:
+        psi, phi, tt = psi[1:], phi[1:], tt[1:]
+    u = u_of(tt)
+    data = {
+        "u": u, "theta": np.arccos(np.clip(u, -1.0, 1.0)), "psi": psi, "phi": phi,
+        "u1": np.asarray(u1), "u2": np.asarray(u2), "u3": np.asarray(u3), "k2": np.asarray(k2),
+        "alpha": np.asarray(alpha), "beta": np.asarray(beta),
+        "Gz": np.asarray(Gz), "H": np.asarray(H), "r": np.asarray(r),
+    }
+    return Solution("t", tt, sol.y, data, sol.status, sol.message, sol.event, sol.t_events, sol.y_events,
+                    None, sol.nfev)

@@ -1,0 +1,258 @@
+r"""Perturbing torques admissible for averaging over the nutation angle (Akulenko et al. 1979, Sec. 2).
+
+A torque ``eps M`` is admissible when the combinations (2.2)
+
+.. math::
+    M_1\sin\varphi + M_2\cos\varphi = M_1^*,\quad M_1p + M_2q = M_2^*,\quad M_3 = M_3^*
+
+depend on the fast variables only through the nutation angle theta. The slow variables then obey (2.7)
+
+.. math::
+    G_z' = \varepsilon F_1,\ F_1 = M_1^*\sin\theta + M_3^*\cos\theta;\quad
+    H' = \varepsilon F_2,\ F_2 = M_2^* + M_3^* r;\quad r' = \varepsilon F_3,\ F_3 = M_3^*/C.
+
+(The paper prints ``F1 = M1* + M3* cos(theta)``: the factor ``sin(theta)`` of (2.1) was dropped; see
+``docs/errata.md``.)
+
+The protocol
+------------
+Every torque object accepted by :func:`rigidbody.lagrange.averaged` and
+:func:`rigidbody.lagrange.simulate` is a :class:`Torque`:
+
+``slow_rates(top, Gz, H, r, u) -> (F1, F2, F3)``
+    the right-hand sides (2.7) at fixed slow variables for an array ``u = cos(theta)`` of nutation
+    states (vectorised over ``u``). This is all the averaging engine needs.
+``body_moments(top, p, q, r, g1, g2, g3) -> (M1, M2, M3)``
+    the body components of ``M`` at a full state, with ``(g1, g2, g3) = (sin th sin phi,
+    sin th cos phi, cos th)`` the upward vertical in body axes (direction cosines). Needed only by
+    :func:`simulate`; scalars in, floats out.
+
+Ready-made classes: :class:`ProportionalTorque` (class (2.4): ``M1 = p f, M2 = q f, M3 = M3*``),
+:class:`VerticalPlaneTorque` (class (2.5): ``M1 = F sin phi, M2 = F cos phi, M3 = M3*``),
+:class:`StarTorque` (the functions ``M1*, M2*, M3*`` of (2.2) given directly; averaging only) and
+:class:`LinearDrag` (3.1), which also carries the closed-form averaged system (3.4).
+User functions ``f, F, M3`` take ``(Gz, H, r, theta)`` as in (2.6) (``theta`` may be an array).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ._top import Top
+
+__all__ = [
+    "LinearDrag",
+    "ProportionalTorque",
+    "StarTorque",
+    "Torque",
+    "VerticalPlaneTorque",
+]
+
+SlowFunction = Callable[[float, float, float, Any], Any]
+
+
+def _sin_theta(u: np.ndarray) -> np.ndarray:
+    return np.sqrt(np.maximum(1.0 - u * u, 0.0))
+
+
+def _theta(u: np.ndarray) -> np.ndarray:
+    return np.arccos(np.clip(u, -1.0, 1.0))
+
+
+def _body_slow(top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float):
+    """(Gz, H, theta) of a full state: Gz = K . gamma, H by (1.2)."""
+    Gz = top.A * (p * g1 + q * g2) + top.C * r * g3
+    H = 0.5 * (top.A * (p * p + q * q) + top.C * r * r) + top.mgl * g3
+    theta = math.acos(min(1.0, max(-1.0, g3)))
+    return Gz, H, theta
+
+
+class Torque:
+    """Base class of admissible perturbing torques (see the module docstring for the protocol)."""
+
+    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
+        """The (corrected) right-hand sides F1, F2, F3 of (2.7) at ``cos(theta) = u``."""
+        raise NotImplementedError
+
+    def body_moments(self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float):
+        """Body components (M1, M2, M3) of the torque at a full state (for :func:`simulate`)."""
+        raise TypeError(
+            f"{type(self).__name__} defines only the averaged combinations (2.2); "
+            "the full equations (1.1) need body moments: use ProportionalTorque or VerticalPlaneTorque"
+        )
+
+
+def _check_callable(f: Any, name: str) -> None:
+    if not callable(f):
+        raise TypeError(f"{name} must be a callable (Gz, H, r, theta) -> value, got {type(f).__name__}")
+
+
+def _zero(Gz: float, H: float, r: float, theta: Any) -> Any:
+    return 0.0 * np.asarray(theta, dtype=float)
+
+
+class ProportionalTorque(Torque):
+    r"""Torque of class (2.4): ``M1 = p f, M2 = q f, M3 = M3*`` with ``f, M3*`` functions of (Gz, H, r, theta).
+
+    Then, by (2.3), ``M1* sin(theta) = f (Gz - C r u)/A`` and ``M2* = f [2(H - mgl u) - C r^2]/A``.
+
+    Parameters
+    ----------
+    f : callable (Gz, H, r, theta) -> float or array
+        The common factor of the equatorial components (2.4), (2.6).
+    M3 : callable (Gz, H, r, theta) -> float or array, optional
+        The axial component ``M3*`` (default 0).
+    """
+
+    def __init__(self, f: SlowFunction, M3: SlowFunction | None = None) -> None:
+        _check_callable(f, "f")
+        if M3 is not None:
+            _check_callable(M3, "M3")
+        self.f = f
+        self.M3 = M3 if M3 is not None else _zero
+
+    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
+        u = np.asarray(u, dtype=float)
+        th = _theta(u)
+        f = np.asarray(self.f(Gz, H, r, th), dtype=float)
+        m3 = np.asarray(self.M3(Gz, H, r, th), dtype=float)
+        F1 = f * (Gz - top.C * r * u) / top.A + m3 * u
+        F2 = f * (2.0 * (H - top.mgl * u) - top.C * r * r) / top.A + m3 * r
+        F3 = m3 / top.C
+        return np.broadcast_arrays(F1, F2, F3 * np.ones_like(u))
+
+    def body_moments(self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float):
+        Gz, H, th = _body_slow(top, p, q, r, g1, g2, g3)
+        f = float(self.f(Gz, H, r, th))
+        return p * f, q * f, float(self.M3(Gz, H, r, th))
+
+
+class VerticalPlaneTorque(Torque):
+    r"""Torque of class (2.5): ``M1 = F sin(phi), M2 = F cos(phi), M3 = M3*``.
+
+    The equatorial part is directed along the projection of the vertical on the equatorial plane
+    (body components ``(sin phi, cos phi, 0)``). By (2.3), ``M1* = F`` and
+    ``M2* = F (Gz - C r u)/(A sin theta)``.
+
+    Parameters
+    ----------
+    F : callable (Gz, H, r, theta) -> float or array
+    M3 : callable (Gz, H, r, theta) -> float or array, optional (default 0)
+
+    Notes
+    -----
+    At ``sin(theta) = 0`` the direction (sin phi, cos phi) is undefined; :meth:`body_moments` then
+    uses ``F = 0`` for the equatorial part (the torque is discontinuous there unless ``F -> 0``).
+    """
+
+    def __init__(self, F: SlowFunction, M3: SlowFunction | None = None) -> None:
+        _check_callable(F, "F")
+        if M3 is not None:
+            _check_callable(M3, "M3")
+        self.F = F
+        self.M3 = M3 if M3 is not None else _zero
+
+    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
+        u = np.asarray(u, dtype=float)
+        th = _theta(u)
+        st = _sin_theta(u)
+        Fv = np.asarray(self.F(Gz, H, r, th), dtype=float)
+        m3 = np.asarray(self.M3(Gz, H, r, th), dtype=float)
+        num = Gz - top.C * r * u
+        ratio = np.divide(num, top.A * st, out=np.zeros(np.broadcast(num, st).shape), where=st > 0.0)
+        F1 = Fv * st + m3 * u
+        F2 = Fv * ratio + m3 * r
+        F3 = m3 / top.C
+        return np.broadcast_arrays(F1, F2, F3 * np.ones_like(u))
+
+    def body_moments(self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float):
+        Gz, H, th = _body_slow(top, p, q, r, g1, g2, g3)
+        st = math.hypot(g1, g2)
+        m3 = float(self.M3(Gz, H, r, th))
+        if st == 0.0:
+            return 0.0, 0.0, m3
+        Fv = float(self.F(Gz, H, r, th))
+        return Fv * g1 / st, Fv * g2 / st, m3
+
+
+class StarTorque(Torque):
+    r"""A torque given directly by the functions ``M1*, M2*, M3*`` of (2.2) (averaging only).
+
+    Parameters
+    ----------
+    M1s, M2s, M3s : callable (Gz, H, r, theta) -> float or array
+        ``M1* = M1 sin(phi) + M2 cos(phi)``, ``M2* = M1 p + M2 q``, ``M3* = M3``.
+    """
+
+    def __init__(self, M1s: SlowFunction, M2s: SlowFunction, M3s: SlowFunction | None = None) -> None:
+        _check_callable(M1s, "M1s")
+        _check_callable(M2s, "M2s")
+        if M3s is not None:
+            _check_callable(M3s, "M3s")
+        self.M1s, self.M2s = M1s, M2s
+        self.M3s = M3s if M3s is not None else _zero
+
+    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
+        u = np.asarray(u, dtype=float)
+        th = _theta(u)
+        m1 = np.asarray(self.M1s(Gz, H, r, th), dtype=float)
+        m2 = np.asarray(self.M2s(Gz, H, r, th), dtype=float)
+        m3 = np.asarray(self.M3s(Gz, H, r, th), dtype=float)
+        F1 = m1 * _sin_theta(u) + m3 * u
+        F2 = m2 + m3 * r
+        F3 = m3 / top.C
+        return np.broadcast_arrays(F1, F2, F3 * np.ones_like(u))
+
+
+@dataclass(frozen=True)
+class LinearDrag(Torque):
+    r"""Linear dissipative torque (3.1): ``M1 = -a p, M2 = -a q, M3 = -b r`` with ``a, b > 0``.
+
+    A special case of class (2.4) (``f = -a``, ``M3* = -b r``). Its averaged system has the closed
+    form (3.4) (:func:`rigidbody.lagrange.drag_rhs`), and ``r = r0 exp(-eps b t / C)`` exactly (3.3).
+
+    Parameters
+    ----------
+    a : float
+        Equatorial damping coefficient, ``a >= 0``.
+    b : float
+        Axial damping coefficient, ``b >= 0``.
+    """
+
+    a: float
+    b: float
+
+    def __post_init__(self) -> None:
+        for name in ("a", "b"):
+            val = getattr(self, name)
+            if isinstance(val, bool) or not isinstance(val, (int, float, np.floating, np.integer)):
+                raise TypeError(f"LinearDrag.{name} must be a real number, got {type(val).__name__}")
+            if not math.isfinite(float(val)) or float(val) < 0.0:
+                raise ValueError(f"LinearDrag.{name} must be finite and >= 0, got {val!r}")
+            object.__setattr__(self, name, float(val))
+
+    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
+        u = np.asarray(u, dtype=float)
+        a, b = self.a, self.b
+        F1 = -a * (Gz - top.C * r * u) / top.A - b * r * u
+        F2 = -a * (2.0 * (H - top.mgl * u) - top.C * r * r) / top.A - b * r * r
+        F3 = -b * r / top.C
+        return np.broadcast_arrays(F1, F2, F3 * np.ones_like(u))
+
+    def body_moments(self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float):
+        return -self.a * p, -self.a * q, -self.b * r
+
+
+def check_torque(torque: Any, name: str = "torque") -> Torque:
+    """Validate a torque argument (anything implementing :meth:`Torque.slow_rates`)."""
+    if not callable(getattr(torque, "slow_rates", None)):
+        raise TypeError(
+            f"{name} must implement slow_rates(top, Gz, H, r, u) (see rigidbody.lagrange.Torque), "
+            f"got {type(torque).__name__}"
+        )
+    return torque
