@@ -153,10 +153,12 @@ class Turn:
     chi : float
         Signed solid angle enclosed by the turn closed with the meridian arc through ``c1`` (exact,
         from the path geometry: ``∫ c1·(n×dn)/(1 + c1·n)``); positive counterclockwise seen from outside.
-    chi_approx_start, chi_approx_end : float
-        ``sgn(k) 2π(1 - sqrt(1 - R²))`` with ``R`` of (5.2) at ``t1`` and at ``t2``.
-    R1, R2 : float
-        Spiral radius (5.2) at ``t1`` and ``t2``.
+    chi_approx, chi_approx_start, chi_approx_end : float
+        The paper's ``sgn(k) 2π(1 - sqrt(1 - R²))`` with ``R`` of (5.2) at mid-turn ``(t1+t2)/2``, at
+        ``t1`` and at ``t2``. Relative error: ~``λT`` with ``R`` at the start or end,
+        ``O((λT)²)`` at mid-turn, ``λ = B12/θ12 - B3/θ3``, ``T = t2 - t1``; exact for the circle.
+    R1, R_mid, R2 : float
+        Spiral radius (5.2) at ``t1``, ``(t1+t2)/2`` and ``t2``.
     dzeta : float
         ``ζ(t2) - ζ(t1)`` from (5.1).
     dphi : float
@@ -169,9 +171,11 @@ class Turn:
     t2: float
     centre: np.ndarray
     chi: float
+    chi_approx: float
     chi_approx_start: float
     chi_approx_end: float
     R1: float
+    R_mid: float
     R2: float
     dzeta: float
     dphi: float
@@ -263,13 +267,17 @@ def turn(
     t2 = fr.t_of_u(u2)
     chi = float(y2[10])
     R2 = float(spiral_radius(body, medium, Om0, v0, t2))
+    Rm = float(spiral_radius(body, medium, Om0, v0, 0.5 * (t1 + t2)))
+
+    def cap(R: float) -> float:
+        return sg * 2.0 * math.pi * (1.0 - math.sqrt(max(0.0, 1.0 - R * R)))
+
     z = quasi_coordinates(body, medium, Om0, v0, np.array([t1, t2]))[2]
     dzeta = float(z[1] - z[0])
     us = np.linspace(u1, u2, samples)
     nn = sol.sol(us)[0:3]
     return Turn(
         t1=t1, t2=t2, centre=c, chi=chi,
-        chi_approx_start=sg * 2.0 * math.pi * (1.0 - math.sqrt(max(0.0, 1.0 - R1 * R1))),
-        chi_approx_end=sg * 2.0 * math.pi * (1.0 - math.sqrt(max(0.0, 1.0 - R2 * R2))),
-        R1=R1, R2=R2, dzeta=dzeta, dphi=chi + dzeta, n=nn,
+        chi_approx=cap(Rm), chi_approx_start=cap(R1), chi_approx_end=cap(R2),
+        R1=R1, R_mid=Rm, R2=R2, dzeta=dzeta, dphi=chi + dzeta, n=nn,
     )
