@@ -1,0 +1,317 @@
+r"""The full (unaveraged) equations of motion: (1), (3), (4) of Rachinskaya, and a body-frame formulation.
+
+Nondimensional, section-3 scaling, written in the slow time :math:`\tau = \varepsilon^2\tilde t`: the
+torque-free parts carry the factor :math:`\varepsilon^{-2}`, the torques
+
+.. math:: \tilde{\mathbf L} = 3f(\nu)\,\mathbf e_r\times J\mathbf e_r - \tilde I\boldsymbol\omega,
+          \qquad \nu = \tau/\varepsilon + \nu_0,
+
+(gravity gradient (3) with :math:`J` the inertia tensor and :math:`\mathbf e_r` the unit radius vector,
+drag :math:`-\tilde I\boldsymbol\omega` in body axes) do not.
+
+Two independent formulations integrate the same motion:
+
+``formulation='body'`` (default)
+    Euler's equations for the body components :math:`\mathbf g` of :math:`\mathbf G` and the attitude
+    quaternion (body -> orbital axes :math:`Ox_i`): :math:`\dot{\mathbf g} = \mathbf g\times\boldsymbol\omega
+    + \mathbf L`, :math:`\dot q = \tfrac12 q\otimes(0,\boldsymbol\omega)`. No singular states.
+``formulation='angles'``
+    The paper's equations (1) for :math:`(G, \delta, \lambda, \theta, \varphi, \psi)` with the torque
+    projections (3) on :math:`Oy_i` and the energy equation (4) for :math:`T`. Singular at
+    :math:`\sin\theta = 0` and :math:`\sin\delta = 0`: the run then ends with a status (events
+    ``'sin_theta'``, ``'sin_delta'``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ..core import euler
+from ..core.ode import Event, Solution, integrate
+from ._averaged import _check_spin, _finish, _slow_msg, _validate_common
+from ._model import Body, Orbit, _as_orbit, _check_kind, _nut_freq, _real, as_drag
+from ._motion import EulerPoinsot
+
+__all__ = ["initial_state", "simulate"]
+
+
+def _frame_y(delta: float, lam: float) -> np.ndarray:
+    """Columns y1, y2, y3 (the frame attached to G) in the orbital axes Ox_i."""
+    sd, cd, sl, cl = math.sin(delta), math.cos(delta), math.sin(lam), math.cos(lam)
+    return np.array([[cd * cl, -sl, sd * cl], [cd * sl, cl, sd * sl], [-sd, 0.0, cd]])
+
+
+def initial_state(
+    body: Body, G0: float, k2_0: float, delta0: float, lam0: float, *, kind: str = "max",
+    u0: float = 0.0, psi0: float = 0.0, sigma: int = 1,
+) -> dict[str, Any]:
+    r"""Initial attitude and angular momentum of the full motion with given slow variables.
+
+    The body is put on the Euler--Poinsot motion with :math:`(G_0, k^2_0)` at elliptic phase ``u0`` and
+    precession angle ``psi0`` about :math:`\mathbf G`, with :math:`\mathbf G` along
+    :math:`(\sin\delta_0\cos\lambda_0, \sin\delta_0\sin\lambda_0, \cos\delta_0)` in :math:`Ox_i`.
+
+    Returns
+    -------
+    dict
+        ``g`` (body components of G), ``R`` (body -> Ox_i), ``q`` (its quaternion), ``psi``, ``theta``,
+        ``phi`` (Euler angles relative to Oy_i), ``T``.
+    """
+    m = EulerPoinsot(body, G0, k2_0, kind, sigma)
+    g = m.g(0.0, u0)
+    _, theta, phi = m.angles(0.0, u0)
+    Ry = _frame_y(delta0, lam0)
+    Rb = Ry @ euler.dcm(psi0, theta, phi)
+    return {"g": g, "R": Rb, "q": euler.quat_from_dcm(Rb), "psi": psi0, "theta": theta, "phi": phi,
+            "T": m.T}
+
+
+def _k2_osc(A: tuple[float, float, float], D: float, kind: str) -> float:
+    A1, A2, A3 = A
+    if kind == "max":
+        den = (A1 - A2) * (D - A3)
+        return (A2 - A3) * (A1 - D) / den if den > 0 else math.inf
+    den = (A2 - A3) * (A1 - D)
+    return (A1 - A2) * (D - A3) / den if den > 0 else math.inf
+
+
+def simulate(
+    body: Body,
+    I: Any,
+    eps: float,
+    G0: float = 1.0,
+    k2_0: float = 0.99,
+    delta0: float = math.pi / 4,
+    lam0: float = math.pi / 4,
+    tau_span: tuple[float, float] = (0.0, 3.0),
+    tau_eval: Any = None,
+    nu0: float = 0.0,
+    *,
+    kind: str = "max",
+    orbit: Orbit | None = None,
+    u0: float = 0.0,
+    psi0: float = 0.0,
+    sigma: int = 1,
+    formulation: str = "body",
+    rtol: float = 1e-10,
+    atol: float = 1e-12,
+    method: str = "DOP853",
+    k2_max: float = 1.0 - 1e-6,
+    min_spin_ratio: float = 1.0,
+) -> Solution:
+    r"""Integrate the full, unaveraged motion (1), (3), (4) in the slow time :math:`\tau`.
+
+    Same arguments and output fields as :func:`averaged` (the slow variables are the instantaneous,
+    osculating ones: :math:`k^2` from (5) with the current :math:`G, T`), plus the body's initial phase.
+
+    Parameters
+    ----------
+    body, I, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, kind, orbit, rtol, atol, method
+        As in :func:`averaged`; ``eps`` must be positive (the cost grows like :math:`\varepsilon^{-2}`:
+        :math:`\tau` spans :math:`\tau/\varepsilon^2` units of :math:`\tilde t`).
+    u0, psi0, sigma
+        Initial elliptic phase, precession angle about :math:`\mathbf G` and sense of rotation of the
+        Euler--Poinsot motion (see :func:`initial_state`).
+    formulation : {'body', 'angles'}
+        Euler's equations with a quaternion (default, regular everywhere) or the paper's (1), (3), (4).
+    k2_max, min_spin_ratio
+        Terminal checks as in :func:`averaged`, on the osculating :math:`G, k^2`.
+
+    Returns
+    -------
+    Solution
+        ``tau, G, T, k2, delta, lam, nu, n`` as :func:`averaged`; ``'body'`` adds ``g`` (body components of
+        G, shape (3, n)) and ``q``; ``'angles'`` adds ``theta, phi, psi`` and ``T`` is the integrated
+        energy of (4).
+    """
+    eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)
+    if eps <= 0:
+        raise ValueError("eps must be positive for the full equations (eps = 0 has no fast rotation to resolve)")
+    _check_kind(kind)
+    if formulation not in ("body", "angles"):
+        raise ValueError(f"formulation must be 'body' or 'angles', got {formulation!r}")
+    orb = _as_orbit(orbit)
+    Im = as_drag(I).I
+    k2_max = _real(k2_max, "k2_max")
+    if not (k2_0 < k2_max <= 1.0):
+        raise ValueError(f"k2_max must lie in (k2_0, 1], got {k2_max}")
+    A1, A2, A3 = body.A1, body.A2, body.A3
+    Alab = (A1, A2, A3) if kind == "max" else (A3, A2, A1)
+    ie2 = 1.0 / (eps * eps)
+    ie = 1.0 / eps
+    circular = orb.e == 0.0
+    (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in Im)
+    _check_spin(Alab, G0, k2_0, eps, min_spin_ratio)
+    st = initial_state(body, G0, k2_0, delta0, lam0, kind=kind, u0=u0, psi0=psi0, sigma=sigma)
+
+    def nu_of(tau: float, y: np.ndarray, i: int) -> float:
+        return y[i] if not circular else tau * ie + nu0
+
+    if formulation == "body":
+
+        def rhs(tau: float, y: np.ndarray) -> list[float]:
+            g1, g2, g3, w, x, yq, z = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
+            nrm = math.sqrt(w * w + x * x + yq * yq + z * z)
+            w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
+            o1, o2, o3 = g1 / A1, g2 / A2, g3 / A3
+            nu = nu_of(tau, y, 7)
+            cn, sn = math.cos(nu), math.sin(nu)
+            # r_b = R^T e_r, R rows 0 and 1 from the quaternion
+            r1 = (1 - 2 * (yq * yq + z * z)) * cn + 2 * (x * yq + w * z) * sn
+            r2 = 2 * (x * yq - w * z) * cn + (1 - 2 * (x * x + z * z)) * sn
+            r3 = 2 * (x * z + w * yq) * cn + 2 * (yq * z - w * x) * sn
+            f3 = 3.0 * orb.factor(nu)
+            L1 = f3 * (A3 - A2) * r2 * r3 - (I11 * o1 + I12 * o2 + I13 * o3)
+            L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
+            L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
+            dg1 = (g2 * o3 - g3 * o2) * ie2 + L1
+            dg2 = (g3 * o1 - g1 * o3) * ie2 + L2
+            dg3 = (g1 * o2 - g2 * o1) * ie2 + L3
+            h = 0.5 * ie2
+            dw = h * (-x * o1 - yq * o2 - z * o3)
+            dx = h * (w * o1 + yq * o3 - z * o2)
+            dy = h * (w * o2 - x * o3 + z * o1)
+            dz = h * (w * o3 + x * o2 - yq * o1)
+            out = [dg1, dg2, dg3, dw, dx, dy, dz]
+            if not circular:
+                out.append(ie * orb.nu_rate(nu))
+            return out
+
+        y0 = [*st["g"], *st["q"]]
+
+        def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            g = y[0:3]
+            return np.sqrt((g * g).sum(0)), 0.5 * (g[0] ** 2 / A1 + g[1] ** 2 / A2 + g[2] ** 2 / A3)
+
+        def nvec(y: np.ndarray) -> np.ndarray:
+            g = y[0:3]
+            R = euler.dcm_from_quat(y[3:7].T)
+            n = np.einsum("nij,jn->in", R, g)
+            return n / np.linalg.norm(n, axis=0)
+
+        def ev_k2(tau: float, y: np.ndarray) -> float:
+            G2 = y[0] ** 2 + y[1] ** 2 + y[2] ** 2
+            D = G2 / (y[0] ** 2 / A1 + y[1] ** 2 / A2 + y[2] ** 2 / A3)
+            return _k2_osc(Alab, D, kind) - k2_max
+
+        def ev_spin(tau: float, y: np.ndarray) -> float:
+            G2 = y[0] ** 2 + y[1] ** 2 + y[2] ** 2
+            D = G2 / (y[0] ** 2 / A1 + y[1] ** 2 / A2 + y[2] ** 2 / A3)
+            k2 = min(max(_k2_osc(Alab, D, kind), 0.0), 1.0)
+            return _nut_freq(Alab, math.sqrt(G2), k2) / eps - min_spin_ratio
+
+        extra_events: list[Event] = []
+        inu = 7
+    else:
+
+        def torques(y: np.ndarray, nu: float) -> tuple[float, ...]:
+            G, de, la, th, ph, ps = y[0], y[1], y[2], y[3], y[4], y[5]
+            c1, s1 = math.cos(ps), math.sin(ps)
+            c2, s2 = math.cos(th), math.sin(th)
+            c3, s3 = math.cos(ph), math.sin(ph)
+            # alpha_ij = y_i . z_j = dcm(psi, theta, phi)
+            a11, a12, a13 = c1 * c3 - s1 * c2 * s3, -c1 * s3 - s1 * c2 * c3, s1 * s2
+            a21, a22, a23 = s1 * c3 + c1 * c2 * s3, -s1 * s3 + c1 * c2 * c3, -c1 * s2
+            a31, a32, a33 = s2 * s3, s2 * c3, c2
+            o1, o2, o3 = G * a31 / A1, G * a32 / A2, G * a33 / A3
+            cnl, snl = math.cos(nu - la), math.sin(nu - la)
+            b1, b2, b3 = cnl * math.cos(de), snl, cnl * math.sin(de)
+            # body components of e_r, then J e_r, then back to Oy: (S beta)_m
+            e1 = a11 * b1 + a21 * b2 + a31 * b3
+            e2 = a12 * b1 + a22 * b2 + a32 * b3
+            e3 = a13 * b1 + a23 * b2 + a33 * b3
+            j1, j2, j3 = A1 * e1, A2 * e2, A3 * e3
+            s_1 = a11 * j1 + a12 * j2 + a13 * j3
+            s_2 = a21 * j1 + a22 * j2 + a23 * j3
+            s_3 = a31 * j1 + a32 * j2 + a33 * j3
+            f3 = 3.0 * orb.factor(nu)
+            Lg1 = f3 * (b2 * s_3 - b3 * s_2)
+            Lg2 = f3 * (b3 * s_1 - b1 * s_3)
+            Lg3 = f3 * (b1 * s_2 - b2 * s_1)
+            d1 = I11 * o1 + I12 * o2 + I13 * o3
+            d2 = I21 * o1 + I22 * o2 + I23 * o3
+            d3 = I31 * o1 + I32 * o2 + I33 * o3
+            L1 = Lg1 - (a11 * d1 + a12 * d2 + a13 * d3)
+            L2 = Lg2 - (a21 * d1 + a22 * d2 + a23 * d3)
+            L3 = Lg3 - (a31 * d1 + a32 * d2 + a33 * d3)
+            return L1, L2, L3
+
+        def rhs(tau: float, y: np.ndarray) -> list[float]:
+            G, de, th, ph, ps, T = y[0], y[1], y[3], y[4], y[5], y[6]
+            nu = nu_of(tau, y, 7)
+            L1, L2, L3 = torques(y, nu)
+            s2, c2 = math.sin(th), math.cos(th)
+            sp, cp = math.sin(ph), math.cos(ph)
+            sps, cps = math.sin(ps), math.cos(ps)
+            sd = math.sin(de)
+            dG = L3
+            dde = L1 / G
+            dla = L2 / (G * sd)
+            P = L2 * cps - L1 * sps
+            Q = L1 * cps + L2 * sps
+            dth = G * s2 * sp * cp * (1 / A1 - 1 / A2) * ie2 + P / G
+            dph = G * c2 * (1 / A3 - sp * sp / A1 - cp * cp / A2) * ie2 + Q / (G * s2)
+            dps = G * (sp * sp / A1 + cp * cp / A2) * ie2 - Q / G * c2 / s2 - L2 / G * math.cos(de) / sd
+            dT = 2 * T / G * L3 + G * s2 * (
+                c2 * (sp * sp / A1 + cp * cp / A2 - 1 / A3) * P + sp * cp * (1 / A1 - 1 / A2) * Q
+            )
+            out = [dG, dde, dla, dth, dph, dps, dT]
+            if not circular:
+                out.append(ie * orb.nu_rate(nu))
+            return out
+
+        y0 = [G0, delta0, lam0, st["theta"], st["phi"], st["psi"], st["T"]]
+
+        def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+            return y[0], y[6]
+
+        def nvec(y: np.ndarray) -> np.ndarray:
+            de, la = y[1], y[2]
+            return np.array([np.sin(de) * np.cos(la), np.sin(de) * np.sin(la), np.cos(de)])
+
+        def ev_k2(tau: float, y: np.ndarray) -> float:
+            return _k2_osc(Alab, y[0] ** 2 / (2 * y[6]), kind) - k2_max
+
+        def ev_spin(tau: float, y: np.ndarray) -> float:
+            k2 = min(max(_k2_osc(Alab, y[0] ** 2 / (2 * y[6]), kind), 0.0), 1.0)
+            return _nut_freq(Alab, y[0], k2) / eps - min_spin_ratio
+
+        extra_events = [
+            Event(lambda t, y: abs(math.sin(y[3])) - 1e-6, "sin_theta", True, -1.0,
+                  "sin(theta) -> 0: the Euler angles of (1) are singular; use formulation='body'"),
+            Event(lambda t, y: abs(math.sin(y[1])) - 1e-6, "sin_delta", True, -1.0,
+                  "sin(delta) -> 0: lambda is undefined and (1) singular; use formulation='body'"),
+        ]
+        inu = 7
+
+    if not circular:
+        y0.append(nu0)
+    events = [
+        Event(ev_k2, "separatrix", True, 1.0,
+              f"the osculating k2 reached {k2_max:g}: the motion is at the separatrix 2T A2 = G^2"),
+        Event(ev_spin, "slow_rotation", True, -1.0, _slow_msg(min_spin_ratio)),
+        *extra_events,
+    ]
+    res = integrate(rhs, tau_span, y0, rtol=rtol, atol=atol, method=method, dense_output=True,
+                    events=events, time_name="tau")
+
+    def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
+        G, T = GT(y)
+        D = G**2 / (2 * T)
+        k2 = np.array([_k2_osc(Alab, float(d), kind) for d in np.atleast_1d(D)])
+        n = nvec(y) if y.shape[1] else np.empty((3, 0))
+        nu = y[inu] if not circular else tau * ie + nu0
+        out = {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1, 1)), "n": n, "nu": nu}
+        if formulation == "body":
+            out["g"] = y[0:3]
+            out["q"] = y[3:7] / np.linalg.norm(y[3:7], axis=0)
+        else:
+            out["theta"], out["phi"], out["psi"] = y[3], y[4], y[5]
+        return out
+
+    return _finish(res, tau_eval, make_fields, lam0, nvec)
+
+

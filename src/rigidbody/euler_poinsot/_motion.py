@@ -1,0 +1,246 @@
+r"""The Euler--Poinsot motion of a triaxial body in closed form (the unperturbed motion of Rachinskaya, sec. 2).
+
+With :math:`\mathbf G` fixed along :math:`Oy_3`, the body components of the angular momentum are
+:math:`G\alpha_{3j} = G(\sin\theta\sin\varphi, \sin\theta\cos\varphi, \cos\theta)` and, for the kind
+``'max'`` (:math:`2TA_1\ge G^2>2TA_2`, the paper's case; Landau & Lifshitz, Mechanics, sec. 37),
+
+.. math::
+    \omega_1 = \sigma a_1\operatorname{dn}u,\quad \omega_2 = -\sigma a_2\operatorname{sn}u,\quad
+    \omega_3 = a_3\operatorname{cn}u,\qquad u = \dot u\,t + u_0,
+
+.. math::
+    a_1 = G\sqrt{\frac{A_2-A_3}{A_1R}},\ a_2 = Gk\sqrt{\frac{A_1-A_3}{A_2R}},\
+    a_3 = Gk\sqrt{\frac{A_1-A_2}{A_3R}},\ \dot u = G\sqrt{\frac{(A_1-A_2)(A_1-A_3)(A_2-A_3)}{A_1A_2A_3R}},
+
+with :math:`R = A_1(A_2-A_3)+A_3(A_1-A_2)k^2` and :math:`k^2` of (5); :math:`\sigma=\pm1` is the sense of
+rotation about :math:`z_1`. These amplitudes are Landau's written through :math:`(G, k^2)` with
+:math:`G^2-2TA_3 = G^2(A_1-A_3)(A_2-A_3)/R`, :math:`2TA_1-G^2 = G^2k^2(A_1-A_2)(A_1-A_3)/R` (no
+cancellation as :math:`k\to0`). The kind ``'min'`` is the same with the labels 1 and 3 exchanged
+(:math:`\omega_3 = \sigma b_3\operatorname{dn}u`, :math:`\omega_2 = -\sigma b_2\operatorname{sn}u`,
+:math:`\omega_1 = b_1\operatorname{cn}u`; signs checked against Euler's equations in the tests).
+The body-frame period of the motion is :math:`4K/\dot u`; the separatrix
+:math:`k^2 = 1` (infinite period) is a boundary both kinds exclude.
+
+The precession angle follows from (1) with :math:`L = 0`,
+:math:`\dot\psi = G(\sin^2\varphi/A_1+\cos^2\varphi/A_2)`, a :math:`2K`-periodic function of :math:`u`; it
+is integrated spectrally (Fourier series on the uniform phase grid of ``rigidbody.core.averaging``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..core import averaging as avg
+from ..core import elliptic as ell
+from ._model import Body, T_from, _check_kind, _real, k2_from
+
+__all__ = ["EulerPoinsot"]
+
+
+@dataclass(frozen=True)
+class EulerPoinsot:
+    r"""Closed-form Euler--Poinsot motion with given :math:`G` and :math:`k^2`.
+
+    Parameters
+    ----------
+    body : Body
+    G : float
+        Magnitude of the angular momentum (> 0).
+    k2 : float
+        Modulus squared, :math:`0 \le k^2 < 1` (formula (5) or its counterpart for ``kind='min'``).
+    kind : {'max', 'min'}
+        Rotation about the axis of the largest (``'max'``, the paper's case) or smallest moment.
+    sigma : {+1, -1}
+        Sense of rotation about the axis of rotation (sign of :math:`g_1` for 'max', :math:`g_3` for 'min').
+    mc : float, optional
+        :math:`1-k^2` when known more accurately than ``1 - k2`` (near the separatrix).
+
+    Examples
+    --------
+    >>> from rigidbody.euler_poinsot import Body, EulerPoinsot
+    >>> m = EulerPoinsot(Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
+    >>> g = m.g(0.3)
+    >>> abs((g**2).sum() - 1.0) < 1e-14
+    True
+    """
+
+    body: Body
+    G: float
+    k2: float
+    kind: str = "max"
+    sigma: int = 1
+    mc: float | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.body, Body):
+            raise TypeError(f"body must be a Body, got {type(self.body).__name__}")
+        _check_kind(self.kind)
+        G = _real(self.G, "G")
+        if G <= 0:
+            raise ValueError(f"G must be positive, got {G}")
+        k2 = _real(self.k2, "k2")
+        mc = 1.0 - k2 if self.mc is None else _real(self.mc, "mc")
+        if not (0.0 <= k2 <= 1.0):
+            raise ValueError(f"k2 must lie in [0, 1), got {k2}")
+        if mc <= 0.0:
+            raise ValueError("k2 = 1 is the separatrix: the motion is not periodic (asymptotic motion)")
+        if self.mc is not None and abs(k2 + mc - 1.0) > 1e-12:
+            raise ValueError("k2 and mc are inconsistent: k2 + mc must equal 1")
+        if self.sigma not in (1, -1):
+            raise ValueError(f"sigma must be +1 or -1, got {self.sigma!r}")
+        object.__setattr__(self, "G", G)
+        object.__setattr__(self, "k2", k2)
+        object.__setattr__(self, "mc", mc)
+
+    # ------------------------------------------------------------------ constructors / properties
+    @classmethod
+    def from_GT(cls, body: Body, G: float, T: float, sigma: int = 1) -> EulerPoinsot:
+        """The motion with given :math:`G` and :math:`T` (the kind is decided by :math:`G^2` vs :math:`2TA_2`)."""
+        D = G * G / (2.0 * T)
+        kind = "max" if D > body.A2 else "min"
+        return cls(body, G, k2_from(body, G, T, kind), kind, sigma)
+
+    @property
+    def T(self) -> float:
+        """Kinetic energy, the inverse of (5)."""
+        return float(T_from(self.body, self.G, self.k2, self.kind))
+
+    def _amps(self) -> tuple[tuple[float, float, float], float]:
+        """Amplitudes of (dn-, sn-, cn-components) of omega divided by (1, k, k), and du/dt."""
+        b = self.body
+        if self.kind == "max":
+            A1, A2, A3 = b.A1, b.A2, b.A3
+        else:
+            A1, A2, A3 = b.A3, b.A2, b.A1
+        k2 = self.k2
+        R = A1 * (A2 - A3) + A3 * (A1 - A2) * k2
+        G = self.G
+        c_dn = G * math.sqrt((A2 - A3) / (A1 * R))
+        c_sn = G * math.sqrt((A1 - A3) / (A2 * R))
+        c_cn = G * math.sqrt((A1 - A2) / (A3 * R))
+        rate = G * math.sqrt((A1 - A2) * (A1 - A3) * (A2 - A3) / (A1 * A2 * A3 * R))
+        return (c_dn, c_sn, c_cn), rate
+
+    @property
+    def k(self) -> float:
+        """The modulus :math:`k`."""
+        return math.sqrt(self.k2)
+
+    @property
+    def rate(self) -> float:
+        r""":math:`\dot u`, the rate of the elliptic argument."""
+        return self._amps()[1]
+
+    @property
+    def K(self) -> float:
+        """Complete elliptic integral :math:`K(k)`."""
+        return float(ell.K(mc=self.mc))
+
+    @property
+    def period(self) -> float:
+        r"""Period of the body components of :math:`\boldsymbol\omega`: :math:`4K/\dot u`."""
+        return 4.0 * self.K / self.rate
+
+    # ------------------------------------------------------------------ the motion
+    def _components(self, t: Any, u0: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        (c_dn, c_sn, c_cn), rate = self._amps()
+        u = rate * np.asarray(t, dtype=float) + u0
+        sn, cn, dn, _ = ell.jacobi(u, mc=self.mc)
+        k = self.k
+        s = self.sigma
+        w_dn = s * c_dn * np.asarray(dn)
+        w_sn = s * k * c_sn * np.asarray(sn)
+        w_cn = k * c_cn * np.asarray(cn)
+        if self.kind == "max":
+            return w_dn, -w_sn, w_cn
+        return w_cn, -w_sn, w_dn
+
+    def omega(self, t: Any, u0: float = 0.0) -> np.ndarray:
+        r"""Body components of the angular velocity, shape ``(3, *t.shape)``.
+
+        Parameters
+        ----------
+        t : array_like
+            Time.
+        u0 : float
+            Initial elliptic argument (phase of the motion).
+        """
+        w1, w2, w3 = self._components(t, u0)
+        return np.stack([np.asarray(w1, float), np.asarray(w2, float), np.asarray(w3, float)])
+
+    def g(self, t: Any, u0: float = 0.0) -> np.ndarray:
+        r"""Body components of the angular momentum :math:`G\alpha_{3j}`, shape ``(3, *t.shape)``."""
+        return self.body.A.reshape((3,) + (1,) * np.ndim(t)) * self.omega(t, u0)
+
+    def angles(self, t: Any, u0: float = 0.0, psi0: float = 0.0) -> tuple[Any, Any, Any]:
+        r"""Euler angles :math:`(\psi, \theta, \varphi)` of the body relative to the frame :math:`Oy_i`.
+
+        :math:`\cos\theta = g_3/G`, :math:`\tan\varphi = g_1/g_2` (rule of ``rigidbody.core.euler``:
+        :math:`\alpha_{3j} = (\sin\theta\sin\varphi, \sin\theta\cos\varphi, \cos\theta)`), and
+        :math:`\psi = \psi_0 + \int_0^t G(\sin^2\varphi/A_1 + \cos^2\varphi/A_2)\,dt` (spectral). ``phi`` is
+        in :math:`(-\pi, \pi]`.
+        """
+        g1, g2, g3 = self.g(t, u0)
+        theta = np.arctan2(np.hypot(g1, g2), g3)
+        phi = np.arctan2(g1, g2)
+        psi = psi0 + self._psi_integral(np.asarray(t, dtype=float), u0)
+        f = (lambda x: float(x)) if np.ndim(t) == 0 else (lambda x: x)
+        return f(psi), f(theta), f(phi)
+
+    def _psi_rate_nodes(self, n: int) -> np.ndarray:
+        """dpsi/dt on n uniform nodes of u over [0, 2K) (ratios formed with the k-free amplitudes)."""
+        b = self.body
+        (c_dn, c_sn, c_cn), _ = self._amps()
+        s, sn, cn, dn = avg.phase_grid(n=n, mc=self.mc, period="2K")
+        k2 = self.k2
+        if self.kind == "max":
+            x1 = (b.A1 * c_dn * dn) ** 2
+            x2 = k2 * (b.A2 * c_sn * sn) ** 2
+        else:  # g1, g2 both carry the factor k: divide it out
+            x1 = (b.A1 * c_cn * cn) ** 2
+            x2 = (b.A2 * c_sn * sn) ** 2
+        return self.G * (x1 / b.A1 + x2 / b.A2) / (x1 + x2)
+
+    def psi_rate_mean(self) -> float:
+        r"""Mean precession rate :math:`\langle\dot\psi\rangle` over a period."""
+        n = 2 * avg.n_nodes(mc=self.mc, period="2K")
+        return float(np.mean(self._psi_rate_nodes(n)))
+
+    def _psi_integral(self, t: np.ndarray, u0: float) -> np.ndarray:
+        n = 2 * avg.n_nodes(mc=self.mc, period="2K")
+        r = self._psi_rate_nodes(n)
+        rate = self.rate
+        c = np.fft.rfft(r) / n
+        mean = c[0].real
+        P = 2.0 * self.K  # period in u
+        w = 2.0 * math.pi / P
+        m = np.arange(1, len(c))
+        cm = c[1:].copy()
+        if n % 2 == 0:
+            cm[-1] *= 0.5  # Nyquist term counted once
+        u = rate * t + u0
+
+        def prim(x: np.ndarray) -> np.ndarray:
+            xx = np.asarray(x, float)[..., None]
+            return mean * np.asarray(x, float) + 2.0 * np.real(
+                (cm / (1j * m * w)) * np.exp(1j * m * w * xx)
+            ).sum(axis=-1)
+
+        return (prim(u) - prim(np.asarray(u0))) / rate
+
+    def nodes(self, n: int | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Times and body angular momenta on ``n`` uniform nodes of one period (for period averages).
+
+        Returns
+        -------
+        t : numpy.ndarray, shape (n,)
+        g : numpy.ndarray, shape (3, n)
+        """
+        if n is None:
+            n = avg.n_nodes(mc=self.mc, period="4K")
+        t = np.arange(n) * (self.period / n)
+        return t, self.g(t)
