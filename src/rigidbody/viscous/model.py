@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Literal
 
@@ -12,11 +13,8 @@ Regime = Literal["contracting", "unwinding", "circle"]
 
 
 def _positive(value: float, name: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        try:
-            value = float(value)  # numpy scalars
-        except (TypeError, ValueError):
-            raise TypeError(f"{name} must be a real number, got {type(value).__name__}") from None
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
     value = float(value)
     if not math.isfinite(value) or value <= 0.0:
         raise ValueError(f"{name} must be finite and > 0, got {value!r}")
@@ -100,7 +98,7 @@ def regime(body: Body, medium: Medium, rtol: float = 1e-12) -> Regime:
         ``B12/θ12 < B3/θ3``: k → 0, a spiral unwinding to a great circle (fig. 3);
         equal within ``rtol``: a circle, ``K = K0 exp(-αt)``.
     """
-    if not (isinstance(rtol, (int, float)) and 0.0 <= rtol < 1.0):
+    if not (isinstance(rtol, numbers.Real) and 0.0 <= rtol < 1.0):
         raise ValueError(f"rtol must be in [0, 1), got {rtol!r}")
     a, b = decay_rates(body, medium)
     if abs(a - b) <= rtol * max(a, b):
@@ -153,17 +151,18 @@ def ball_and_rod(
     With point balls and massless rods ``B = (β/m) θ`` exactly: Routh's circle. With ball radius
     only, the spiral contracts iff ``b² > N a²/4``; rod mass pushes towards unwinding.
     """
-    if isinstance(N, bool) or not isinstance(N, int):
+    if isinstance(N, bool) or not isinstance(N, numbers.Integral):
         raise TypeError(f"N must be an int >= 3, got {type(N).__name__}")
+    N = int(N)
     if N < 3:
         raise ValueError(f"N must be >= 3 (N balls on a circle; N = 2 is not axisymmetric), got {N}")
     a = _positive(a, "a")
-    if not (isinstance(b, (int, float)) and math.isfinite(b) and b >= 0):
+    if not (isinstance(b, numbers.Real) and math.isfinite(b) and b >= 0):
         raise ValueError(f"b must be finite and >= 0, got {b!r}")
     beta = _positive(beta, "beta")
     m = _positive(mass, "mass")
     for name, val in (("ball_radius", ball_radius), ("rod_mass", rod_mass), ("spoke_mass", spoke_mass)):
-        if not (isinstance(val, (int, float)) and math.isfinite(val) and val >= 0):
+        if not (isinstance(val, numbers.Real) and math.isfinite(val) and val >= 0):
             raise ValueError(f"{name} must be finite and >= 0, got {val!r}")
     b = float(b)
     medium = Medium(B12=beta * (N * a * a / 2.0 + 2.0 * b * b), B3=beta * N * a * a)
