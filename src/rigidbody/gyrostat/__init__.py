@@ -1,0 +1,104 @@
+"""Stationary motions of a gyrostat satellite and their stability by Routh's method.
+
+After S. Ya. Stepanov, "On stationary motions of a gyrostat satellite", PMM 32 (1968).  The problem
+is the unrestricted one: the orbit radius R and the latitude kappa of the centre of mass are
+coordinates, so the plane of the circular orbit of a stationary motion may be displaced from the
+attracting centre (kappa0 != 0, of order l^2/R^2).
+
+Public API
+----------
+Satellite                       frozen dataclass (M, A1, A2, A3, mu, k1, k2, k3), validated
+stationary_motion(sat, R0, theta0, k2=.. | k3=.., omega_sign=+1)    the family (2.3)-(2.4)
+symmetric_stationary_motion(sat, R0, theta0)                        section 3, (3.2)-(3.3)
+stability(sat, motion)          Sylvester quantities s1, s2, s3 of (2.5), degree of instability and a
+                                verdict 'stable' / 'unstable' / 'undecided'; section-4 Jacobian
+stability_map(sat, R0, theta0, k2=.. | k3=..)    vectorised verdicts over parameter grids
+exact_boundaries(sat, R0, theta0)                s2 = 0, s3 = 0 and the restricted boundaries as k2(theta0)
+amended_potential, amended_potential_W, chi, gradient_W1    W, (2.1), W1 = W + lambda chi, (2.2)
+hessian_W1, constrained_second_variation, restricted_conditions
+symmetric_potential, gradient_W_sym, hessian_W_sym, W_psipsi_34
+"""
+
+from __future__ import annotations
+
+from ._maps import StabilityMap, exact_boundaries, stability_map
+from ._model import GyrostatWarning, Satellite
+from ._potential import amended_potential, amended_potential_W, chi, gradient_W1
+from ._stability import (
+    CONSTRAINED_COORDS,
+    COORDS,
+    Stability,
+    constrained_second_variation,
+    constraint_gradient,
+    hessian_W1,
+    restricted_conditions,
+    stability_triaxial,
+)
+from ._stationary import StationaryMotion, stationary_motion
+from ._symmetric import (
+    SYM_COORDS,
+    SymmetricMotion,
+    SymmetricStability,
+    W_psipsi_34,
+    gradient_W_sym,
+    hessian_W_sym,
+    stability_symmetric,
+    symmetric_potential,
+    symmetric_stationary_motion,
+)
+
+
+def stability(
+    sat: Satellite, motion: StationaryMotion | SymmetricMotion, *, rtol: float = 1e-12
+) -> Stability | SymmetricStability:
+    """Stability of a stationary motion by Routh's method (sections 2-4).
+
+    Parameters
+    ----------
+    sat : Satellite
+        The satellite (its mass properties must be those the motion was computed for).
+    motion : StationaryMotion or SymmetricMotion
+    rtol : float
+        Zero-eigenvalue threshold of the equilibrated second variation.
+
+    Returns
+    -------
+    Stability (for (2.3)) or SymmetricStability (for (3.2)); both carry ``degree``, ``nullity``,
+    ``verdict``, ``minors``, ``jacobian`` and ``unconditionally_stable``.
+    """
+    if isinstance(motion, StationaryMotion):
+        return stability_triaxial(sat, motion, rtol=rtol)
+    if isinstance(motion, SymmetricMotion):
+        return stability_symmetric(sat, motion, rtol=rtol)
+    raise TypeError(f"motion must be a StationaryMotion or SymmetricMotion; got {type(motion).__name__}")
+
+
+__all__ = [
+    "CONSTRAINED_COORDS",
+    "COORDS",
+    "SYM_COORDS",
+    "GyrostatWarning",
+    "Satellite",
+    "Stability",
+    "StabilityMap",
+    "StationaryMotion",
+    "SymmetricMotion",
+    "SymmetricStability",
+    "W_psipsi_34",
+    "amended_potential",
+    "amended_potential_W",
+    "chi",
+    "constrained_second_variation",
+    "constraint_gradient",
+    "exact_boundaries",
+    "gradient_W1",
+    "gradient_W_sym",
+    "hessian_W1",
+    "hessian_W_sym",
+    "restricted_conditions",
+    "stability",
+    "stability_map",
+    "stationary_motion",
+    "symmetric_potential",
+    "symmetric_stationary_motion",
+]

@@ -1,0 +1,183 @@
+"""Vectorised stability maps over parameter grids (the family (2.3), verdicts of (2.5))."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ._model import Satellite
+from ._stability import VERDICTS, a_matrix, hessian_entries, restricted_conditions, stability_arrays
+from ._stationary import family_arrays
+
+__all__ = ["StabilityMap", "exact_boundaries", "stability_map"]
+
+_MAP_ORDER = ("theta0", "R0", "k2", "k3", "M", "A1", "A2", "A3", "mu")
+
+
+@dataclass(frozen=True)
+class StabilityMap:
+    """Verdicts over a grid.  All arrays have the grid's shape (``minors``: plus a trailing axis of 5).
+
+    ``code``: 0 stable, 1 unstable (odd degree), 2 undecided, -1 invalid (no motion of the family,
+    singular chart, or a non-physical body); :attr:`verdict` gives the strings.  ``r1, r2, r3`` are the
+    restricted-problem quantities and ``restricted_stable`` their conjunction.
+    """
+
+    params: dict[str, np.ndarray]
+    kappa0: np.ndarray
+    omega0: np.ndarray
+    k2: np.ndarray
+    k3: np.ndarray
+    s1: np.ndarray
+    s2: np.ndarray
+    s3: np.ndarray
+    minors: np.ndarray
+    degree: np.ndarray
+    code: np.ndarray
+    r1: np.ndarray
+    r2: np.ndarray
+    r3: np.ndarray
+
+    @property
+    def verdict(self) -> np.ndarray:
+        """Verdict strings ('stable', 'unstable', 'undecided', 'invalid')."""
+        names = np.array([VERDICTS[0], VERDICTS[1], VERDICTS[2], VERDICTS[-1]])
+        return names[np.where(self.code < 0, 3, self.code)]
+
+    @property
+    def theta0(self) -> np.ndarray:
+        return self.params["theta0"]
+
+    @property
+    def restricted_stable(self) -> np.ndarray:
+        return (self.r1 > 0) & (self.r2 > 0) & (self.r3 > 0)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return self.code.shape
+
+
+def stability_map(
+    sat: Satellite,
+    R0: Any,
+    theta0: Any,
+    k2: Any = None,
+    k3: Any = None,
+    *,
+    omega_sign: int = 1,
+    grid: bool = True,
+    rtol: float = 1e-12,
+    **overrides: Any,
+) -> StabilityMap:
+    """Verdicts for the motions (2.3) over arrays of parameters, in one vectorised call.
+
+    Parameters
+    ----------
+    sat : Satellite
+        Supplies M, A1, A2, A3, mu unless overridden.
+    R0, theta0 : float or array_like
+    k2, k3 : float or array_like
+        Exactly one (the other is computed from (2.4)).
+    omega_sign : {+1, -1}
+    grid : bool
+        If True (default), the 1-D arrays among the parameters are combined into an outer grid
+        (``indexing='ij'``, axes in the order theta0, R0, k2, k3, M, A1, A2, A3, mu); if False the
+        arrays are broadcast against each other as given.
+    rtol : float
+        Zero-eigenvalue threshold of the equilibrated second variation (see
+        :func:`rigidbody.core.quadform.inertia`).
+    **overrides : float or array_like
+        Any of ``M, A1, A2, A3, mu`` to vary the body (e.g. ``A1=np.linspace(...)``).
+
+    Returns
+    -------
+    StabilityMap
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> mp = gyrostat.stability_map(sat, 1.0, np.linspace(-1.2, 1.2, 5), k2=np.linspace(-0.05, 0.05, 4))
+    >>> mp.code.shape
+    (5, 4)
+    """
+    if not isinstance(sat, Satellite):
+        raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
+    bad = set(overrides) - {"M", "A1", "A2", "A3", "mu"}
+    if bad:
+        raise TypeError(f"unknown parameter(s) {sorted(bad)}; overridable: M, A1, A2, A3, mu")
+    if (k2 is None) == (k3 is None):
+        raise TypeError("give exactly one of k2 and k3")
+    if omega_sign not in (1, -1):
+        raise ValueError(f"omega_sign must be +1 or -1; got {omega_sign!r}")
+    vals: dict[str, Any] = {
+        "theta0": theta0, "R0": R0, "k2": k2, "k3": k3,
+        "M": overrides.get("M", sat.M), "A1": overrides.get("A1", sat.A1), "A2": overrides.get("A2", sat.A2),
+        "A3": overrides.get("A3", sat.A3), "mu": overrides.get("mu", sat.mu),
+    }
+    arrs = {n: np.asarray(v, dtype=float) for n, v in vals.items() if v is not None}
+    if grid:
+        axes = [n for n in _MAP_ORDER if n in arrs and arrs[n].ndim == 1 and arrs[n].size > 1]
+        if any(arrs[n].ndim > 1 for n in arrs):
+            raise ValueError("with grid=True pass 1-D arrays (or use grid=False and broadcastable arrays)")
+        mesh = np.meshgrid(*[arrs[n] for n in axes], indexing="ij") if axes else []
+        for n, m in zip(axes, mesh):
+            arrs[n] = m
+    shape = np.broadcast(*arrs.values()).shape
+    P = {n: np.broadcast_to(v, shape) for n, v in arrs.items()}
+    M, A1, A2, A3, mu, Rv = P["M"], P["A1"], P["A2"], P["A3"], P["mu"], P["R0"]
+    physical = (
+        (M > 0) & (A1 > 0) & (A2 > 0) & (A3 > 0) & (mu > 0) & (Rv > 0)
+        & (A1 <= (A2 + A3) * (1 + 1e-12)) & (A2 <= (A1 + A3) * (1 + 1e-12)) & (A3 <= (A1 + A2) * (1 + 1e-12))
+    )
+    with np.errstate(invalid="ignore", divide="ignore"):
+        f = family_arrays(M, A1, A2, A3, mu, Rv, P["theta0"], k2=P.get("k2"), k3=P.get("k3"),
+                          omega_sign=omega_sign)
+        f["exists"] = f["exists"] & physical
+        d = stability_arrays(f, M, A1, A2, A3, mu, Rv, rtol=rtol)
+        r1, r2, r3 = restricted_conditions(A1, A2, A3, f["theta0"], f["k2"], f["omega0"])
+    return StabilityMap(
+        params=P, kappa0=f["kappa0"], omega0=f["omega0"], k2=f["k2"], k3=f["k3"], s1=d["s1"], s2=d["s2"],
+        s3=d["s3"], minors=d["minors"], degree=d["n_neg"], code=d["code"], r1=r1, r2=r2, r3=r3,
+    )
+
+
+def exact_boundaries(sat: Satellite, R0: float, theta0: Any) -> dict[str, np.ndarray]:
+    """The curves s2 = 0, s3 = 0 (exact) and r2 = 0, r3 = 0 (restricted) as k2(theta0).
+
+    For fixed theta0 the motion's kappa0 and omega0 do not depend on k2, and k2 enters only W_b1b1
+    (as ``omega0 k2 / cos(theta0 + kappa0)``) and W_b3b3 (as ``omega0 k2 / cos^3(theta0 + kappa0)``), so
+    s2 and s3 = det a are *linear* in k2 and each boundary is one explicit curve.  ``s1`` and ``r1``
+    do not depend on k2: their zeros are vertical lines, returned as ``s1`` and ``r1`` arrays over
+    theta0 for the caller to locate sign changes (``theta_r1``: the closed-form roots of r1).
+
+    Returns
+    -------
+    dict with keys ``theta0, s1, k2_s2, k2_s3, r1, k2_r2, k2_r3, theta_r1, omega0`` (NaN where undefined).
+    """
+    th = np.asarray(theta0, dtype=float)
+    f = family_arrays(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, k2=0.0)
+    e = hessian_entries(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, f["kappa0"], f["omega0"], 0.0, f["S0"])
+    a = a_matrix(e, th, f["kappa0"])
+    om, cp = f["omega0"], f["cos_tk"]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s1 = e["g1g1"]
+        s2_0 = e["g1g1"] * e["b1b1"] - e["b1g1"] ** 2
+        k2_s2 = -s2_0 * cp / (s1 * om)
+        C33 = a[..., 0, 0] * a[..., 1, 1] - a[..., 0, 1] ** 2
+        k2_s3 = -np.linalg.det(a) * cp**3 / (om * C33)
+        A1, A2, A3 = sat.A1, sat.A2, sat.A3
+        ct, st2 = np.cos(th), np.sin(th) ** 2
+        r1 = A1 - A2 * st2 - A3 * ct**2
+        k2_r2 = -4 * om * ct**3 * (A2 - A3)
+        k2_r3 = om * ct * (A1 - A2 - 3 * (A1 - A2) * (A2 - A3) * st2 / r1)
+        x = (A1 - A3) / (A2 - A3) if A2 != A3 else np.nan
+    roots = np.array([])
+    if np.isfinite(x) and 0 <= x <= 1:
+        t = np.arcsin(np.sqrt(x))
+        roots = np.array([-np.pi + t, -t, t, np.pi - t])
+    return {"theta0": th, "s1": s1, "k2_s2": k2_s2, "k2_s3": k2_s3, "r1": r1, "k2_r2": k2_r2,
+            "k2_r3": k2_r3, "theta_r1": roots, "omega0": om}

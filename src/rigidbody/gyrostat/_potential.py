@@ -1,0 +1,123 @@
+"""The amended potential W, the constraint chi (2.1), W1 = W + lambda chi and its gradient (2.2).
+
+Coordinates (Stepanov 1968, section 2): ``x = (R, kappa, beta1, beta3, gamma1, gamma2)``; the
+dependent direction cosines are ``beta2 = b2 * sqrt(1 - beta1^2 - beta3^2)`` and
+``gamma3 = b3 * sqrt(1 - gamma1^2 - gamma2^2)`` with the square-root *branches* ``branch = (b2, b3)``,
+each +1 or -1.  The branch is part of the state: a stationary motion with ``cos(theta0 + kappa0) < 0``
+lives on ``b2 = -1``.
+"""
+
+from __future__ import annotations
+
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+
+from ._model import Satellite
+
+__all__ = ["amended_potential", "amended_potential_W", "chi", "gradient_W1"]
+
+
+def _check_branch(branch: tuple[int, int]) -> tuple[int, int]:
+    try:
+        b2, b3 = branch
+    except (TypeError, ValueError):
+        raise TypeError("branch must be a pair (sign of beta2, sign of gamma3), each +1 or -1") from None
+    if b2 not in (1, -1) or b3 not in (1, -1):
+        raise ValueError(f"branch entries must be +1 or -1; got {branch!r}")
+    return int(b2), int(b3)
+
+
+def _dependent(x: Any, branch: tuple[int, int], lib: ModuleType) -> tuple[Any, Any]:
+    b2s, g3s = _check_branch(branch)
+    _, _, b1, b3, g1, g2 = x
+    beta2 = b2s * lib.sqrt(1 - b1 * b1 - b3 * b3)
+    gamma3 = g3s * lib.sqrt(1 - g1 * g1 - g2 * g2)
+    return beta2, gamma3
+
+
+def amended_potential_W(
+    sat: Satellite, x: Any, *, k: float, branch: tuple[int, int] = (1, 1), lib: ModuleType = np
+) -> Any:
+    """The amended potential energy ``W = K^2 / (2 S) - U`` of section 2 (Routh function of sigma).
+
+    ``K = k - k1 beta1 - k2 beta2 - k3 beta3``, ``S = M R^2 cos^2 kappa + sum A_i beta_i^2``,
+    ``U = mu M / R - 3/2 mu R^-3 [sum A_i gamma_i^2 - (A1 + A2 + A3)/3]``.
+
+    Parameters
+    ----------
+    sat : Satellite
+    x : sequence of 6
+        ``(R, kappa, beta1, beta3, gamma1, gamma2)``; scalars or broadcastable arrays.
+    k : float
+        Area constant (the integral of the cyclic coordinate sigma).
+    branch : (int, int)
+        Signs of ``beta2`` and ``gamma3``.
+    lib : module
+        Provides ``sqrt``, ``sin``, ``cos``: ``numpy`` (default; complex input gives the complex-step
+        route), ``math`` or ``mpmath`` (extended precision).
+    """
+    R, kap, b1, b3, g1, g2 = x
+    b2, g3 = _dependent(x, branch, lib)
+    K = k - sat.k1 * b1 - sat.k2 * b2 - sat.k3 * b3
+    ck = lib.cos(kap)
+    S = sat.M * R * R * ck * ck + sat.A1 * b1 * b1 + sat.A2 * b2 * b2 + sat.A3 * b3 * b3
+    Atr = sat.A1 + sat.A2 + sat.A3
+    U = sat.mu * sat.M / R - 1.5 * sat.mu / R**3 * (
+        sat.A1 * g1 * g1 + sat.A2 * g2 * g2 + sat.A3 * g3 * g3 - Atr / 3
+    )
+    return K * K / (2 * S) - U
+
+
+def chi(x: Any, *, branch: tuple[int, int] = (1, 1), lib: ModuleType = np) -> Any:
+    """The constraint (2.1): ``chi = beta1 gamma1 + beta2 gamma2 + beta3 gamma3 - sin(kappa)``."""
+    _, kap, b1, b3, g1, g2 = x
+    b2, g3 = _dependent(x, branch, lib)
+    return b1 * g1 + b2 * g2 + b3 * g3 - lib.sin(kap)
+
+
+def amended_potential(
+    sat: Satellite,
+    x: Any,
+    *,
+    k: float,
+    lam: float,
+    branch: tuple[int, int] = (1, 1),
+    lib: ModuleType = np,
+) -> Any:
+    """``W1 = W + lambda chi`` (section 2), the function whose stationary points are the motions.
+
+    See :func:`amended_potential_W` for the parameters; ``lam`` is the Lagrange multiplier.
+    """
+    return amended_potential_W(sat, x, k=k, branch=branch, lib=lib) + lam * chi(x, branch=branch, lib=lib)
+
+
+def gradient_W1(
+    sat: Satellite, x: Any, *, k: float, lam: float, branch: tuple[int, int] = (1, 1)
+) -> np.ndarray:
+    """The first derivatives (2.2) of ``W1`` (closed form, valid at any point, not only stationary).
+
+    Returns
+    -------
+    ndarray, shape (6, ...)
+        ``dW1/dR, dW1/dkappa, dW1/dbeta1, dW1/dbeta3, dW1/dgamma1, dW1/dgamma2``.
+    """
+    R, kap, b1, b3, g1, g2 = (np.asarray(v, dtype=float) for v in x)
+    b2, g3 = _dependent((R, kap, b1, b3, g1, g2), branch, np)
+    M, A1, A2, A3, mu = sat.M, sat.A1, sat.A2, sat.A3, sat.mu
+    K = k - sat.k1 * b1 - sat.k2 * b2 - sat.k3 * b3
+    ck = np.cos(kap)
+    S = M * R**2 * ck**2 + A1 * b1**2 + A2 * b2**2 + A3 * b3**2
+    KS, KS2 = K / S, (K / S) ** 2
+    dR = (
+        -KS2 * M * R * ck**2
+        + M * mu / R**2
+        - 4.5 * mu / R**4 * ((A1 - A3) * g1**2 + (A2 - A3) * g2**2 + (2 * A3 - A1 - A2) / 3)
+    )
+    dk = KS2 * M * R**2 * np.sin(kap) * ck - lam * ck
+    db1 = KS * (-sat.k1 + sat.k2 * b1 / b2) - KS2 * (A1 - A2) * b1 + lam * (g1 - g2 * b1 / b2)
+    db3 = KS * (-sat.k3 + sat.k2 * b3 / b2) - KS2 * (A3 - A2) * b3 + lam * (g3 - g2 * b3 / b2)
+    dg1 = 3 * mu / R**3 * (A1 - A3) * g1 + lam * (b1 - b3 * g1 / g3)
+    dg2 = 3 * mu / R**3 * (A2 - A3) * g2 + lam * (b2 - b3 * g2 / g3)
+    return np.stack(np.broadcast_arrays(dR, dk, db1, db3, dg1, dg2))

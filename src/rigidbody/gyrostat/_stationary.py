@@ -1,0 +1,241 @@
+"""The family of stationary motions (2.3)-(2.4) with a displaced orbit plane (k1 = 0)."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, replace
+from typing import Any
+
+import numpy as np
+
+from ._model import GyrostatWarning, Satellite, _finite, _positive
+
+__all__ = ["StationaryMotion", "stationary_motion"]
+
+#: below this |cos| or |sin| a denominator of the family or of its chart is called near-singular
+SINGULAR_TOL = 1e-6
+
+
+def _wrap(theta: Any) -> Any:
+    """Reduce an angle to (-pi, pi]."""
+    t = np.remainder(np.asarray(theta, dtype=float) + np.pi, 2 * np.pi) - np.pi
+    return np.where(t == -np.pi, np.pi, t)
+
+
+def family_arrays(
+    M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any,
+    k2: Any = None, k3: Any = None, omega_sign: Any = 1,
+) -> dict[str, np.ndarray]:
+    """Vectorised closed-form solution of (2.4); all inputs broadcast.
+
+    Returns a dict of arrays: ``n2`` (the right-hand side of the second relation (2.4), omega0^2
+    cos^2 kappa0), ``kappa0``, ``omega0``, ``k2``, ``k3``, ``S0``, ``k``, ``lambda0``, and ``exists``
+    (False where n2 <= 0 or the required denominator vanishes).  No warnings are emitted here.
+
+    Derivation: dividing the third relation of (2.4) by the second gives
+    ``tan kappa0 = 3/2 (A2 - A3) mu R0^-3 sin 2 theta0 / (M R0^2 n2)`` (kappa0 in (-pi/2, pi/2)),
+    then ``omega0 = omega_sign sqrt(n2) / cos kappa0``; the first relation is linear in (k2, k3).
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        M, A1, A2, A3, mu, R0, th = (np.asarray(v, dtype=float) for v in (M, A1, A2, A3, mu, R0, theta0))
+        sgn = np.asarray(omega_sign, dtype=float)
+        n0 = mu / R0**3
+        st, ct = np.sin(th), np.cos(th)
+        s2t = 2 * st * ct
+        n2 = n0 * (1 - 4.5 / (M * R0**2) * ((A2 - A3) * st**2 + (2 * A3 - A1 - A2) / 3))
+        exists = n2 > 0
+        n2p = np.where(exists, n2, np.nan)
+        tk = 1.5 * (A2 - A3) * n0 * s2t / (M * R0**2 * n2p)
+        kap = np.arctan(tk)
+        ck = np.cos(kap)
+        om = sgn * np.sqrt(n2p) / ck
+        tp = th + kap
+        sp, cp = np.sin(tp), np.cos(tp)
+        # gravity moment about y1, exact form 3/2 mu R0^-3 (A2 - A3) sin 2 theta0
+        G = 1.5 * n0 * (A2 - A3) * s2t
+        rest = 0.5 * om**2 * (A2 - A3) * 2 * sp * cp + G
+        if (k2 is None) == (k3 is None):
+            raise TypeError("give exactly one of k2 and k3")
+        if k3 is None:
+            k2v = np.asarray(k2, dtype=float) + 0 * om
+            ok = cp != 0
+            k3v = np.where(ok, (om * k2v * sp + rest) / (om * np.where(ok, cp, 1.0)), np.nan)
+        else:
+            k3v = np.asarray(k3, dtype=float) + 0 * om
+            ok = sp != 0
+            k2v = np.where(ok, (om * k3v * cp - rest) / (om * np.where(ok, sp, 1.0)), np.nan)
+        exists = exists & ok
+        S0 = M * R0**2 * ck**2 + A2 * cp**2 + A3 * sp**2
+        k = om * S0 + k2v * cp + k3v * sp
+        lam = M * R0**2 * om**2 * np.sin(kap)
+    return {
+        "theta0": th + 0 * om, "n2": n2 + 0 * om, "kappa0": kap, "omega0": om, "k2": k2v, "k3": k3v,
+        "S0": S0, "k": k, "lambda0": lam, "exists": exists,
+        "sin_tk": sp, "cos_tk": cp, "sin_t": st + 0 * om, "cos_t": ct + 0 * om,
+    }
+
+
+@dataclass(frozen=True)
+class StationaryMotion:
+    """A stationary motion (2.3) of the family with a displaced orbit plane.
+
+    Attributes
+    ----------
+    satellite : Satellite
+        The satellite that realises the motion (its k1 = 0, k2, k3 are those of the motion).
+    R0, theta0, kappa0, omega0 : float
+        Orbit radius, tilt of x3 from the radius vector y3 in the plane Gy2y3, latitude of the
+        centre of mass (the displacement of the orbit plane is ``R0 sin kappa0``), angular velocity
+        of the orbital frame about zeta2.
+    k2, k3 : float
+        Gyrostatic momentum components (k1 = 0).
+    k : float
+        Area constant ``k = omega0 S0 + k2 beta2 + k3 beta3`` (``omega0 = K0 / S0``).
+    lambda0 : float
+        Lagrange multiplier ``M R0^2 omega0^2 sin kappa0``.
+    S0 : float
+    point : tuple of 6 floats
+        ``(R, kappa, beta1, beta3, gamma1, gamma2)`` of (2.3).
+    branch : (int, int)
+        Signs of ``beta2 = cos(theta0 + kappa0)`` and ``gamma3 = cos(theta0)``.
+    classical : bool
+        True when kappa0 == 0 (theta0 = 0 or pi, or A2 == A3): the orbit plane passes through the
+        attracting centre, the member shared with the kappa = 0 equilibria of Rumyantsev [1].
+    """
+
+    satellite: Satellite
+    R0: float
+    theta0: float
+    kappa0: float
+    omega0: float
+    k2: float
+    k3: float
+    k: float
+    lambda0: float
+    S0: float
+    point: tuple[float, float, float, float, float, float]
+    branch: tuple[int, int]
+    classical: bool
+
+    @property
+    def k1(self) -> float:
+        return 0.0
+
+    @property
+    def beta(self) -> tuple[float, float, float]:
+        """Direction cosines of zeta2 (orbit normal) in the body axes (2.3)."""
+        t = self.theta0 + self.kappa0
+        return (0.0, math.cos(t), math.sin(t))
+
+    @property
+    def gamma(self) -> tuple[float, float, float]:
+        """Direction cosines of y3 (radius vector OG) in the body axes (2.3)."""
+        return (0.0, -math.sin(self.theta0), math.cos(self.theta0))
+
+    @property
+    def displacement(self) -> float:
+        """Distance of the orbit plane from the attracting centre, ``R0 sin kappa0``."""
+        return self.R0 * math.sin(self.kappa0)
+
+
+def stationary_motion(
+    sat: Satellite,
+    R0: float,
+    theta0: float,
+    *,
+    k2: float | None = None,
+    k3: float | None = None,
+    omega_sign: int = 1,
+) -> StationaryMotion:
+    """The stationary motion (2.3) for given R0, theta0 and one gyrostatic component (2.4).
+
+    Closed form, no root finding (see :func:`family_arrays`): ``kappa0`` from ``tan kappa0``,
+    ``omega0`` from the second relation (2.4), the missing gyrostatic component from the first.
+
+    Parameters
+    ----------
+    sat : Satellite
+        Mass, moments of inertia and mu are used; ``sat.k1`` must be 0 (the family needs k1 = 0);
+        ``sat.k2``/``sat.k3`` are ignored (the motion fixes them).
+    R0 : float
+        Orbit radius (> 0).
+    theta0 : float
+        Tilt angle (radians), reduced to (-pi, pi].
+    k2, k3 : float
+        Exactly one of them; the other is computed.
+    omega_sign : {+1, -1}
+        Sign of omega0.
+
+    Raises
+    ------
+    ValueError
+        No motion of the family exists: ``omega0^2 cos^2 kappa0 <= 0`` (body too large for R0), the
+        denominator ``cos(theta0 + kappa0)`` vanishes when k2 is given, or ``sin(theta0 + kappa0)``
+        vanishes when k3 is given (theta0 = 0 or pi: the classical kappa = 0 member, where k3 must be
+        0 and k2 is free -- pass k2 instead).
+
+    Warns
+    -----
+    GyrostatWarning
+        Near those places (|cos| or |sin| < 1e-6): the computed component is ill-conditioned.
+    """
+    if not isinstance(sat, Satellite):
+        raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
+    if sat.k1 != 0.0:
+        raise ValueError(f"the family (2.3) requires k1 = 0; sat.k1 = {sat.k1!r}")
+    R0 = _positive("R0", R0)
+    theta0 = float(_wrap(_finite("theta0", theta0)))
+    if omega_sign not in (1, -1):
+        raise ValueError(f"omega_sign must be +1 or -1; got {omega_sign!r}")
+    if (k2 is None) == (k3 is None):
+        raise TypeError("give exactly one of k2 and k3 (the other is computed from (2.4))")
+    if k2 is not None:
+        k2 = _finite("k2", k2)
+    if k3 is not None:
+        k3 = _finite("k3", k3)
+    f = family_arrays(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, theta0, k2=k2, k3=k3, omega_sign=omega_sign)
+    if not f["n2"] > 0:
+        raise ValueError(
+            "no stationary motion: omega0^2 cos^2 kappa0 = mu/R0^3 {1 - 9/(2 M R0^2)[...]} <= 0 (2.4); "
+            f"the body is too large for R0 = {R0!r} (l/R0 = {sat.l / R0:.3g})"
+        )
+    sp, cp = float(f["sin_tk"]), float(f["cos_tk"])
+    kappa0 = float(f["kappa0"])
+    if k3 is None:
+        if cp == 0.0:
+            raise ValueError(
+                "cos(theta0 + kappa0) = 0: with k2 given, (2.4) has no solution for k3 (it diverges); "
+                "give k3 instead"
+            )
+        if abs(cp) < SINGULAR_TOL:
+            warnings.warn(
+                f"|cos(theta0 + kappa0)| = {abs(cp):.2e}: k3 from (2.4) is ill-conditioned near "
+                "theta0 + kappa0 = +-pi/2", GyrostatWarning, stacklevel=2,
+            )
+    else:
+        if sp == 0.0:
+            if k3 == 0.0:
+                raise ValueError(
+                    "theta0 + kappa0 = 0 or pi (the classical kappa0 = 0 equilibrium with axes along the "
+                    "orbital axes): k2 is not determined by k3 = 0 here; give k2 instead"
+                )
+            raise ValueError(
+                "theta0 + kappa0 = 0 or pi: (2.4) requires k3 = 0 there (no motion with "
+                f"k3 = {k3!r}); give k2 instead"
+            )
+        if abs(sp) < SINGULAR_TOL:
+            warnings.warn(
+                f"|sin(theta0 + kappa0)| = {abs(sp):.2e}: k2 from (2.4) is ill-conditioned near the "
+                "classical member theta0 = 0 (or pi)", GyrostatWarning, stacklevel=2,
+            )
+    k2v, k3v = float(f["k2"]), float(f["k3"])
+    b2s = 1 if cp >= 0 else -1
+    g3s = 1 if math.cos(theta0) >= 0 else -1
+    point = (R0, kappa0, 0.0, sp, 0.0, -math.sin(theta0))
+    return StationaryMotion(
+        satellite=replace(sat, k1=0.0, k2=k2v, k3=k3v),
+        R0=R0, theta0=theta0, kappa0=kappa0, omega0=float(f["omega0"]), k2=k2v, k3=k3v,
+        k=float(f["k"]), lambda0=float(f["lambda0"]), S0=float(f["S0"]), point=point,
+        branch=(b2s, g3s), classical=(kappa0 == 0.0),
+    )

@@ -1,0 +1,309 @@
+"""Dynamically symmetric satellite (section 3): A1 = A2, k1 = k2 = 0, W(R, kappa, theta, psi)."""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+from types import ModuleType
+from typing import Any
+
+import numpy as np
+
+from ..core.quadform import inertia, leading_minors
+from ._model import GyrostatWarning, Satellite, _finite, _positive
+from ._stability import VERDICTS, _verdict_codes
+from ._stationary import SINGULAR_TOL, _wrap
+
+__all__ = [
+    "SymmetricMotion",
+    "SymmetricStability",
+    "gradient_W_sym",
+    "hessian_W_sym",
+    "symmetric_family_arrays",
+    "symmetric_potential",
+    "symmetric_stationary_motion",
+]
+
+SYM_COORDS = ("R", "kappa", "theta", "psi")
+
+
+def _check_symmetric(sat: Satellite) -> None:
+    if not isinstance(sat, Satellite):
+        raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
+    if sat.A1 != sat.A2:
+        raise ValueError(f"section 3 requires A1 == A2 (dynamic symmetry); got A1={sat.A1!r}, A2={sat.A2!r}")
+    if sat.k1 != 0.0 or sat.k2 != 0.0:
+        raise ValueError(f"section 3 requires k1 = k2 = 0; got k1={sat.k1!r}, k2={sat.k2!r}")
+
+
+def symmetric_potential(
+    sat: Satellite, x: Any, *, k: float, c: float, lib: ModuleType = np
+) -> Any:
+    """Amended potential of section 3, ``W(R, kappa, theta, psi) = K^2 / (2 S1) - U``.
+
+    ``K = k - c beta3``, ``S1 = M R^2 cos^2 kappa + A1 (1 - beta3^2)``,
+    ``beta3 = cos theta sin kappa - sin theta cos psi cos kappa``,
+    ``U = mu M / R + mu R^-3 (A1 - A3)(1 - 3/2 sin^2 theta)``.  ``c`` is the constant of the cyclic
+    integral of phi (k3 enters it additively).  ``lib``: numpy (default), math or mpmath.
+    """
+    R, kap, th, ps = x
+    b = lib.cos(th) * lib.sin(kap) - lib.sin(th) * lib.cos(ps) * lib.cos(kap)
+    K = k - c * b
+    S1 = sat.M * R * R * lib.cos(kap) ** 2 + sat.A1 * (1 - b * b)
+    st = lib.sin(th)
+    U = sat.mu * sat.M / R + sat.mu / R**3 * (sat.A1 - sat.A3) * (1 - 1.5 * st * st)
+    return K * K / (2 * S1) - U
+
+
+def _derivs(M: Any, A1: Any, A3: Any, mu: Any, k: Any, c: Any, R: Any, kap: Any, th: Any, ps: Any):
+    """Gradient (4,) and Hessian (4, 4) of W by the chain rule W = f(R, kappa, b(kappa, theta, psi)) - U."""
+    ck, sk, ct, st, cps, sps = np.cos(kap), np.sin(kap), np.cos(th), np.sin(th), np.cos(ps), np.sin(ps)
+    b = ct * sk - st * cps * ck
+    # derivatives of b w.r.t. (kappa, theta, psi)
+    bk = ct * ck + st * cps * sk
+    bt = -st * sk - ct * cps * ck
+    bp = st * sps * ck
+    bkk, btt = -b, -b
+    bpp = st * cps * ck
+    bkt = -st * ck + ct * cps * sk
+    bkp = -st * sps * sk
+    btp = ct * sps * ck
+    K = k - c * b
+    S = M * R**2 * ck**2 + A1 * (1 - b**2)
+    # y = (R, kappa, b): first and second derivatives of K and S
+    Ky = [0 * b, 0 * b, -c + 0 * b]
+    Sy = [2 * M * R * ck**2, -M * R**2 * 2 * sk * ck, -2 * A1 * b]
+    Syy = [
+        [2 * M * ck**2, -2 * M * R * 2 * sk * ck, 0 * b],
+        [-2 * M * R * 2 * sk * ck, -2 * M * R**2 * (ck**2 - sk**2), 0 * b],
+        [0 * b, 0 * b, -2 * A1 + 0 * b],
+    ]
+    fy = [K * Ky[i] / S - K**2 * Sy[i] / (2 * S**2) for i in range(3)]
+    fyy = [
+        [
+            Ky[i] * Ky[j] / S - K * (Ky[i] * Sy[j] + Ky[j] * Sy[i]) / S**2
+            - K**2 * Syy[i][j] / (2 * S**2) + K**2 * Sy[i] * Sy[j] / S**3
+            for j in range(3)
+        ]
+        for i in range(3)
+    ]
+    # Jacobian dy/dx, x = (R, kappa, theta, psi)
+    z = 0 * b
+    J = [[1 + z, z, z, z], [z, 1 + z, z, z], [z, bk, bt, bp]]
+    bxx = [[z, z, z, z], [z, bkk, bkt, bkp], [z, bkt, btt, btp], [z, bkp, btp, bpp]]
+    # U(R, theta)
+    d = A1 - A3
+    g = 1 - 1.5 * st**2
+    U_R = -mu * M / R**2 - 3 * mu / R**4 * d * g
+    U_t = -1.5 * mu / R**3 * d * 2 * st * ct
+    U_RR = 2 * mu * M / R**3 + 12 * mu / R**5 * d * g
+    U_Rt = 4.5 * mu / R**4 * d * 2 * st * ct
+    U_tt = -3 * mu / R**3 * d * (ct**2 - st**2)
+    Ux = [U_R, z, U_t, z]
+    Uxx = [[U_RR, z, U_Rt, z], [z, z, z, z], [U_Rt, z, U_tt, z], [z, z, z, z]]
+    grad = [sum(fy[i] * J[i][p] for i in range(3)) - Ux[p] for p in range(4)]
+    hess = [
+        [
+            sum(J[i][p] * fyy[i][j] * J[j][q] for i in range(3) for j in range(3))
+            + fy[2] * bxx[p][q] - Uxx[p][q]
+            for q in range(4)
+        ]
+        for p in range(4)
+    ]
+    G = np.stack(np.broadcast_arrays(*grad), axis=-1)
+    H = np.stack([np.stack(np.broadcast_arrays(*row), axis=-1) for row in hess], axis=-2)
+    return G, H
+
+
+def gradient_W_sym(sat: Satellite, x: Any, *, k: float, c: float) -> np.ndarray:
+    """Gradient (3.1) of the section-3 W at ``x = (R, kappa, theta, psi)`` (shape (..., 4))."""
+    R, kap, th, ps = (np.asarray(v, dtype=float) for v in x)
+    return _derivs(sat.M, sat.A1, sat.A3, sat.mu, k, c, R, kap, th, ps)[0]
+
+
+def hessian_W_sym(sat: Satellite, x: Any, *, k: float, c: float) -> np.ndarray:
+    """Hessian of the section-3 W at ``x = (R, kappa, theta, psi)`` (shape (..., 4, 4)), chain rule."""
+    R, kap, th, ps = (np.asarray(v, dtype=float) for v in x)
+    return _derivs(sat.M, sat.A1, sat.A3, sat.mu, k, c, R, kap, th, ps)[1]
+
+
+def symmetric_family_arrays(
+    M: Any, A1: Any, A3: Any, mu: Any, R0: Any, theta0: Any, omega_sign: Any = 1
+) -> dict[str, np.ndarray]:
+    """Vectorised solution (3.2)-(3.3): kappa0, omega0, c, k (k via omega0 = K0 / S10)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        M, A1, A3, mu, R0, th = (np.asarray(v, dtype=float) for v in (M, A1, A3, mu, R0, theta0))
+        n0 = mu / R0**3
+        st, ct = np.sin(th), np.cos(th)
+        s2t = 2 * st * ct
+        n2 = n0 * (1 + 3 * (A1 - A3) / (M * R0**2) * (1 - 1.5 * st**2))
+        exists = n2 > 0
+        n2p = np.where(exists, n2, np.nan)
+        kap = np.arctan(1.5 * (A1 - A3) * n0 * s2t / (M * R0**2 * n2p))
+        om = np.asarray(omega_sign, dtype=float) * np.sqrt(n2p) / np.cos(kap)
+        sp, cp = np.sin(th + kap), np.cos(th + kap)
+        ok = cp != 0
+        c = np.where(ok, (0.5 * A1 * om**2 * 2 * sp * cp + 1.5 * n0 * (A1 - A3) * s2t) / (om * np.where(ok, cp, 1)),
+                     np.nan)
+        S10 = M * R0**2 * np.cos(kap) ** 2 + A1 * cp**2
+        k = om * S10 + c * sp
+    return {"theta0": th + 0 * om, "n2": n2 + 0 * om, "kappa0": kap, "omega0": om, "c": c, "k": k,
+            "S10": S10, "exists": exists & ok, "sin_t": st + 0 * om, "cos_tk": cp}
+
+
+@dataclass(frozen=True)
+class SymmetricMotion:
+    """Stationary motion (3.2) of a dynamically symmetric gyrostat: a regular precession in Koenig axes.
+
+    Attributes
+    ----------
+    satellite : Satellite
+    R0, theta0, kappa0, omega0 : float
+        As in (3.2)-(3.3); psi0 = pi.
+    c : float
+        Constant of the cyclic integral of phi (k3 is included in it).
+    k : float
+        Area constant, ``omega0 S10 + c beta3``.
+    S10 : float
+    point : (R0, kappa0, theta0, pi)
+    """
+
+    satellite: Satellite
+    R0: float
+    theta0: float
+    kappa0: float
+    omega0: float
+    c: float
+    k: float
+    S10: float
+    point: tuple[float, float, float, float]
+
+    @property
+    def psi0(self) -> float:
+        return math.pi
+
+    @property
+    def displacement(self) -> float:
+        return self.R0 * math.sin(self.kappa0)
+
+
+def symmetric_stationary_motion(
+    sat: Satellite, R0: float, theta0: float, *, omega_sign: int = 1
+) -> SymmetricMotion:
+    """The stationary motion (3.2) with relations (3.3), closed form.
+
+    Parameters
+    ----------
+    sat : Satellite
+        Must have A1 == A2 and k1 = k2 = 0 (``sat.k3`` is irrelevant: it enters c additively).
+    R0 : float
+    theta0 : float
+        Nutation angle of x3 from y3 (radians), reduced to (-pi, pi]; theta0 = 0 or pi (x3 along
+        the radius vector) is the singular line of the Euler chart and is rejected.
+    omega_sign : {+1, -1}
+
+    Raises
+    ------
+    ValueError
+        Non-symmetric satellite, sin theta0 = 0, cos(theta0 + kappa0) = 0 (c undefined) or no motion
+        (``omega0^2 cos^2 kappa0 <= 0``).
+    """
+    _check_symmetric(sat)
+    R0 = _positive("R0", R0)
+    theta0 = float(_wrap(_finite("theta0", theta0)))
+    if omega_sign not in (1, -1):
+        raise ValueError(f"omega_sign must be +1 or -1; got {omega_sign!r}")
+    if math.sin(theta0) == 0.0:
+        raise ValueError(
+            "theta0 = 0 or pi: x3 along the radius vector is the singular line of the Euler angles "
+            "(theta, psi) of section 3 (the kappa = 0 equilibrium of Rumyantsev [1]); choose theta0 != 0, pi"
+        )
+    f = symmetric_family_arrays(sat.M, sat.A1, sat.A3, sat.mu, R0, theta0, omega_sign)
+    if not f["n2"] > 0:
+        raise ValueError("no stationary motion: omega0^2 cos^2 kappa0 <= 0 in (3.3); the body is too large for R0")
+    cp = float(f["cos_tk"])
+    if cp == 0.0:
+        raise ValueError("cos(theta0 + kappa0) = 0: the constant c of (3.3) is undefined")
+    if abs(cp) < SINGULAR_TOL or abs(math.sin(theta0)) < SINGULAR_TOL:
+        warnings.warn("theta0 is near a singular place of (3.3) or of the Euler chart", GyrostatWarning, stacklevel=2)
+    kap = float(f["kappa0"])
+    return SymmetricMotion(
+        satellite=sat, R0=R0, theta0=theta0, kappa0=kap, omega0=float(f["omega0"]), c=float(f["c"]),
+        k=float(f["k"]), S10=float(f["S10"]), point=(R0, kap, theta0, math.pi),
+    )
+
+
+def W_psipsi_34(sat: Satellite, R0: Any, theta0: Any, kappa0: Any) -> Any:
+    """The paper's (3.4): ``3 mu R0^-3 (A1 - A3) sin^2 theta0 cos theta0 cos kappa0 / cos(theta0 + kappa0)``."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return (3 * sat.mu / np.asarray(R0, dtype=float) ** 3 * (sat.A1 - sat.A3) * np.sin(theta0) ** 2
+                * np.cos(theta0) * np.cos(kappa0) / np.cos(np.asarray(theta0) + kappa0))
+
+
+@dataclass(frozen=True)
+class SymmetricStability:
+    """Stability of a motion (3.2) from the full 4x4 second variation of W(R, kappa, theta, psi).
+
+    Attributes
+    ----------
+    hessian : ndarray (4, 4)
+        Second derivatives of W at (3.2), order (R, kappa, theta, psi).
+    minors : ndarray (4,)
+        Its leading principal minors.
+    W_psipsi : float
+        The (3.4) entry; the psi row decouples (W_Rpsi = W_kappapsi = W_thetapsi = 0 at psi = pi).
+    Delta : float
+        Determinant of the (R, kappa, theta) block (section 4: the Jacobian of (3.1) is W_psipsi * Delta).
+    degree, nullity, verdict :
+        As for :class:`Stability`.
+    paper_condition : bool
+        The paper's sufficient condition (3.4) ``W_psipsi > 0``.
+    jacobian : float
+        ``det hessian`` = Jacobian of the system (3.1).
+    unconditionally_stable : bool
+    """
+
+    hessian: np.ndarray
+    minors: np.ndarray
+    W_psipsi: float
+    Delta: float
+    degree: int
+    nullity: int
+    verdict: str
+    paper_condition: bool
+    jacobian: float
+    unconditionally_stable: bool
+
+    @property
+    def s1(self) -> float:
+        return float(self.minors[0])
+
+    @property
+    def s2(self) -> float:
+        return float(self.minors[1])
+
+    @property
+    def s3(self) -> float:
+        return float(self.minors[2])
+
+
+def stability_symmetric(sat: Satellite, m: SymmetricMotion, *, rtol: float = 1e-12) -> SymmetricStability:
+    _check_symmetric(sat)
+    for name in ("M", "A1", "A3", "mu"):
+        if getattr(sat, name) != getattr(m.satellite, name):
+            raise ValueError(f"sat.{name} differs from the satellite the motion was computed for")
+    H = hessian_W_sym(sat, m.point, k=m.k, c=m.c)
+    # the psi row/column vanish identically off the diagonal at psi = pi (sin psi = 0)
+    H[3, :3] = 0.0
+    H[:3, 3] = 0.0
+    _, n_neg, n_zero = inertia(H, rtol=rtol)
+    code = int(_verdict_codes(np.asarray(n_neg), np.asarray(n_zero)))
+    minors = leading_minors(H)
+    Delta = float(leading_minors(H[:3, :3])[-1])
+    jac = float(minors[-1])
+    return SymmetricStability(
+        hessian=H, minors=minors, W_psipsi=float(H[3, 3]), Delta=Delta, degree=int(n_neg), nullity=int(n_zero),
+        verdict=VERDICTS[code], paper_condition=bool(H[3, 3] > 0), jacobian=jac,
+        unconditionally_stable=(code == 0 and jac != 0.0),
+    )
