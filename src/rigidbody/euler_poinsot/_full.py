@@ -264,6 +264,11 @@ def simulate(
             return out
 
         y0 = [G0, delta0, lam0, st["theta"], st["phi"], st["psi"], st["T"]]
+        if abs(math.sin(delta0)) <= 1e-6 or abs(math.sin(st["theta"])) <= 1e-6:
+            raise ValueError(
+                "formulation='angles' is singular at sin(delta) = 0 or sin(theta) = 0 (the initial state is "
+                "there): use formulation='body'"
+            )
 
         def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             return y[0], y[6]
