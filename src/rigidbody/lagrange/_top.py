@@ -178,6 +178,10 @@ def _roots_scalar(top: Top, Gz: float, H: float, r: float) -> tuple[float, float
     c_hi = (s1 + sq) / 3.0  # local minimum of P
     um = min(max(c_lo, -1.0), 1.0)
     pmax = _monic(um, s1, s2, s3)
+    if -1e-9 * scale <= pmax < 0.0 and -1.0 < c_lo < 1.0:
+        # just outside the admissible set, at the regular-precession boundary (a double root at the local
+        # maximum of the cubic): an integrator's stage may land here; project onto the boundary
+        return c_lo, c_lo, max(s1 - 2.0 * c_lo, 1.0)
     if pmax < -tol:
         raise ValueError(
             f"(Gz, H, r) = ({Gz!r}, {H!r}, {r!r}) is not attainable by a real top: Q(u) < 0 on [-1, 1] "

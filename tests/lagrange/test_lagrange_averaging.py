@@ -1,0 +1,241 @@
+"""Averaging engine (2.12)-(2.16), closed form (3.4), charts and sign switching, averaged vs full (1.1)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy import integrate as spi
+
+from rigidbody import lagrange as L
+from rigidbody.core import elliptic as ell
+
+TOP = L.Top(A=1.5, C=1.0, mgl=0.5)
+DRAG = L.LinearDrag(a=0.125, b=0.1)
+
+
+R0 = math.sqrt(3.0)
+
+
+def spun(theta_deg, r0=R0):
+    """The paper's initial states: spun about the axis, tilted by theta0."""
+    return (0.0, 0.0, r0, 0.0, math.radians(theta_deg), 0.0)
+
+
+# second torque example (not in the paper): theta-dependent equatorial drag and an axial motor,
+# class (2.4): M1 = p f, M2 = q f, f = -a (1 + kappa cos theta); M3 = m0 - b r
+KAPPA, M0 = 0.5, 0.15
+MOTOR = L.ProportionalTorque(
+    f=lambda Gz, H, r, th: -DRAG.a * (1.0 + KAPPA * np.cos(th)),
+    M3=lambda Gz, H, r, th: M0 - DRAG.b * r + 0.0 * th,
+)
+# a class (2.5) torque: F = -c sin(theta) (a restoring torque in the vertical plane), no axial part
+VPLANE = L.VerticalPlaneTorque(F=lambda Gz, H, r, th: -0.1 * np.sin(th))
+
+
+@st.composite
+def admissible(draw):
+    u1 = draw(st.floats(-0.98, 0.9))
+    u2 = draw(st.floats(u1 + 0.02, 0.99))
+    u3 = draw(st.floats(1.01, 4.0))
+    return u1, u2, u3, draw(st.sampled_from([-1.0, 1.0])), draw(st.sampled_from([-1.0, 1.0]))
+
+
+# ---------------------------------------------------------------------------------- closed form (3.4)
+@settings(max_examples=50, deadline=None)
+@given(admissible())
+def test_drag_closed_form_equals_engine(x):
+    u1, u2, u3, d1, d2 = x
+    closed = L.drag_rhs(TOP, DRAG, u1, u2, u3, d1, d2)
+    engine = np.array(L.averaged_rhs(TOP, DRAG, u1, u2, u3, d1, d2, closed_form=False))
+    # both exact up to the trapezoid error (1e-13 for sn^2 integrands) and the cancellation in
+    # V = 1/((u1-u2)(u1-u3)) * [...]: relative 1e-10 of the largest component
+    np.testing.assert_allclose(closed, engine, rtol=0, atol=1e-10 * np.abs(engine).max())
+
+
+def test_nutation_mean_is_time_average():
+    # <u> over a nutation period by adaptive quad in t of (1.3) vs the trapezoid rule vs v of (3.4)
+    u1, u2, u3 = 0.1, 0.7, 1.8
+    k2, mc = L.modulus(u1, u2, u3)
+    Kk = ell.K(mc=mc)
+
+    def u_t(s):
+        return u1 + (u2 - u1) * ell.sn(s, mc=mc) ** 2
+
+    quad = spi.quad(u_t, 0, 2 * Kk, epsabs=1e-15, epsrel=1e-13, limit=200)[0] / (2 * Kk)
+    trap = L.nutation_mean(lambda u: u, u1, u2, u3)
+    v = u3 - (u3 - u1) * ell.E(mc=mc) / Kk
+    assert trap == pytest.approx(quad, abs=1e-13)  # quad to 1e-13, trapezoid spectrally to 1e-13
+    assert v == pytest.approx(quad, abs=1e-13)
+    # a non-polynomial integrand (1/(1+u)^2): still spectrally accurate with the default nodes
+    g = spi.quad(lambda s: 1 / (1 + u_t(s)) ** 2, 0, 2 * Kk, epsabs=1e-15, epsrel=1e-13, limit=200)[0] / (2 * Kk)
+    assert L.nutation_mean(lambda u: 1 / (1 + u) ** 2, u1, u2, u3) == pytest.approx(g, rel=1e-11)
+
+
+def test_engine_rates_are_time_averages_of_2_1():
+    # <F> of the corrected (2.7) vs the time average of (2.1) evaluated on the unperturbed full motion
+    state = (0.2, -0.3, 1.4, 0.3, 1.0, 0.0)
+    Gz, H, r = L.integrals(TOP, *state[:5])
+    u1, u2, u3 = L.roots(TOP, Gz, H, r)
+    k2, mc = L.modulus(u1, u2, u3)
+    T = 2 * ell.K(mc=mc) / L.nutation_frequency(TOP, u1, u3)
+    t = np.linspace(0, T, 2001)
+    f = L.simulate(TOP, MOTOR, 0.0, state, (0, T), t_eval=t, rtol=1e-12, atol=1e-13)
+    g1, g2 = np.sin(f.theta) * np.sin(f.phi), np.sin(f.theta) * np.cos(f.phi)
+    fac = -DRAG.a * (1 + KAPPA * np.cos(f.theta))
+    M1, M2, M3 = f.p * fac, f.q * fac, M0 - DRAG.b * f.r
+    dGz = M1 * g1 + M2 * g2 + M3 * np.cos(f.theta)  # (2.1): vertical component of the torque
+    dH = M1 * f.p + M2 * f.q + M3 * f.r
+    avg = [spi.simpson(x, x=t) / T for x in (dGz, dH, M3 / TOP.C)]
+    got = L.averaged_slow_rates(TOP, MOTOR, Gz, H, r)
+    # Simpson on 2000 intervals of a smooth periodic integrand (h^4 ~ 1e-13 relative) + rtol 1e-12
+    np.testing.assert_allclose(got, avg, atol=1e-9)
+
+
+def test_averaged_rhs_general_torque_is_jacobian_times_mean():
+    # U = d u/d(Gz,H,r) . <F>: the engine's V (2.13) against finite differences of the roots
+    Gz, H, r = L.integrals(TOP, 0.1, 0.3, 1.2, 0.2, 0.9)
+    u = L.roots(TOP, Gz, H, r)
+    d1, d2 = L.deltas(TOP, Gz, r)
+    Fm = np.array(L.averaged_slow_rates(TOP, VPLANE, Gz, H, r))
+    h = 1e-6
+    dirv = Fm / np.linalg.norm(Fm)
+    up = np.array(L.roots(TOP, *(np.array([Gz, H, r]) + h * dirv)))
+    um = np.array(L.roots(TOP, *(np.array([Gz, H, r]) - h * dirv)))
+    fd = (up - um) / (2 * h) * np.linalg.norm(Fm)
+    U = np.array(L.averaged_rhs(TOP, VPLANE, *u, d1, d2))
+    np.testing.assert_allclose(U, fd, atol=1e-7 * np.abs(U).max())  # central differences: O(h^2) + 1e-16/h
+
+
+# -------------------------------------------------------------------------------------- integrations
+@pytest.mark.parametrize("torque", [MOTOR, VPLANE], ids=["motor", "vertical-plane"])
+def test_u_chart_agrees_with_GHr_chart(torque):
+    ini = L.integrals(TOP, *spun(60)[:5])
+    tau = np.linspace(0, 5, 11)
+    a = L.averaged(TOP, torque, ini, (0, 5), tau_eval=tau, chart="u")
+    b = L.averaged(TOP, torque, ini, (0, 5), tau_eval=tau, chart="GHr")
+    assert a.status == 0 and b.status == 0, (a.message, b.message)
+    # the same averaged system in two sets of variables, rtol 1e-12 each
+    for name in ("Gz", "H", "r"):
+        np.testing.assert_allclose(getattr(a, name), getattr(b, name), atol=1e-9)
+    np.testing.assert_allclose(a.u, b.u, atol=1e-8)
+
+
+def test_motor_spin_is_exact():
+    # r' = eps (m0 - b r)/C holds exactly in (1.1): r = m0/b + (r0 - m0/b) exp(-b tau / C)
+    ini = L.integrals(TOP, *spun(60)[:5])
+    s = L.averaged(TOP, MOTOR, ini, (0, 10), tau_eval=np.linspace(0, 10, 21))
+    r_exact = M0 / DRAG.b + (math.sqrt(3) - M0 / DRAG.b) * np.exp(-DRAG.b * s.tau / TOP.C)
+    np.testing.assert_allclose(s.r, r_exact, atol=1e-9)  # integrator rtol 1e-12 through the u chart
+
+
+def _max_slow_error(torque, theta_deg, eps, tau_end):
+    state = spun(theta_deg)
+    f = L.simulate(TOP, torque, eps, state, (0, tau_end / eps), rtol=1e-10, atol=1e-12)
+    s = L.averaged(TOP, torque, L.integrals(TOP, *state[:5]), (0, tau_end), tau_eval=f.tau)
+    assert f.status == 0 and s.status == 0
+    return max(np.abs(f.Gz - s.Gz).max(), np.abs(f.H - s.H).max(), np.abs(f.r - s.r).max())
+
+
+def test_averaged_vs_full_error_is_order_eps():
+    # the averaging theorem checked: max |slow(full) - slow(averaged)| over tau in [0, 5] ~ c eps
+    eps = np.array([0.04, 0.02, 0.01])
+    err = np.array([_max_slow_error(DRAG, 60, e, 5.0) for e in eps])
+    order = np.polyfit(np.log(eps), np.log(err), 1)[0]
+    assert 0.8 <= order <= 1.3, (err, order)
+    assert err[-1] < 0.05  # and the constant is moderate (c ~ 0.02 for these parameters)
+
+
+@pytest.mark.slow
+def test_averaged_vs_full_error_is_order_eps_small_eps():
+    eps = np.array([0.01, 0.005, 0.0025])
+    for th in (5, 60, 170):
+        err = np.array([_max_slow_error(DRAG, th, e, 5.0) for e in eps])
+        order = np.polyfit(np.log(eps), np.log(err), 1)[0]
+        assert 0.8 <= order <= 1.3, (th, err, order)
+
+
+def test_second_torque_averaged_vs_full():
+    # the general engine on a torque the paper did not print: error halves with eps (O(eps) theorem)
+    e1 = _max_slow_error(MOTOR, 60, 0.02, 3.0)
+    e2 = _max_slow_error(MOTOR, 60, 0.01, 3.0)
+    assert e2 < 0.03
+    assert 1.6 < e1 / e2 < 2.5, (e1, e2)  # ratio 2 for an O(eps) error; the band allows O(eps^2) terms
+
+
+def test_vertical_plane_torque_averaged_vs_full():
+    e1 = _max_slow_error(VPLANE, 60, 0.02, 3.0)
+    e2 = _max_slow_error(VPLANE, 60, 0.01, 3.0)
+    assert e2 < 0.03
+    assert 1.6 < e1 / e2 < 2.5, (e1, e2)
+
+
+def test_delta1_changes_sign_and_full_equations_agree():
+    # case 1 of the paper (theta0 = 5 deg): Gz^2 - C^2 r^2 < 0 at first, and the drag makes it cross
+    # zero (a root reaches 1) near tau ~ 1.59
+    state = spun(5)
+    ini = L.integrals(TOP, *state[:5])
+    s = L.averaged(TOP, DRAG, ini, (0, 6), tau_eval=np.linspace(0, 6, 61))
+    assert s.status == 0
+    flips = s.t_events["delta1_flip"]
+    assert flips.size == 1
+    assert s.delta1[0] == -1 and s.delta1[-1] == 1
+    assert s.chart[-1] == 0  # back in the paper's (u1, u2, u3) chart after the crossing
+    eps = 0.01
+    f = L.simulate(TOP, DRAG, eps, state, (0, 3 / eps), rtol=1e-10, atol=1e-12)
+    w = f.Gz**2 - (TOP.C * f.r) ** 2
+    cross = f.tau[np.argmax(w > 0)]
+    assert w[0] < 0 and np.all(w[f.tau > cross + 0.05] > 0)
+    # the sign change of the real motion at the averaged one's time to O(eps) (slope of w ~ 1)
+    assert abs(cross - flips[0]) < 3 * eps
+    sa = L.averaged(TOP, DRAG, ini, (0, 3), tau_eval=f.tau)
+    err = max(np.abs(f.Gz - sa.Gz).max(), np.abs(f.H - sa.H).max(), np.abs(f.r - sa.r).max())
+    assert err < 0.05 * eps * 10  # O(eps) with the constant of test_averaged_vs_full_error_is_order_eps
+
+
+def test_u_chart_alone_stops_at_the_branch_point():
+    ini = L.integrals(TOP, *spun(60)[:5])
+    s = L.averaged(TOP, DRAG, ini, (0, 40), chart="u")
+    assert s.status == 1 and s.event == "branch_point"
+    assert "delta1/delta2" in s.message
+    assert np.all(np.isfinite(s.u))
+
+
+def test_degenerate_state_ends_with_clear_status():
+    # case 3 tends to a regular precession about the lower position (u2 - u1 -> 0): with a loose
+    # threshold the degenerate event fires early, ending the run with status 1 and no NaN
+    ini = L.integrals(TOP, *spun(170)[:5])
+    s = L.averaged(TOP, DRAG, ini, (0, 100), degenerate_tol=1e-3)
+    assert s.status == 1 and s.event == "u1_eq_u2"
+    assert "regular precession" in s.message and "(2.10)" in s.message
+    assert s.k2[-1] == pytest.approx(1e-3, rel=1e-3)
+    assert np.all(np.isfinite(s.u)) and s.tau[-1] < 100
+
+
+def test_initial_regular_precession_needs_GHr_chart():
+    th, r = 0.7, 3.0
+    cth, sth = math.cos(th), math.sin(th)
+    dpsi = (TOP.C * r - math.sqrt((TOP.C * r) ** 2 - 4 * TOP.A * cth * TOP.mgl)) / (2 * TOP.A * cth)
+    p, q = dpsi * sth * math.sin(0.4), dpsi * sth * math.cos(0.4)
+    ini = L.integrals(TOP, p, q, r, 0.4, th)
+    with pytest.raises(ValueError, match="regular precession"):
+        L.averaged(TOP, DRAG, ini, (0, 1))
+    s = L.averaged(TOP, DRAG, ini, (0, 1), chart="GHr")
+    assert s.status == 0 and np.all(np.isfinite(s.Gz))
+
+
+def test_averaged_rejects_bad_input():
+    ini = L.integrals(TOP, *spun(60)[:5])
+    with pytest.raises(ValueError, match="tau_span"):
+        L.averaged(TOP, DRAG, ini, (1, 0))
+    with pytest.raises(TypeError, match="torque"):
+        L.averaged(TOP, "drag", ini, (0, 1))
+    with pytest.raises(TypeError, match="closed_form"):
+        L.averaged(TOP, MOTOR, ini, (0, 1), closed_form=True)
+    with pytest.raises(ValueError, match="chart"):
+        L.averaged(TOP, DRAG, ini, (0, 1), chart="xyz")
+    with pytest.raises(ValueError, match="distinct roots"):
+        L.averaged_rhs(TOP, DRAG, 0.3, 0.3, 2.0)
