@@ -239,3 +239,24 @@ def test_averaged_rejects_bad_input():
         L.averaged(TOP, DRAG, ini, (0, 1), chart="xyz")
     with pytest.raises(ValueError, match="distinct roots"):
         L.averaged_rhs(TOP, DRAG, 0.3, 0.3, 2.0)
+
+
+def test_printed_F1_of_2_7_lacks_sin_theta():
+    # (2.7) prints F1 = M1* + M3* cos(theta); (2.1) gives Gz' = eps[(M1 sin phi + M2 cos phi) sin theta
+    # + M3 cos theta], i.e. F1 = M1* sin(theta) + M3* cos(theta). Decide with the time average of the
+    # vertical torque component on a real (unperturbed) motion, for the class (2.5) torque VPLANE.
+    state = (0.2, -0.3, 1.4, 0.3, 1.0, 0.0)
+    Gz, H, r = L.integrals(TOP, *state[:5])
+    u1, u2, u3 = L.roots(TOP, Gz, H, r)
+    _, mc = L.modulus(u1, u2, u3)
+    T = 2 * ell.K(mc=mc) / L.nutation_frequency(TOP, u1, u3)
+    t = np.linspace(0, T, 2001)
+    f = L.simulate(TOP, VPLANE, 0.0, state, (0, T), t_eval=t, rtol=1e-12, atol=1e-13)
+    Fv = -0.1 * np.sin(f.theta)
+    M1, M2 = Fv * np.sin(f.phi), Fv * np.cos(f.phi)
+    gam1, gam2 = np.sin(f.theta) * np.sin(f.phi), np.sin(f.theta) * np.cos(f.phi)
+    true_mean = spi.simpson(M1 * gam1 + M2 * gam2, x=t) / T  # vertical component of the torque
+    printed_mean = spi.simpson(M1 * np.sin(f.phi) + M2 * np.cos(f.phi), x=t) / T  # <M1*> (M3 = 0)
+    ours = L.averaged_slow_rates(TOP, VPLANE, Gz, H, r)[0]
+    assert ours == pytest.approx(true_mean, abs=1e-9)  # Simpson h^4 + rtol 1e-12
+    assert abs(printed_mean - true_mean) > 100 * 1e-9  # the printed form is off by far more than that

@@ -16,6 +16,9 @@ Averaging (Sec. 2-3)
 Integration
     :func:`averaged` (slow time tau = eps t, u chart with sign switching), :func:`simulate` (full (1.1),
     quaternion inside).
+Paper cases (Sec. 3, figs 1-3)
+    :data:`PAPER_TOP`, :data:`PAPER_DRAG`, :data:`PAPER_TABLE`, :func:`paper_initial_state`,
+    :func:`paper_solution`.
 """
 
 from ._averaging import (
@@ -28,10 +31,26 @@ from ._averaging import (
 )
 from ._integrate import averaged, simulate
 from ._motion import lagrange_motion, nutation_frequency
+from ._paper import (
+    PAPER_CASES,
+    PAPER_DRAG,
+    PAPER_R0,
+    PAPER_TABLE,
+    PAPER_TAU_END,
+    PAPER_TOP,
+    paper_initial_state,
+    paper_solution,
+)
 from ._top import Top, cubic_coefficients, deltas, from_roots, integrals, root_radical, roots, vieta
 from ._torques import LinearDrag, ProportionalTorque, StarTorque, Torque, VerticalPlaneTorque
 
 __all__ = [
+    "PAPER_CASES",
+    "PAPER_DRAG",
+    "PAPER_R0",
+    "PAPER_TABLE",
+    "PAPER_TAU_END",
+    "PAPER_TOP",
     "LinearDrag",
     "ProportionalTorque",
     "StarTorque",
@@ -51,6 +70,8 @@ __all__ = [
     "modulus",
     "nutation_frequency",
     "nutation_mean",
+    "paper_initial_state",
+    "paper_solution",
     "root_radical",
     "roots",
     "simulate",
