@@ -1,0 +1,92 @@
+"""Input validation, singular places and the classical member of the family."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from rigidbody import gyrostat
+
+
+def test_satellite_validation():
+    with pytest.raises(ValueError, match="M must be finite and > 0"):
+        gyrostat.Satellite(M=0.0, A1=1, A2=1, A3=1)
+    with pytest.raises(ValueError, match="A2"):
+        gyrostat.Satellite(M=1.0, A1=1, A2=-1, A3=1)
+    with pytest.raises(ValueError, match="triangle inequality"):
+        gyrostat.Satellite(M=1.0, A1=3, A2=1, A3=1)
+    with pytest.raises(TypeError, match="k2 must be a real number"):
+        gyrostat.Satellite(M=1.0, A1=1, A2=1, A3=1, k2="x")
+    with pytest.raises(ValueError, match="mu"):
+        gyrostat.Satellite(M=1.0, A1=1, A2=1, A3=1, mu=math.inf)
+    sat = gyrostat.Satellite(M=2.0, A1=2.0, A2=1.0, A3=1.0)  # flat body: equality allowed
+    assert math.isclose(sat.l, math.sqrt(4 / 3 / 2))
+    with pytest.raises(AttributeError):
+        sat.M = 3.0  # frozen
+
+
+def test_stationary_motion_argument_errors():
+    sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    with pytest.raises(TypeError, match="exactly one"):
+        gyrostat.stationary_motion(sat, 1.0, 0.3)
+    with pytest.raises(TypeError, match="exactly one"):
+        gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.0, k3=0.0)
+    with pytest.raises(ValueError, match="R0"):
+        gyrostat.stationary_motion(sat, -1.0, 0.3, k2=0.0)
+    with pytest.raises(ValueError, match="omega_sign"):
+        gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.0, omega_sign=2)
+    with pytest.raises(ValueError, match="k1 = 0"):
+        gyrostat.stationary_motion(gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008, k1=0.1), 1.0, 0.3, k2=0)
+    with pytest.raises(TypeError, match="Satellite"):
+        gyrostat.stationary_motion("sat", 1.0, 0.3, k2=0)
+
+
+def test_no_motion_for_a_too_large_body():
+    # omega0^2 cos^2 kappa0 = mu/R0^3 {1 - 9/(2 M R0^2)[(A2 - A3) sin^2 th + (2 A3 - A1 - A2)/3]} <= 0
+    sat = gyrostat.Satellite(M=1.0, A1=0.12, A2=1.0, A3=0.9)  # 4.5 [...] = 1.06 > 1
+    with pytest.raises(ValueError, match="too large"):
+        gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.0)
+
+
+def test_singular_places():
+    sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    # theta0 = 0: the classical kappa0 = 0 member; k2 free, k3 = 0
+    m = gyrostat.stationary_motion(sat, 1.0, 0.0, k2=0.004)
+    assert m.classical and m.kappa0 == 0.0 and m.k3 == 0.0
+    assert gyrostat.stability(m.satellite, m).verdict in ("stable", "unstable", "undecided")
+    with pytest.raises(ValueError, match="give k2 instead"):
+        gyrostat.stationary_motion(sat, 1.0, 0.0, k3=0.0)
+    with pytest.raises(ValueError, match="requires k3 = 0"):
+        gyrostat.stationary_motion(sat, 1.0, 0.0, k3=0.01)
+    with pytest.warns(gyrostat.GyrostatWarning, match="ill-conditioned"):
+        gyrostat.stationary_motion(sat, 1.0, 1e-9, k3=0.01)
+    # theta0 + kappa0 -> pi/2 with k2 given: k3 diverges
+    th = math.pi / 2 - 1e-8
+    with pytest.warns(gyrostat.GyrostatWarning, match="ill-conditioned"):
+        m = gyrostat.stationary_motion(sat, 1.0, th, k2=0.001)
+    with pytest.raises(ValueError, match="singular"):
+        gyrostat.stability(m.satellite, m)
+    # theta0 is reduced to (-pi, pi]
+    m1 = gyrostat.stationary_motion(sat, 1.0, 0.3 + 2 * math.pi, k2=0.001)
+    m2 = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.001)
+    assert math.isclose(m1.theta0, m2.theta0) and math.isclose(m1.k3, m2.k3, rel_tol=1e-12)
+
+
+def test_motion_geometry_and_omega_sign():
+    sat = gyrostat.Satellite(M=1.0, A1=0.03, A2=0.02, A3=0.012)
+    m = gyrostat.stationary_motion(sat, 1.0, 0.6, k2=0.01)
+    b, g = np.array(m.beta), np.array(m.gamma)
+    assert np.isclose(b @ b, 1) and np.isclose(g @ g, 1)
+    assert np.isclose(b @ g, math.sin(m.kappa0))  # (2.1)
+    assert math.isclose(m.displacement, math.sin(m.kappa0))
+    mn = gyrostat.stationary_motion(sat, 1.0, 0.6, k2=0.01, omega_sign=-1)
+    assert mn.omega0 == -m.omega0 and mn.kappa0 == m.kappa0
+    # reversing omega0 and the rotor momentum together is the time-reversed motion: same k3 up to sign
+    mr = gyrostat.stationary_motion(sat, 1.0, 0.6, k2=-0.01, omega_sign=-1)
+    assert math.isclose(mr.k3, -m.k3, rel_tol=1e-12)
+    with pytest.raises(TypeError, match="StationaryMotion"):
+        gyrostat.stability(sat, "m")
+    with pytest.raises(ValueError, match="differs"):
+        gyrostat.stability(gyrostat.Satellite(M=2.0, A1=0.03, A2=0.02, A3=0.012), m)
