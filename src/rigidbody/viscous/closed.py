@@ -94,12 +94,12 @@ def omega2(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> Any:
 
 
 def _log_k(body: Body, medium: Medium, Omega0: float, v0: float, tt: np.ndarray) -> np.ndarray:
+    """``log|k(t)|`` of (4.5); ``t = inf`` gives ``±inf`` (or the constant in Routh's case)."""
     lam = medium.B12 / body.theta12 - medium.B3 / body.theta3
-    with np.errstate(invalid="ignore"):  # inf*0 cannot occur: tt finite or lam != 0 handled below
-        x = math.log(body.theta3 * abs(Omega0) / (body.theta12 * v0)) + lam * tt
+    x0 = math.log(body.theta3 * abs(Omega0) / (body.theta12 * v0))
     if lam == 0.0:
-        x = np.full_like(tt, math.log(body.theta3 * abs(Omega0) / (body.theta12 * v0)))
-    return x
+        return np.full_like(tt, x0)
+    return x0 + lam * tt
 
 
 def curvature(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> Any:
