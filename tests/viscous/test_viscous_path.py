@@ -150,3 +150,13 @@ def test_routh_case_is_an_exact_circle_with_exponentially_decaying_momentum():
     assert angle(sim.n, exact) < 1e-10
     assert angle(vs.axis_path(body, medium, n0, nd0, Om0, t), exact) < 1e-10
     assert np.allclose(vs.curvature(body, medium, Om0, v0, t), k, rtol=1e-14)
+
+
+def test_axis_path_accepts_repeated_unsorted_and_scalar_times():
+    body, medium = CASES[0]
+    n0, nd0 = initial()
+    a = vs.axis_path(body, medium, n0, nd0, 2.0, [5.0, 1.0, 5.0, 0.0])
+    b = vs.axis_path(body, medium, n0, nd0, 2.0, [0.0, 1.0, 5.0])
+    assert np.array_equal(a[:, 0], a[:, 2]) and np.array_equal(a[:, 3], b[:, 0])
+    assert angle(a[:, [3, 1, 0]], b) < 1e-13
+    assert vs.axis_path(body, medium, n0, nd0, 2.0, 0.0).shape == (3, 1)

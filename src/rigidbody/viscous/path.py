@@ -122,18 +122,15 @@ def axis_path(
             return nn, nan, nan.copy()
         return nn
     fr = _Frame(body, medium, v0, Om0)
-    u = fr.u_of_t(t)
-    order = np.argsort(u, kind="stable")
-    us = u[order]
+    us, inverse = np.unique(fr.u_of_t(t), return_inverse=True)  # sorted, without repeats
     y0 = _initial_frame(n, nd, v0)
-    out = np.empty((9, t.size))
     if us[-1] > 0.0:
         sol = integrate(fr.rhs, (0.0, float(us[-1])), y0, t_eval=us, rtol=rtol, atol=atol, time_name="u")
         if not sol.success:
             raise RuntimeError(f"axis_path: integration failed: {sol.message}")
-        out[:, order] = sol.y
+        out = sol.y[:, inverse.ravel()]
     else:
-        out[:] = y0[:, None]
+        out = np.repeat(y0[:, None], t.size, axis=1)
     if frame:
         return out[0:3], out[3:6], out[6:9]
     return out[0:3]
