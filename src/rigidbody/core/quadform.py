@@ -112,16 +112,33 @@ def leading_minors(H: ArrayLike) -> NDArray[np.float64]:
     return D / scale
 
 
+def _lead_dets_first(S: NDArray[np.float64]) -> list[NDArray[np.float64]]:
+    """Leading minors of matrices stored with the matrix axes FIRST, ``S`` of shape (n, n, ...)."""
+    n = S.shape[0]
+    out = [S[0, 0]]
+    if n >= 2:
+        out.append(S[0, 0] * S[1, 1] - S[0, 1] * S[1, 0])
+    if n >= 3:
+        out.append(
+            S[0, 0] * (S[1, 1] * S[2, 2] - S[1, 2] * S[2, 1])
+            - S[0, 1] * (S[1, 0] * S[2, 2] - S[1, 2] * S[2, 0])
+            + S[0, 2] * (S[1, 0] * S[2, 1] - S[1, 1] * S[2, 0])
+        )
+    for k in range(4, n + 1):
+        out.append(np.linalg.det(np.moveaxis(S[:k, :k], (0, 1), (-2, -1))))
+    return out
+
+
 def inertia(
     H: ArrayLike, *, rtol: float = 1e-12
 ) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
     """Inertia (numbers of positive, negative and zero eigenvalues) of symmetric matrices.
 
-    The matrix is equilibrated first (inertia-preserving congruence).  Where all leading minors of the
-    equilibrated matrix exceed ``sqrt(rtol)`` in modulus, Jacobi's rule is used (the number of negative
-    eigenvalues equals the number of sign changes in ``1, D1, ..., Dn``); elsewhere the eigenvalues of
-    the equilibrated matrix are computed and those below ``rtol`` (relative to the largest) count as
-    zero.
+    Fast path: scale by the diagonal (``H_ij / sqrt(|H_ii H_jj|)``, an inertia-preserving congruence)
+    and apply Jacobi's rule (the number of negative eigenvalues equals the number of sign changes in
+    ``1, D1, ..., Dn``) wherever every leading minor exceeds ``sqrt(rtol)`` times its Hadamard bound
+    (so its computed sign is certain).  Elsewhere the matrix is Ruiz-equilibrated and its eigenvalues
+    computed; those below ``rtol`` relative to the largest count as zero.
 
     Parameters
     ----------
@@ -137,14 +154,26 @@ def inertia(
     if not np.all(np.isfinite(A)):
         raise ValueError("H contains non-finite entries")
     n = A.shape[-1]
-    Hs, _ = equilibrate(A)
-    D = _scaled_minors(Hs)
-    seq = np.concatenate([np.ones((*D.shape[:-1], 1)), D], axis=-1)
-    n_neg = np.sum(seq[..., 1:] * seq[..., :-1] < 0, axis=-1).astype(np.int64)
+    S = np.ascontiguousarray(np.moveaxis(A, (-2, -1), (0, 1)))
+    diag = np.abs(np.stack([S[i, i] for i in range(n)]))
+    d = np.where(diag > 0, 1.0 / np.sqrt(np.where(diag > 0, diag, 1.0)), 1.0)
+    S = S * d[:, None] * d[None, :]
+    D = _lead_dets_first(S)
+    row2 = S * S
+    n_neg = np.zeros(A.shape[:-2], dtype=np.int64)
+    reliable = np.ones(A.shape[:-2], dtype=bool)
+    prev = np.ones(A.shape[:-2])
+    tol = np.sqrt(rtol)
+    for k in range(n):
+        bound = np.prod(np.sqrt(np.sum(row2[: k + 1, : k + 1], axis=1)), axis=0)
+        reliable &= np.abs(D[k]) > tol * bound
+        n_neg += (D[k] * prev < 0).astype(np.int64)
+        prev = D[k]
     n_zero = np.zeros_like(n_neg)
-    bad = np.any(np.abs(D) <= np.sqrt(rtol), axis=-1)
+    bad = ~reliable
     if np.any(bad):
-        ev = np.linalg.eigvalsh(Hs[bad])
+        Hs, _ = equilibrate(A[bad])
+        ev = np.linalg.eigvalsh(Hs)
         big = np.max(np.abs(ev), axis=-1, keepdims=True)
         big = np.where(big > 0, big, 1.0)
         zero = np.abs(ev) <= rtol * big

@@ -178,7 +178,9 @@ def stability_arrays(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any
     code = _verdict_codes(n_neg, n_zero)
     code[~valid] = -1
     with np.errstate(invalid="ignore", over="ignore"):
-        s3 = np.linalg.det(np.where(valid[..., None, None], a, 0.0))
+        s3 = (a[..., 0, 0] * (a[..., 1, 1] * a[..., 2, 2] - a[..., 1, 2] ** 2)
+              - a[..., 0, 1] * (a[..., 0, 1] * a[..., 2, 2] - a[..., 1, 2] * a[..., 0, 2])
+              + a[..., 0, 2] * (a[..., 0, 1] * a[..., 1, 2] - a[..., 1, 1] * a[..., 0, 2]))
         a2 = a[..., 0, 0] * a[..., 1, 1] - a[..., 0, 1] ** 2
         minors = np.stack([s1, s2, s2 * a[..., 0, 0], s2 * a2, s2 * s3], axis=-1)
         jac = -(np.cos(f["kappa0"]) ** 2 / f["cos_t"] ** 2) * s2 * s3
