@@ -110,3 +110,25 @@ def test_axial_rotation_rejects_antipodal_axes():
     q2 = np.array([0.0, 1, 0, 0])  # 180 degrees about x: z -> -z
     with pytest.raises(ValueError, match="antipodal"):
         vs.axial_rotation(q1, q2)
+
+
+def test_fast_spiral_needs_the_limit_point_as_centre():
+    """λ = 0.49 per unit time, turns slow: the path never circles its initial osculating centre (clear
+    error), but it does circle the limit point; the theorem holds for that centre too (1e-10)."""
+    body, medium = vs.Body(2.0, 1.0), vs.Medium(1.0, 0.01)
+    n0, nd0 = [0.0, 0.0, 1.0], [0.3, 0.0, 0.0]
+    with pytest.raises(ValueError, match="no complete turn"):
+        vs.turn(body, medium, n0, nd0, 1.0)
+    n_inf = vs.axis_path(body, medium, n0, nd0, 1.0, np.inf)[:, 0]
+    tr = vs.turn(body, medium, n0, nd0, 1.0, centre=n_inf)
+    sim = vs.simulate(body, medium, n0, nd0, 1.0, (0.0, tr.t2), t_eval=[0.0, tr.t2])
+    assert abs(wrap(vs.axial_rotation(sim.attitude[:, 0], sim.attitude[:, 1]) - tr.dphi)) < 1e-10
+    # here the paper's cap formula is useless (the 'turn' is far from a circle)
+    assert abs(tr.chi_approx / tr.chi - 1) > 0.5
+    # a faster one converges onto the centre itself: the azimuth is undefined -> clear error
+    medium = vs.Medium(3.0, 0.01)
+    n_inf = vs.axis_path(body, medium, n0, nd0, 1.0, np.inf)[:, 0]
+    with pytest.raises(ValueError, match="reaches the centre"):
+        vs.turn(body, medium, n0, nd0, 1.0, centre=n_inf)
+    with pytest.raises(ValueError, match="centre must be"):
+        vs.turn(body, medium, n0, nd0, 1.0, centre=[0.0, 0.0, 2.0])

@@ -190,6 +190,7 @@ def turn(
     rtol: float = 1e-12,
     atol: float = 1e-14,
     samples: int = 400,
+    centre: Any = None,
 ) -> Turn:
     """One turn of the axis spiral starting at ``t1``, its solid angle and the axial rotation.
 
@@ -210,6 +211,10 @@ def turn(
         Tolerances of the path integration.
     samples : int
         Number of path samples returned in ``Turn.n``.
+    centre : array_like (3,), optional
+        Unit vector about which the azimuth is counted (default: the osculating centre at ``t1``). When
+        the spiral changes fast (``|λ|T`` not small) the path may never circle the osculating centre;
+        the limit point ``axis_path(..., np.inf)`` of a contracting spiral is then a better centre.
 
     Returns
     -------
@@ -234,8 +239,15 @@ def turn(
     R1 = float(spiral_radius(body, medium, Om0, v0, t1))
     # c1 = sgn(k)(k n + g)/sqrt(1+k^2) = cos(rho) n + sgn(k) sin(rho) g, sin(rho) = R (5.2): regular as |k| -> inf
     cosr = math.sqrt(1.0 - R1 * R1) if R1 < 0.5 else abs(float(curvature(body, medium, Om0, v0, t1))) * R1
-    c = cosr * n1 + sg * R1 * g1
-    c /= np.linalg.norm(c)
+    if centre is None:
+        c = cosr * n1 + sg * R1 * g1
+    else:
+        c = np.asarray(centre, dtype=float)
+        if c.shape != (3,) or not np.all(np.isfinite(c)) or abs(np.linalg.norm(c) - 1.0) > 1e-10:
+            raise ValueError("centre must be a finite unit 3-vector")
+        if abs(float(c @ n1)) > 1.0 - 1e-12:
+            raise ValueError("centre must differ from +-n(t1)")
+    c = c / np.linalg.norm(c)
     c1, c2, c3 = c
 
     def rhs(u: float, y: np.ndarray) -> list[float]:
@@ -251,13 +263,19 @@ def turn(
 
     ev = Event(lambda u, y: y[9] - sg * 2.0 * math.pi, "turn_end", terminal=True,
                message="the azimuth about the centre advanced by 2*pi")
+    centre_ev = Event(lambda u, y: 1.0 - (c1 * y[0] + c2 * y[1] + c3 * y[2]) - 1e-10, "through_centre",
+                      terminal=True, message="the path reaches the centre: the azimuth about it is undefined")
     u1 = float(fr.u_of_t(np.asarray(t1)))
     y0 = [*n1, *tau1, *g1, 0.0, 0.0]
-    sol = integrate(rhs, (u1, 1.0), y0, rtol=rtol, atol=atol, events=[ev], dense_output=True, time_name="u")
+    sol = integrate(rhs, (u1, 1.0), y0, rtol=rtol, atol=atol, events=[ev, centre_ev], dense_output=True,
+                    time_name="u")
+    if sol.event == "through_centre" or not sol.success:
+        raise ValueError(f"turn from t1 = {t1} is undefined: {sol.message}")
     if sol.event != "turn_end":
         raise ValueError(
-            f"no complete turn of the spiral after t1 = {t1}: the azimuth about the centre only reaches "
-            f"{sol.y[9, -1]:.6g} rad (the remaining total turning is too small)"
+            f"no complete turn of the spiral after t1 = {t1}: the azimuth of n about the centre only reaches "
+            f"{sol.y[9, -1]:.6g} rad (the remaining total turning is too small, or the spiral changes too fast to "
+            "circle the osculating centre: try centre=axis_path(..., np.inf) for a contracting spiral)"
         )
     u2 = float(sol.t_events["turn_end"][0])
     y2 = sol.y_events["turn_end"][0]
