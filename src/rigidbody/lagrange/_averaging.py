@@ -210,10 +210,12 @@ def drag_rhs(
     """
     A, C, mgl = top.A, top.C, top.mgl
     a, b = drag.a, drag.b
-    u1, u2, u3 = (np.asarray(x, dtype=float) for x in (u1, u2, u3))
+    scalar = all(isinstance(x, (float, int)) for x in (u1, u2, u3, delta1, delta2))
+    if not scalar:
+        u1, u2, u3 = (np.asarray(x, dtype=float) for x in (u1, u2, u3))
     Gz, H, r = from_roots(top, u1, u2, u3, delta1, delta2)
     _, mc = modulus(u1, u2, u3)
-    v = u3 - (u3 - u1) * np.asarray(_ell.E(mc=mc)) / np.asarray(_ell.K(mc=mc))
+    v = u3 - (u3 - u1) * _ell.E(mc=mc) / _ell.K(mc=mc)
     us = (u1, u2, u3)
     out = []
     for i in range(3):

@@ -309,6 +309,8 @@ def from_roots(
     Gz, H, r
     """
     top = _check_top(top)
+    if all(isinstance(x, (float, int)) for x in (u1, u2, u3, delta1, delta2)):
+        return _from_roots_scalar(top, float(u1), float(u2), float(u3), float(delta1), float(delta2))
     u1, u2, u3 = (np.asarray(x, dtype=float) for x in (u1, u2, u3))
     d1 = _check_delta(delta1, "delta1")
     d2 = _check_delta(delta2, "delta2")
@@ -333,6 +335,29 @@ def from_roots(
         return float(Gz), float(H), float(r)
     Gz, H, r = np.broadcast_arrays(Gz, H, r)
     return np.array(Gz), np.array(H), np.array(r)
+
+
+def _from_roots_scalar(top: Top, u1: float, u2: float, u3: float, d1: float, d2: float) -> tuple[float, float, float]:
+    """Math-scalar version of :func:`from_roots` (same formulas (2.8); used inside right-hand sides)."""
+    if d1 not in (1.0, -1.0):
+        raise ValueError(f"delta1 must be +1 or -1, got {d1!r}")
+    if d2 not in (1.0, -1.0):
+        raise ValueError(f"delta2 must be +1 or -1, got {d2!r}")
+    tol = 1e-12
+    if u1 < -1.0 - tol or u1 > u2 + tol or u2 > 1.0 + tol or u3 < 1.0 - tol:
+        raise ValueError(
+            f"roots must satisfy -1 <= u1 <= u2 <= 1 <= u3 (1.5); got u1={u1!r}, u2={u2!r}, u3={u3!r}"
+        )
+    A, C, mgl = top.A, top.C, top.mgl
+    s1 = u1 + u2 + u3
+    s2 = u1 * u2 + u1 * u3 + u2 * u3
+    s3 = u1 * u2 * u3
+    R = math.sqrt(max(1.0 - u1 * u1, 0.0) * max(1.0 - u2 * u2, 0.0) * max(u3 * u3 - 1.0, 0.0))
+    amg = math.sqrt(A * mgl)
+    Gz = amg * math.sqrt(max(s1 + s3 + d1 * R, 0.0)) * d2 * (1.0 if 1.0 + s2 >= 0.0 else -1.0)
+    H = 0.5 * mgl * (s1 * (1.0 + A / C) + (d1 * R - s3) * (1.0 - A / C))
+    r = d2 * amg / C * math.sqrt(max(s1 + s3 - d1 * R, 0.0))
+    return Gz, H, r
 
 
 def deltas(top: Top, Gz: Any, r: Any) -> tuple[Any, Any]:
