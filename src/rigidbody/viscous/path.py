@@ -257,14 +257,20 @@ def turn(
         cn = c1 * n_1 + c2 * n_2 + c3 * n_3
         # c·(n×dn)
         cx = c1 * (n_2 * dn3 - n_3 * dn2) + c2 * (n_3 * dn1 - n_1 * dn3) + c3 * (n_1 * dn2 - n_2 * dn1)
-        dalpha = cx / (1.0 - cn * cn)
+        # sin^2 of the distance from the centre as |c×n|^2: no cancellation near the centre (1 - cn^2 has)
+        s2 = (c2 * n_3 - c3 * n_2) ** 2 + (c3 * n_1 - c1 * n_3) ** 2 + (c1 * n_2 - c2 * n_1) ** 2
+        dalpha = cx / s2
         dchi = cx / (1.0 + cn)
         return [*d, dalpha, dchi]
 
     ev = Event(lambda u, y: y[9] - sg * 2.0 * math.pi, "turn_end", terminal=True,
                message="the azimuth about the centre advanced by 2*pi")
-    centre_ev = Event(lambda u, y: 1.0 - (c1 * y[0] + c2 * y[1] + c3 * y[2]) - 1e-10, "through_centre",
-                      terminal=True, message="the path reaches the centre: the azimuth about it is undefined")
+    def near_centre(u: float, y: np.ndarray) -> float:
+        # |c×n|^2 - 1e-12: the axis within 1e-6 rad of the centre (azimuth undefined) or of its antipode
+        return (c2 * y[2] - c3 * y[1]) ** 2 + (c3 * y[0] - c1 * y[2]) ** 2 + (c1 * y[1] - c2 * y[0]) ** 2 - 1e-12
+
+    centre_ev = Event(near_centre, "through_centre", terminal=True,
+                      message="the path reaches the centre (or its antipode): the azimuth about it is undefined")
     u1 = float(fr.u_of_t(np.asarray(t1)))
     y0 = [*n1, *tau1, *g1, 0.0, 0.0]
     sol = integrate(rhs, (u1, 1.0), y0, rtol=rtol, atol=atol, events=[ev, centre_ev], dense_output=True,
