@@ -282,3 +282,18 @@ def test_spin_reversal_flips_delta2_and_matches_full_equations():
     f = L.simulate(TOP, rev, eps, state, (0, 8 / eps), t_eval=tau / eps)
     err = max(np.abs(f.Gz - a.Gz).max(), np.abs(f.H - a.H).max(), np.abs(f.r - a.r).max())
     assert err < 0.5 * eps  # O(eps) averaging error (constant ~0.1 here)
+
+
+def test_sleeping_tops():
+    # fast sleeping top (C^2 r^2 > 4 A mgl): u1 = u2 = 1 < u3; the auto chart starts in (Gz, H, r)
+    # (R = 0 is a branch point of (2.8)) and the top keeps sleeping while r decays exactly by (3.3)
+    ini = L.integrals(TOP, 0.0, 0.0, 3.0, 0.0, 0.0)
+    s = L.averaged(TOP, DRAG, ini, (0, 5), tau_eval=np.linspace(0, 5, 6))
+    assert s.status == 0 and np.all(s.chart == 1)
+    np.testing.assert_allclose(s.r, 3.0 * np.exp(-DRAG.b * s.tau / TOP.C), rtol=1e-10)  # rtol 1e-12
+    # sleeping: Gz = C r (angular momentum along the vertical axis), u1 = u2 = 1 to root conditioning
+    np.testing.assert_allclose(s.Gz, TOP.C * s.r, rtol=1e-9)
+    assert np.all(s.u1 > 1 - 1e-7)
+    # slow sleeping top: u2 = u3 = 1 is the separatrix (infinite nutation period): refused clearly
+    with pytest.raises(ValueError, match="separatrix"):
+        L.averaged(TOP, DRAG, L.integrals(TOP, 0.0, 0.0, 1.0, 0.0, 0.0), (0, 5))

@@ -221,3 +221,18 @@ def test_simulate_rejects_bad_input():
     star = L.StarTorque(lambda G, H, r, th: 0 * th, lambda G, H, r, th: 0 * th)
     with pytest.raises(TypeError, match="body moments"):
         L.simulate(TOP, star, 0.1, (0, 0, 1, 0, 1, 0), (0, 1))
+
+
+@settings(max_examples=30, deadline=None)
+@given(st.floats(0.15, 2.9), st.floats(2.5, 5.0), st.floats(0, 6.28))
+def test_regular_precessions_round_trip(th, r, phi):
+    # steady precession (theta' = 0): a double root at cos(theta); Gz, H, r still round-trip accurately
+    cth, sth = math.cos(th), math.sin(th)
+    disc = (TOP.C * r) ** 2 - 4 * TOP.A * cth * TOP.mgl
+    dpsi = (TOP.C * r - math.sqrt(disc)) / (2 * TOP.A * cth) if abs(cth) > 1e-9 else TOP.mgl / (TOP.C * r)
+    p, q = dpsi * sth * math.sin(phi), dpsi * sth * math.cos(phi)
+    Gz, H, rr = L.integrals(TOP, p, q, r, phi, th)
+    u1, u2, u3 = L.roots(TOP, Gz, H, rr)
+    assert abs(u1 - cth) < 1e-6 and abs(u2 - cth) < 1e-6  # double root: sqrt(eps) times the scale
+    back = L.from_roots(TOP, u1, u2, u3, *L.deltas(TOP, Gz, rr))
+    np.testing.assert_allclose(back, (Gz, H, rr), atol=1e-7 * (1 + abs(H)))  # symmetric functions smooth
