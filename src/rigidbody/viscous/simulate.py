@@ -85,7 +85,8 @@ def simulate(
     Solution
         ``sim.t``; ``sim.n``, ``sim.ndot``, ``sim.omega`` (inertial components), ``sim.omega_body``
         — all shape ``(3, nt)``; ``sim.attitude`` (4, nt) unit quaternions; ``sim.Omega = ω·n``;
-        ``sim.v = |ṅ|``; ``sim.k = (θ3/θ12) Ω/v`` (``±inf`` where ``v = 0``); ``sim.zeta``, the
+        ``sim.v = |ṅ|``; ``sim.k = (θ3/θ12) Ω/v`` (``±inf`` where ``v = 0``; NaN only for a body
+        at rest, ``v0 = Ω0 = 0``, whose path has no curvature); ``sim.zeta``, the
         body's turning angle about ``n`` (∫ ω·n dt, the quasi-coordinate ζ); ``sim.quat_norm_error``.
     """
     _check(body, medium)
