@@ -297,3 +297,14 @@ def test_sleeping_tops():
     # slow sleeping top: u2 = u3 = 1 is the separatrix (infinite nutation period): refused clearly
     with pytest.raises(ValueError, match="separatrix"):
         L.averaged(TOP, DRAG, L.integrals(TOP, 0.0, 0.0, 1.0, 0.0, 0.0), (0, 5))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case_theta", [5, 60, 170])
+def test_paper_cases_long_span_against_full(case_theta):
+    # over tau in [0, 30] (through the delta1 crossings of cases 1, 2) the averaged solution stays
+    # O(eps) close to the full motion; halving eps halves the error
+    e1 = _max_slow_error(DRAG, case_theta, 0.01, 30.0)
+    e2 = _max_slow_error(DRAG, case_theta, 0.005, 30.0)
+    assert e2 < 0.05
+    assert 1.6 < e1 / e2 < 2.5, (e1, e2)
