@@ -55,7 +55,7 @@ def test_axis_path_matches_simulation(body, medium, Omega0):
     assert angle(n, sim.n) < 1e-10
     # unsorted t_eval and a scalar-like list work
     n_rev = vs.axis_path(body, medium, n0, nd0, Omega0, t[::-1])
-    assert angle(n_rev[:, ::-1], n) < 1e-12
+    assert angle(n_rev[:, ::-1], n) < 1e-12  # same integration, outputs only permuted: dense-output rounding
 
 
 def test_wrong_sign_of_k_would_be_detected():
@@ -107,6 +107,7 @@ def test_zero_spin_gives_a_great_circle_arc():
     s = vs.quasi_coordinates(body, medium, 0.0, 0.4, t)[0]
     exact = np.cos(s) * n0[:, None] + np.sin(s) * (nd0 / 0.4)[:, None]
     sim = vs.simulate(body, medium, n0, nd0, 0.0, (0.0, 40.0), t_eval=t)
+    # great circle: the rotation is about a fixed axis, errors ~ rtol * s_inf = 1e-12 * 2.7
     assert angle(sim.n, exact) < 1e-11
     assert angle(vs.axis_path(body, medium, n0, nd0, 0.0, t), exact) < 1e-11
     assert np.all(vs.curvature(body, medium, 0.0, 0.4, t) == 0.0)
@@ -118,9 +119,10 @@ def test_fixed_axis_when_v0_is_zero():
     n0, _ = initial(seed=8)
     t = np.linspace(0.0, 10.0, 11)
     sim = vs.simulate(body, medium, n0, np.zeros(3), 2.0, (0.0, 10.0), t_eval=t)
+    # p = q = 0 is invariant; the quaternion only turns about n, so n moves by rounding only
     assert angle(sim.n, np.repeat(n0[:, None], t.size, axis=1)) < 1e-14
     assert np.all(np.isinf(sim.k)) and np.all(sim.k > 0)
-    assert np.max(np.abs(sim.Omega / vs.Omega(body, medium, 2.0, t) - 1)) < 1e-12
+    assert np.max(np.abs(sim.Omega / vs.Omega(body, medium, 2.0, t) - 1)) < 1e-12  # log-polar: rtol * |rho|
     n = vs.axis_path(body, medium, n0, np.zeros(3), 2.0, t)
     assert angle(n, np.repeat(n0[:, None], t.size, axis=1)) < 1e-15  # n0 renormalised: rounding only
     assert np.all(vs.curvature(body, medium, 2.0, 0.0, t) == np.inf)
@@ -158,5 +160,5 @@ def test_axis_path_accepts_repeated_unsorted_and_scalar_times():
     a = vs.axis_path(body, medium, n0, nd0, 2.0, [5.0, 1.0, 5.0, 0.0])
     b = vs.axis_path(body, medium, n0, nd0, 2.0, [0.0, 1.0, 5.0])
     assert np.array_equal(a[:, 0], a[:, 2]) and np.array_equal(a[:, 3], b[:, 0])
-    assert angle(a[:, [3, 1, 0]], b) < 1e-13
+    assert angle(a[:, [3, 1, 0]], b) < 1e-13  # same steps, different output grids: interpolation rounding
     assert vs.axis_path(body, medium, n0, nd0, 2.0, 0.0).shape == (3, 1)
