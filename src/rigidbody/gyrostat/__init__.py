@@ -14,6 +14,7 @@ stability(sat, motion)          Sylvester quantities s1, s2, s3 of (2.5), degree
                                 verdict 'stable' / 'unstable' / 'undecided'; section-4 Jacobian
 stability_map(sat, R0, theta0, k2=.. | k3=..)    vectorised verdicts over parameter grids
 exact_boundaries(sat, R0, theta0)                s2 = 0, s3 = 0 and the restricted boundaries as k2(theta0)
+normalized_stability_map(sat, R0, theta0, u)     the same in the plane (theta0, u = k2 / (omega0 Abar))
 amended_potential, amended_potential_W, chi, gradient_W1    W, (2.1), W1 = W + lambda chi, (2.2)
 hessian_W1, constrained_second_variation, restricted_conditions
 symmetric_potential, gradient_W_sym, hessian_W_sym, W_psipsi_34
@@ -21,7 +22,7 @@ symmetric_potential, gradient_W_sym, hessian_W_sym, W_psipsi_34
 
 from __future__ import annotations
 
-from ._maps import StabilityMap, exact_boundaries, stability_map
+from ._maps import StabilityMap, exact_boundaries, normalized_stability_map, stability_map
 from ._model import GyrostatWarning, Satellite
 from ._potential import amended_potential, amended_potential_W, chi, gradient_W1
 from ._stability import (
@@ -95,6 +96,7 @@ __all__ = [
     "gradient_W_sym",
     "hessian_W1",
     "hessian_W_sym",
+    "normalized_stability_map",
     "restricted_conditions",
     "stability",
     "stability_map",

@@ -11,7 +11,7 @@ from ._model import Satellite
 from ._stability import VERDICTS, a_matrix, hessian_entries, restricted_conditions, stability_arrays
 from ._stationary import family_arrays
 
-__all__ = ["StabilityMap", "exact_boundaries", "stability_map"]
+__all__ = ["StabilityMap", "exact_boundaries", "normalized_stability_map", "stability_map"]
 
 _MAP_ORDER = ("theta0", "R0", "k2", "k3", "M", "A1", "A2", "A3", "mu")
 
@@ -145,7 +145,7 @@ def stability_map(
     )
 
 
-def exact_boundaries(sat: Satellite, R0: float, theta0: Any) -> dict[str, np.ndarray]:
+def exact_boundaries(sat: Satellite, R0: float, theta0: Any, *, omega_sign: int = 1) -> dict[str, np.ndarray]:
     """The curves s2 = 0, s3 = 0 (exact) and r2 = 0, r3 = 0 (restricted) as k2(theta0).
 
     For fixed theta0 the motion's kappa0 and omega0 do not depend on k2, and k2 enters only W_b1b1
@@ -159,7 +159,7 @@ def exact_boundaries(sat: Satellite, R0: float, theta0: Any) -> dict[str, np.nda
     dict with keys ``theta0, s1, k2_s2, k2_s3, r1, k2_r2, k2_r3, theta_r1, omega0`` (NaN where undefined).
     """
     th = np.asarray(theta0, dtype=float)
-    f = family_arrays(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, k2=0.0)
+    f = family_arrays(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, k2=0.0, omega_sign=omega_sign)
     e = hessian_entries(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, f["kappa0"], f["omega0"], 0.0, f["S0"])
     a = a_matrix(e, th, f["kappa0"])
     om, cp = f["omega0"], f["cos_tk"]
@@ -181,3 +181,27 @@ def exact_boundaries(sat: Satellite, R0: float, theta0: Any) -> dict[str, np.nda
         roots = np.array([-np.pi + t, -t, t, np.pi - t])
     return {"theta0": th, "s1": s1, "k2_s2": k2_s2, "k2_s3": k2_s3, "r1": r1, "k2_r2": k2_r2,
             "k2_r3": k2_r3, "theta_r1": roots, "omega0": om}
+
+
+def normalized_stability_map(
+    sat: Satellite, R0: float, theta0: Any, u: Any, *, omega_sign: int = 1, rtol: float = 1e-12
+) -> tuple[StabilityMap, dict[str, np.ndarray]]:
+    """Verdicts on the grid ``theta0 x u`` with ``u = k2 / (omega0 Abar)`` (the plane of the paper-style maps).
+
+    omega0 depends on theta0 (not on k2), so ``k2 = u omega0(theta0) Abar`` column by column.
+
+    Returns
+    -------
+    (StabilityMap, boundaries)
+        The map has shape ``(len(theta0), len(u))``; ``boundaries`` is :func:`exact_boundaries` with the
+        k2-curves divided by ``omega0 Abar`` (keys ``u_s2, u_s3, u_r2, u_r3`` added).
+    """
+    th = np.asarray(theta0, dtype=float).ravel()
+    uu = np.asarray(u, dtype=float).ravel()
+    om = family_arrays(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, k2=0.0, omega_sign=omega_sign)["omega0"]
+    k2 = uu[None, :] * (om * sat.Abar)[:, None]
+    mp = stability_map(sat, R0, th[:, None], k2=k2, omega_sign=omega_sign, grid=False, rtol=rtol)
+    b = exact_boundaries(sat, R0, th, omega_sign=omega_sign)
+    for key in ("s2", "s3", "r2", "r3"):
+        b[f"u_{key}"] = b[f"k2_{key}"] / (b["omega0"] * sat.Abar)
+    return mp, b

@@ -1,0 +1,142 @@
+"""Figures for Stepanov (1968): stability maps, kappa0(theta0), and the paper's dumbbell figure.
+
+Choices the paper leaves open (stated here and in docs/gyrostat.md):
+- nondimensional units M = mu = R0 = 1; bodies with principal moments proportional to the six orderings
+  of (1.2, 1.0, 0.8), scaled so that l = sqrt(Abar/M) = l/R;
+- maps in the plane (theta0, u = k2 / (omega0 Abar)) on a 301 x 301 grid, theta0 in (-1.5, 1.5),
+  u in (-6, 6), omega0 > 0;
+- kappa0 curves for l/R = 0.05, 0.1, 0.2, 0.3 with the ordering A1 : A2 : A3 = 1.2 : 1.0 : 0.8;
+- the dumbbell: two equal balls at arm a = 0.3 R0 from G (A1 = A2 = M a^2, A3 = 0.01 A1 for the rod),
+  theta0 = pi/4, the symmetric family (3.2)-(3.3), drawn to scale.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from pathlib import Path
+
+import numpy as np
+
+from rigidbody import gyrostat
+from rigidbody.paperfigs import register
+
+BASE = (1.2, 1.0, 0.8)
+THETA = np.linspace(-1.5, 1.5, 301)
+U = np.linspace(-6.0, 6.0, 301)
+L_OVER_R_MAPS = (0.1, 0.2)
+L_OVER_R_KAPPA = (0.05, 0.1, 0.2, 0.3)
+ARM = 0.3
+THETA_DUMBBELL = math.pi / 4
+
+
+def body(l_over_R: float, ratios: tuple[float, float, float] = BASE) -> gyrostat.Satellite:
+    """Nondimensional body with moments proportional to ``ratios`` and sqrt(Abar/M) = l_over_R."""
+    s = l_over_R**2 * 3 / sum(ratios)
+    return gyrostat.Satellite(M=1.0, A1=ratios[0] * s, A2=ratios[1] * s, A3=ratios[2] * s)
+
+
+def orderings() -> list[tuple[float, float, float]]:
+    """The six orderings of BASE, A1 > A2 > A3 first."""
+    return sorted(set(itertools.permutations(BASE)), reverse=True)
+
+
+def map_data(l_over_R: float, ratios: tuple[float, float, float]) -> dict:
+    """Arrays behind one map panel: codes on (THETA x U) and the boundary curves u(theta0)."""
+    sat = body(l_over_R, ratios)
+    mp, b = gyrostat.normalized_stability_map(sat, 1.0, THETA, U)
+    return {"sat": sat, "code": mp.code, "b": b, "map": mp}
+
+
+def kappa_data() -> dict[float, np.ndarray]:
+    """kappa0(theta0) on THETA for each l/R (k2 = 0; kappa0 does not depend on k2)."""
+    out = {}
+    for lR in L_OVER_R_KAPPA:
+        sat = body(lR)
+        out[lR] = gyrostat.stability_map(sat, 1.0, THETA, k2=0.0).kappa0
+    return out
+
+
+def dumbbell_data() -> tuple[gyrostat.Satellite, gyrostat.SymmetricMotion]:
+    A1 = 1.0 * ARM**2
+    sat = gyrostat.Satellite(M=1.0, A1=A1, A2=A1, A3=0.01 * A1)
+    return sat, gyrostat.symmetric_stationary_motion(sat, 1.0, THETA_DUMBBELL)
+
+
+def _label(r: tuple[float, float, float]) -> str:
+    names = sorted(zip(r, ("A1", "A2", "A3")), reverse=True)
+    return " > ".join(n for _, n in names)
+
+
+@register("gyrostat", "Stability maps, kappa0(theta0) and the displaced-orbit dumbbell (Stepanov 1968)")
+def build(outdir: Path) -> list[Path]:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from rigidbody.plotting import gyrostat as pg
+
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    paths: list[Path] = []
+    for lR in L_OVER_R_MAPS:
+        fig, axes = plt.subplots(2, 3, figsize=(13, 8), sharex=True, sharey=True)
+        for ax, r in zip(axes.ravel(), orderings()):
+            d = map_data(lR, r)
+            b = d["b"]
+            s1 = b["s1"]
+            s1_roots = THETA[:-1][np.sign(s1[:-1]) != np.sign(s1[1:])]
+            pg.stability_map_plot(
+                THETA, U, d["code"], ax,
+                boundaries={"s2 = 0": (THETA, b["u_s2"]), "s3 = 0": (THETA, b["u_s3"])},
+                restricted={"restricted r3 = 0": (THETA, b["u_r3"]), "restricted r2 = 0": (THETA, b["u_r2"])},
+                vlines={"s1 = 0": s1_roots, "restricted r1 = 0": b["theta_r1"][np.abs(b["theta_r1"]) <= 1.5]},
+                legend=(ax is axes[0, 0]),
+            )
+            ax.set_title(_label(r), fontsize=10)
+        for ax in axes[-1]:
+            ax.set_xlabel("θ0 (rad)")
+        for ax in axes[:, 0]:
+            ax.set_ylabel("k2 / (ω0 Ā)")
+        fig.suptitle(f"Stability of the motions (2.3), l/R = {lR}: exact (black) vs restricted (blue) boundaries")
+        fig.tight_layout()
+        p = outdir / f"gyrostat_maps_lR{lR:g}.png"
+        fig.savefig(p, dpi=100)
+        plt.close(fig)
+        paths.append(p)
+
+    kd = kappa_data()
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
+    for lR, kap in kd.items():
+        ax1.plot(THETA, np.degrees(kap), label=f"l/R = {lR}")
+        ax2.plot(THETA, kap / lR**2, label=f"l/R = {lR}")
+        i = int(np.argmax(kap))
+        ax2.plot(THETA[i], kap[i] / lR**2, "k.", ms=5)
+    for ax in (ax1, ax2):
+        ax.axvline(math.pi / 4, color="0.5", ls=":", lw=0.8)
+        ax.axvline(-math.pi / 4, color="0.5", ls=":", lw=0.8)
+        ax.set_xlabel("θ0 (rad)")
+        ax.legend(fontsize=8)
+    ax1.set_ylabel("κ0 (deg)")
+    ax2.set_ylabel("κ0 / (l/R)²")
+    ax2.set_title("κ0 = O(l²/R²), extremal near θ0 = ±π/4 (dots: maxima)", fontsize=10)
+    ax1.set_title(f"latitude of the orbit, A1:A2:A3 = {BASE[0]}:{BASE[1]}:{BASE[2]}", fontsize=10)
+    fig.tight_layout()
+    p = outdir / "gyrostat_kappa0.png"
+    fig.savefig(p, dpi=100)
+    plt.close(fig)
+    paths.append(p)
+
+    sat, ms = dumbbell_data()
+    st = gyrostat.stability(sat, ms)
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    pg.dumbbell_side_view(ms.R0, ms.kappa0, ms.theta0, ARM, ax, elevation_deg=8.0)
+    ax.set_title(f"Spinning dumbbell, arm = {ARM} R0, θ0 = π/4: κ0 = {math.degrees(ms.kappa0):.2f}°, "
+                 f"verdict: {st.verdict}", fontsize=10)
+    fig.tight_layout()
+    p = outdir / "gyrostat_dumbbell.png"
+    fig.savefig(p, dpi=100, bbox_inches="tight")
+    plt.close(fig)
+    paths.append(p)
+    return paths

@@ -1,0 +1,121 @@
+"""Plotting helpers for :mod:`rigidbody.gyrostat`: stability maps, kappa0 curves, the dumbbell figure."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .common import get_ax
+
+__all__ = ["VERDICT_COLORS", "dumbbell_side_view", "stability_map_plot"]
+
+#: colours of the verdict codes -1 (invalid), 0 (stable), 1 (unstable), 2 (undecided)
+VERDICT_COLORS = {-1: "0.85", 0: "#7fc97f", 1: "#e7298a", 2: "#fdc086"}
+
+
+def stability_map_plot(
+    x: Any,
+    y: Any,
+    code: Any,
+    ax: Any = None,
+    *,
+    boundaries: dict[str, tuple[Any, Any]] | None = None,
+    restricted: dict[str, tuple[Any, Any]] | None = None,
+    vlines: dict[str, Any] | None = None,
+    legend: bool = True,
+) -> Any:
+    """Draw verdict regions of a stability map with boundary curves overlaid.
+
+    Parameters
+    ----------
+    x, y : 1-D arrays
+        Grid coordinates (first and second axis of ``code``).
+    code : 2-D int array, shape (len(x), len(y))
+        Verdict codes of :class:`rigidbody.gyrostat.StabilityMap` (0 stable, 1 unstable, 2 undecided,
+        -1 invalid).
+    boundaries : dict label -> (xs, ys)
+        Exact boundary curves (solid black lines), e.g. s2 = 0, s3 = 0.
+    restricted : dict label -> (xs, ys)
+        Restricted-problem boundaries (dashed blue lines).
+    vlines : dict label -> x positions
+        Vertical boundaries (s1 = 0 or r1 = 0, independent of the y parameter).
+
+    Returns
+    -------
+    Axes
+    """
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.patches import Patch
+
+    ax = get_ax(ax)
+    cmap = ListedColormap([VERDICT_COLORS[c] for c in (-1, 0, 1, 2)])
+    norm = BoundaryNorm([-1.5, -0.5, 0.5, 1.5, 2.5], cmap.N)
+    ax.pcolormesh(np.asarray(x), np.asarray(y), np.asarray(code).T, cmap=cmap, norm=norm, shading="nearest",
+                  rasterized=True)
+    ylim = (float(np.min(y)), float(np.max(y)))
+    styles = ["-", "-."]
+    for i, (lab, (xs, ys)) in enumerate((boundaries or {}).items()):
+        ax.plot(xs, ys, "k", ls=styles[i % 2], lw=1.2, label=lab)
+    for i, (lab, (xs, ys)) in enumerate((restricted or {}).items()):
+        ax.plot(xs, ys, color="tab:blue", ls="--" if i % 2 == 0 else ":", lw=1.2, label=lab)
+    for i, (lab, xs) in enumerate((vlines or {}).items()):
+        for j, xv in enumerate(np.atleast_1d(xs)):
+            ax.axvline(xv, color="k" if i == 0 else "tab:blue", ls="-" if i == 0 else "--", lw=0.9,
+                       label=lab if j == 0 else None)
+    ax.set_ylim(*ylim)
+    ax.set_xlim(float(np.min(x)), float(np.max(x)))
+    if legend:
+        handles = [Patch(color=VERDICT_COLORS[c], label=n) for c, n in ((0, "stable"), (1, "unstable"),
+                                                                         (2, "undecided"))]
+        h, lbl = ax.get_legend_handles_labels()
+        ax.legend(handles=handles + h, labels=["stable", "unstable", "undecided", *lbl], fontsize=6, loc="best",
+                  framealpha=0.8)
+    return ax
+
+
+def dumbbell_side_view(
+    R0: float, kappa0: float, theta0: float, arm: float, ax: Any = None, *, elevation_deg: float = 12.0
+) -> Any:
+    """The paper's figure, to scale: a dumbbell satellite whose circular orbit plane misses the centre.
+
+    The view is the plane through the orbit normal zeta2 (vertical) and the radius vector OG.  The
+    orbit (radius ``R0 cos kappa0``, in the horizontal plane at height ``R0 sin kappa0``) is drawn as an
+    ellipse seen from ``elevation_deg`` above its plane; the dumbbell axis x3 makes the angle
+    ``theta0`` with OG (y3) in the plane y2 y3, its balls at distance ``arm`` from G.
+    """
+    from matplotlib.patches import Circle
+
+    ax = get_ax(ax, figsize=(7.0, 5.0))
+    ck, sk = math.cos(kappa0), math.sin(kappa0)
+    h = R0 * sk
+    rho = R0 * ck
+    e = math.sin(math.radians(elevation_deg))
+    t = np.linspace(0, 2 * np.pi, 400)
+    ax.plot(rho * np.cos(t), h + e * rho * np.sin(t), color="tab:blue", lw=1.0, label="orbit of G")
+    ax.plot([-1.15 * rho, 1.15 * rho], [0, 0], color="0.6", lw=0.8, ls=":", label="plane through O")
+    ax.plot([-1.15 * rho, 1.15 * rho], [h, h], color="tab:blue", lw=0.8, ls="--", label="orbit plane")
+    ax.plot([0, 0], [-0.25 * R0, 0.45 * R0], color="0.3", lw=0.8)
+    ax.annotate("ζ2", (0, 0.45 * R0), textcoords="offset points", xytext=(4, -8), fontsize=9)
+    ax.plot(0, 0, "ko", ms=6)
+    ax.annotate("O", (0, 0), textcoords="offset points", xytext=(-12, -12), fontsize=10)
+    G = np.array([rho, h])
+    ax.plot([0, G[0]], [0, G[1]], color="k", lw=0.8, ls="-")
+    y3 = np.array([ck, sk])
+    y2 = np.array([-sk, ck])
+    x3 = math.sin(theta0) * y2 + math.cos(theta0) * y3
+    p1, p2 = G + arm * x3, G - arm * x3
+    ax.plot([p1[0], p2[0]], [p1[1], p2[1]], color="0.2", lw=2.0)
+    for p in (p1, p2):
+        ax.add_patch(Circle(tuple(p), 0.06 * arm + 0.01 * R0, color="tab:red", zorder=3))
+    ax.plot(*G, "k.", ms=5)
+    ax.annotate("G", tuple(G), textcoords="offset points", xytext=(6, -12), fontsize=10)
+    # the displacement of the orbit plane
+    xd = -0.85 * rho
+    ax.annotate("", xy=(xd, h), xytext=(xd, 0), arrowprops={"arrowstyle": "<->", "lw": 0.9})
+    ax.annotate(f"R0 sin κ0 = {h:.3g}", (xd, h / 2), textcoords="offset points", xytext=(5, 0), fontsize=8)
+    ax.set_aspect("equal")
+    ax.set_xlabel("distance from the ζ2 axis (units of R0)")
+    ax.legend(fontsize=7, loc="lower right")
+    return ax
