@@ -69,3 +69,16 @@ def test_phase_grid_agrees_with_careful_jacobi(mc):
     np.testing.assert_allclose(sn, s2, atol=1e-14)
     np.testing.assert_allclose(cn, c2, atol=1e-14)
     np.testing.assert_allclose(dn, d2, atol=1e-14)
+
+
+def test_scalar_fast_validation_of_mc():
+    with pytest.raises(ValueError, match="mc"):
+        avg.phase_grid(mc=1.5)
+    with pytest.raises(ValueError, match="mc"):
+        avg.phase_grid(mc=float("nan"))
+    with pytest.raises(ValueError, match="scalar"):
+        avg.n_nodes(np.array([0.1, 0.2]))
+    # the same grid whether the modulus comes as k or as mc
+    a = avg.phase_grid(0.6, n=16)
+    b = avg.phase_grid(mc=1 - 0.36, n=16)
+    np.testing.assert_allclose(a[1], b[1], atol=1e-15)

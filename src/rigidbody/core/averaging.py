@@ -42,6 +42,19 @@ def _period_factor(period: str) -> float:
     raise ValueError(f"period must be '2K' or '4K', got {period!r}")
 
 
+def _scalar_mc(k: Any, mc: Any) -> float:
+    """Validated complementary parameter of a scalar modulus (cheap: these run inside ODE right-hand sides)."""
+    if mc is not None and k is None and isinstance(mc, (float, int)) and not isinstance(mc, bool):
+        mcf = float(mc)
+        if not (0.0 <= mcf <= 1.0):  # also rejects NaN
+            raise ValueError(f"mc must lie in [0, 1] (mc = 1 - k**2); got {mc!r}")
+        return mcf
+    _, mca = _m_mc(k, mc)
+    if np.ndim(mca) != 0:
+        raise ValueError("period averages take a scalar modulus (one state per call)")
+    return float(mca)
+
+
 def n_nodes(k: float | None = None, *, mc: float | None = None, period: str = "2K") -> int:
     r"""Number of trapezoid nodes per period that averages ``sn``-type integrands to ~1e-13.
 
@@ -59,14 +72,11 @@ def n_nodes(k: float | None = None, *, mc: float | None = None, period: str = "2
     int
         :math:`n \ge 16`, a multiple of 4, from :math:`e^{-\pi K' n/K} \le 10^{-13}` per :math:`2K`.
     """
-    m, mca = _m_mc(k, mc)
-    if np.ndim(m) != 0:
-        raise ValueError("n_nodes takes a scalar modulus")
-    mcf = float(mca)
+    mcf = _scalar_mc(k, mc)
     if mcf == 0.0:
         raise ValueError("the period is infinite at k = 1 (separatrix): no period average exists")
     kk = float(special.ellipkm1(mcf))
-    kkp = float(special.ellipkm1(float(m)))  # K' = K(k') : parameter of k' is mc, its complement is m
+    kkp = float(special.ellipkm1(1.0 - mcf))  # K' = K(k'): parameter of k' is mc, its complement is m
     n = _LOG_TOL * kk / (math.pi * kkp) * _period_factor(period)
     n = max(16, math.ceil(n))
     return n + (-n) % 4
@@ -97,14 +107,13 @@ def phase_grid(
     s, sn, cn, dn : numpy.ndarray
         Arrays of length ``n``.
     """
+    mcf = _scalar_mc(k, mc)
+    if mcf == 0.0:
+        raise ValueError("the period is infinite at k = 1 (separatrix): no period average exists")
     if n is None:
-        n = n_nodes(k, mc=mc, period=period)
+        n = n_nodes(mc=mcf, period=period)
     if not isinstance(n, (int, np.integer)) or n < 2:
         raise ValueError(f"n must be an integer >= 2, got {n!r}")
-    _, mca = _m_mc(k, mc)
-    if float(mca) == 0.0:
-        raise ValueError("the period is infinite at k = 1 (separatrix): no period average exists")
-    mcf = float(mca)
     kk = float(special.ellipkm1(mcf))
     p = kk * 2.0 * _period_factor(period)
     s = np.arange(n) * (p / n)
