@@ -18,10 +18,12 @@ normalized_stability_map(sat, R0, theta0, u)     the same in the plane (theta0, 
 amended_potential, amended_potential_W, chi, gradient_W1    W, (2.1), W1 = W + lambda chi, (2.2)
 hessian_W1, constrained_second_variation, restricted_conditions
 symmetric_potential, gradient_W_sym, hessian_W_sym, W_psipsi_34
+simulate(sat, motion, t_span), initial_state    full Newton-Euler equations (validation route)
 """
 
 from __future__ import annotations
 
+from ._dynamics import initial_state, simulate
 from ._maps import StabilityMap, exact_boundaries, normalized_stability_map, stability_map
 from ._model import GyrostatWarning, Satellite
 from ._potential import amended_potential, amended_potential_W, chi, gradient_W1
@@ -96,8 +98,10 @@ __all__ = [
     "gradient_W_sym",
     "hessian_W1",
     "hessian_W_sym",
+    "initial_state",
     "normalized_stability_map",
     "restricted_conditions",
+    "simulate",
     "stability",
     "stability_map",
     "stationary_motion",
