@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 from gyrostat_testlib import MPMotion, motion_cases, mp_derivatives, row_scale
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from rigidbody import gyrostat
 
@@ -106,3 +108,40 @@ def test_branch_matters():
     assert np.max(np.abs(g)) > 1e-3 * m.satellite.Abar * m.omega0**2
     with pytest.raises(ValueError, match="branch"):
         gyrostat.chi(m.point, branch=(1, 0))
+
+
+@settings(max_examples=25, deadline=None)
+@given(
+    lR=st.floats(0.01, 0.35),
+    a=st.tuples(st.floats(0.4, 1.0), st.floats(0.4, 1.0), st.floats(0.4, 1.0)),
+    th=st.floats(-3.1, 3.1),
+    u=st.floats(-5, 5),
+    sign=st.sampled_from([-1, 1]),
+)
+def test_printed_hessian_hypothesis(lR, a, th, u, sign):
+    """Random parameter sets over all branches: stable-form Hessian vs the 50-digit route."""
+    a = np.array(a)
+    assume(all(a[i] <= a[(i + 1) % 3] + a[(i + 2) % 3] for i in range(3)))
+    assume(min(abs(np.cos(th)), abs(np.sin(th))) > 0.05)
+    A = a / a.mean() * lR**2
+    sat = gyrostat.Satellite(M=1.0, A1=float(A[0]), A2=float(A[1]), A3=float(A[2]))
+    try:
+        m = gyrostat.stationary_motion(sat, 1.0, th, k2=u * sat.Abar, omega_sign=sign)
+    except ValueError:
+        assume(False)
+    assume(abs(np.cos(m.theta0 + m.kappa0)) > 0.05)
+    H_num = MPMotion(m, given="k2").hessian()
+    H = gyrostat.hessian_W1(m.satellite, m)
+    # rounding of O(row-scale) terms, amplified by at most 1/cos^3 = 8e3 near the chart's edges here; the
+    # floor 1e-12 Abar (attitude entries ~ Abar n0^2, n0 = 1) covers rows that vanish (a sphere)
+    assert np.max(np.abs(H - H_num) / (row_scale(H_num) + 1e-12 * sat.Abar)) < 1e-10
+
+
+def test_finite_difference_hessian_route():
+    """The library's float64 numerical route (8th-order differences) on a nondimensional motion."""
+    sat = gyrostat.Satellite(M=1.0, A1=0.03, A2=0.02, A3=0.012)
+    m = gyrostat.stationary_motion(sat, 1.0, 0.7, k2=0.01)
+    H_fd = gyrostat.hessian_W1_numerical(m.satellite, m)
+    H = gyrostat.hessian_W1(m.satellite, m)
+    # truncation O(h^8) ~ 1e-24, round-off ~ eps |W1| / h^2 ~ 1e-10 (|W1| ~ 1, h = 1e-3)
+    assert np.max(np.abs(H - H_fd)) < 1e-8 * np.max(np.abs(H))

@@ -16,7 +16,8 @@ stability_map(sat, R0, theta0, k2=.. | k3=..)    vectorised verdicts over parame
 exact_boundaries(sat, R0, theta0)                s2 = 0, s3 = 0 and the restricted boundaries as k2(theta0)
 normalized_stability_map(sat, R0, theta0, u)     the same in the plane (theta0, u = k2 / (omega0 Abar))
 amended_potential, amended_potential_W, chi, gradient_W1    W, (2.1), W1 = W + lambda chi, (2.2)
-hessian_W1, constrained_second_variation, restricted_conditions
+hessian_W1 (closed forms), hessian_W1_numerical (finite differences), constrained_second_variation,
+restricted_conditions
 symmetric_potential, gradient_W_sym, hessian_W_sym, W_psipsi_34
 simulate(sat, motion, t_span), initial_state    full Newton-Euler equations (validation route)
 """
@@ -34,6 +35,7 @@ from ._stability import (
     constrained_second_variation,
     constraint_gradient,
     hessian_W1,
+    hessian_W1_numerical,
     restricted_conditions,
     stability_triaxial,
 )
@@ -97,6 +99,7 @@ __all__ = [
     "gradient_W1",
     "gradient_W_sym",
     "hessian_W1",
+    "hessian_W1_numerical",
     "hessian_W_sym",
     "initial_state",
     "normalized_stability_map",

@@ -16,6 +16,7 @@ __all__ = [
     "Stability",
     "constrained_second_variation",
     "hessian_W1",
+    "hessian_W1_numerical",
     "restricted_conditions",
     "stability_arrays",
 ]
@@ -200,6 +201,22 @@ def hessian_W1(sat: Satellite, m: StationaryMotion, *, form: str = "stable") -> 
     e = hessian_entries(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, m.R0, m.theta0, m.kappa0, m.omega0, m.k2, m.S0,
                         form=form)
     return _hessian_matrix(e)
+
+
+def hessian_W1_numerical(sat: Satellite, m: StationaryMotion, *, h: float | None = None) -> np.ndarray:
+    """The 6x6 Hessian of W1 at ``m`` by 8th-order central differences of :func:`amended_potential`.
+
+    An independent float64 route for nondimensional problems (M = mu = R0 = 1 and l/R not too small):
+    its round-off is ~ eps |W1| / h^2, so in SI units (|W1| ~ 1e11 next to entries ~ 1e-3) it is useless
+    -- evaluate W1 with ``lib=mpmath`` there (as the tests do).  ``h`` defaults to 1e-3 times the
+    natural scale of each coordinate (R0 for R, 1 for the angles and direction cosines).
+    """
+    from ..core.quadform import hessian_fd
+    from ._potential import amended_potential
+
+    steps = np.array([m.R0, 1, 1, 1, 1, 1]) * (1e-3 if h is None else h)
+    return hessian_fd(lambda x: float(amended_potential(m.satellite, x, k=m.k, lam=m.lambda0, branch=m.branch)),
+                      np.array(m.point), steps)
 
 
 def constraint_gradient(m: StationaryMotion) -> np.ndarray:
