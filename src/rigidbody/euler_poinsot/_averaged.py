@@ -24,7 +24,11 @@ Orbit-averaged limit (:math:`\varepsilon = 0`)
 Averaging also over :math:`\nu` (:math:`\langle f\,\mathbf e_r\mathbf e_r^T\rangle = (1-e^2)^{-3/2}
 \operatorname{diag}(1/2, 1/2, 0)`) gives :math:`d\mathbf n/dt = -\tfrac{3\omega_0^2}{4G}(1-e^2)^{-3/2}N^*n_3\,
 (\mathbf n\times\mathbf e_3)`: :math:`\delta` is constant and :math:`\dot\lambda =
-\tfrac{3\omega_0^2}{4G}(1-e^2)^{-3/2}N^*\cos\delta` (:func:`precession_rate`).
+\tfrac{3\omega_0^2}{4G}(1-e^2)^{-3/2}N^*\cos\delta` (:func:`precession_rate`). The integrator then
+evolves :math:`(G, k^2, \Lambda)` with :math:`\dot\Lambda = \tfrac34(1-e^2)^{-3/2}N^*/G` and
+:math:`\lambda = \lambda_0 + \Lambda\cos\delta_0`: as :math:`G \to 0` the precession accelerates like
+:math:`1/G`, and a smooth :math:`\Lambda` costs no extra steps where resolving the turns of
+:math:`\mathbf n` would.
 """
 
 from __future__ import annotations
@@ -171,11 +175,23 @@ def _finish(
     make_fields: Any,
     lam0: float,
     nvec: Any,
+    lam_direct: Any = None,
 ) -> Solution:
-    """Evaluate on tau_eval (through dense output) and unwrap lambda along the solver's own steps."""
+    """Evaluate on tau_eval (through dense output) and unwrap lambda along the solver's own steps.
+
+    ``lam_direct(y)``, when given, returns the continuous lambda from the state itself.
+    """
     tau_steps = res.time
     y_steps = res.y
-    if tau_eval is None:
+    if lam_direct is not None:
+        if tau_eval is None:
+            tau_out, y_out = tau_steps, y_steps
+        else:
+            te = np.asarray(tau_eval, dtype=float)
+            tau_out = te[(te >= tau_steps[0]) & (te <= tau_steps[-1])] if tau_steps.size else te[:0]
+            y_out = res.sol(tau_out) if tau_out.size else np.empty((y_steps.shape[0], 0))
+        lam = lam_direct(y_out)
+    elif tau_eval is None:
         tau_out, y_out = tau_steps, y_steps
         lam = _lam_unwrapped(tau_steps, nvec(y_steps), lam0)
     else:
@@ -296,12 +312,16 @@ def averaged(
 
     def grav(G: float, k2: float, n1: float, n2: float, n3: float, nu: float) -> tuple[float, float, float]:
         Ns = _nstar(A, k2)
-        if eps == 0.0:
-            c = -0.75 * mf * Ns * n3 / G
-            return c * n2, -c * n1, 0.0
         cn, sn = math.cos(nu), math.sin(nu)
         c = 1.5 * orb.factor(nu) * Ns * (cn * n1 + sn * n2) / G
         return -c * n3 * sn, c * n3 * cn, c * (n1 * sn - n2 * cn)
+
+    def rhs_limit(tau: float, y: np.ndarray) -> list[float]:
+        # eps = 0: delta is constant and lambda = lam0 + cos(delta0) * Lambda, dLambda = (3/4) mf N*/G
+        G, k2 = y[0], y[1]
+        k2c = 0.0 if k2 < 0.0 else (1.0 if k2 > 1.0 else k2)
+        dG, _ = _drag_rates(A, Id, G, k2c)
+        return [dG, _dk2(A, Id, k2c), 0.75 * mf * _nstar(A, k2c) / G]
 
     def rhs(tau: float, y: np.ndarray) -> list[float]:
         G, k2, n1, n2, n3 = y[0], y[1], y[2], y[3], y[4]
@@ -319,9 +339,10 @@ def averaged(
         return [dG, dk2, d1, d2, d3]
 
     n0 = _unit(delta0, lam0)
-    y0 = [G0, k2_0, *n0]
+    y0 = [G0, k2_0, *n0] if eps > 0.0 else [G0, k2_0, 0.0]
     if eps > 0.0 and not circular:
         y0.append(nu0)
+    cd0, sd0 = math.cos(delta0), math.sin(delta0)
     events = [
         Event(lambda t, y: y[1] - k2_max, "separatrix", True, 1.0,
               f"k2 reached {k2_max:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
@@ -332,17 +353,23 @@ def averaged(
             Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), 1.0)) / eps - min_spin_ratio,
                   "slow_rotation", True, -1.0, _slow_msg(min_spin_ratio))
         )
-    res = integrate(rhs, tau_span, y0, rtol=rtol, atol=atol, method=method, dense_output=True,
-                    events=events, time_name="tau")
+    res = integrate(rhs if eps > 0.0 else rhs_limit, tau_span, y0, rtol=rtol, atol=atol, method=method,
+                    dense_output=True, events=events, time_name="tau")
+
+    def lam_limit(y: np.ndarray) -> np.ndarray:
+        return lam0 + cd0 * y[2]
 
     def nvec(y: np.ndarray) -> np.ndarray:
+        if eps == 0.0:
+            lam = lam_limit(y)
+            return np.array([sd0 * np.cos(lam), sd0 * np.sin(lam), np.full_like(lam, cd0)])
         n = y[2:5]
         return n / np.linalg.norm(n, axis=0)
 
     def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
         G = y[0]
         k2 = np.clip(y[1], 0.0, 1.0)
-        n = nvec(y) if y.shape[1] else y[2:5]
+        n = nvec(y) if y.shape[1] else np.empty((3, 0))
         T = 0.5 * G**2 * np.array([_S_over_R(A, float(x)) for x in k2])
         if eps > 0.0 and not circular:
             nu = y[5]
@@ -350,4 +377,4 @@ def averaged(
             nu = tau * inv_eps + nu0 if eps > 0 else np.full_like(tau, nu0)
         return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1.0, 1.0)), "n": n, "nu": nu}
 
-    return _finish(res, tau_eval, make_fields, lam0, nvec)
+    return _finish(res, tau_eval, make_fields, lam0, nvec, lam_limit if eps == 0.0 else None)
