@@ -21,20 +21,12 @@ for lR in (0.1, 0.2):
     for ax, r in zip(axes.ravel(), sorted(set(itertools.permutations((1.2, 1.0, 0.8))), reverse=True)):
         s = lR**2 * 3 / sum(r)  # nondimensional: M = mu = R0 = 1, sqrt(Abar / M) = l/R
         sat = gyrostat.Satellite(M=1.0, A1=r[0] * s, A2=r[1] * s, A3=r[2] * s)
-        mp, b = gyrostat.normalized_stability_map(sat, 1.0, theta0, u)
-        s1_zero = theta0[:-1][np.sign(b["s1"][:-1]) != np.sign(b["s1"][1:])]
-        pg.stability_map_plot(
-            theta0, u, mp.code, ax,
-            boundaries={"s2 = 0": (theta0, b["u_s2"]), "s3 = 0": (theta0, b["u_s3"])},
-            restricted={"r3 = 0": (theta0, b["u_r3"]), "r2 = 0": (theta0, b["u_r2"])},
-            vlines={"s1 = 0": s1_zero, "r1 = 0": b["theta_r1"][np.abs(b["theta_r1"]) <= 1.5]},
-            legend=(ax is axes[0, 0]),
-        )
+        _, mp, _ = pg.normalized_map_plot(sat, 1.0, theta0, u, ax, legend=(ax is axes[0, 0]))
         ax.set_title(f"A1:A2:A3 = {r[0]}:{r[1]}:{r[2]}")
         frac = {v: float(np.mean(mp.verdict == v)) for v in ("stable", "unstable", "undecided")}
         print(f"l/R = {lR}, A = {r}: " + ", ".join(f"{k} {v:.1%}" for k, v in frac.items()))
-    fig.supxlabel("θ0 (rad)")
-    fig.supylabel("k2 / (ω0 Ā)")
+    for ax in axes.ravel():
+        ax.label_outer()
     fig.tight_layout()
     fig.savefig(f"gyrostat_maps_lR{lR:g}.png", dpi=100)
     plt.close(fig)

@@ -155,12 +155,13 @@ def stability_arrays(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any
                      rtol: float = 1e-12) -> dict[str, np.ndarray]:
     """Vectorised stability data for stationary motions given by :func:`family_arrays` output ``f``.
 
-    Invalid points (no motion, or the chart singular: cos theta0 = 0 or cos(theta0 + kappa0) = 0)
+    Invalid points (no motion, or the chart singular: |cos theta0| or |cos(theta0 + kappa0)| <= 1e-6)
     get code -1 and NaN quantities.
     """
     e = hessian_entries(M, A1, A2, A3, mu, R0, f["theta0"], f["kappa0"], f["omega0"], f["k2"], f["S0"])
     a = a_matrix(e, f["theta0"], f["kappa0"])
-    valid = f["exists"] & (np.abs(f["cos_t"]) > 0) & (np.abs(f["cos_tk"]) > 0)
+    # the chart (beta1, beta3, gamma1, gamma2) is singular at cos theta0 = 0 or cos(theta0 + kappa0) = 0
+    valid = f["exists"] & (np.abs(f["cos_t"]) > SINGULAR_TOL) & (np.abs(f["cos_tk"]) > SINGULAR_TOL)
     for v in e.values():
         valid = valid & np.isfinite(v)
     valid = valid & np.all(np.isfinite(a), axis=(-1, -2))

@@ -83,22 +83,10 @@ def build(outdir: Path) -> list[Path]:
     for lR in L_OVER_R_MAPS:
         fig, axes = plt.subplots(2, 3, figsize=(13, 8), sharex=True, sharey=True)
         for ax, r in zip(axes.ravel(), orderings()):
-            d = map_data(lR, r)
-            b = d["b"]
-            s1 = b["s1"]
-            s1_roots = THETA[:-1][np.sign(s1[:-1]) != np.sign(s1[1:])]
-            pg.stability_map_plot(
-                THETA, U, d["code"], ax,
-                boundaries={"s2 = 0": (THETA, b["u_s2"]), "s3 = 0": (THETA, b["u_s3"])},
-                restricted={"restricted r3 = 0": (THETA, b["u_r3"]), "restricted r2 = 0": (THETA, b["u_r2"])},
-                vlines={"s1 = 0": s1_roots, "restricted r1 = 0": b["theta_r1"][np.abs(b["theta_r1"]) <= 1.5]},
-                legend=(ax is axes[0, 0]),
-            )
+            pg.normalized_map_plot(body(lR, r), 1.0, THETA, U, ax, legend=(ax is axes[0, 0]))
             ax.set_title(_label(r), fontsize=10)
-        for ax in axes[-1]:
-            ax.set_xlabel("θ0 (rad)")
-        for ax in axes[:, 0]:
-            ax.set_ylabel("k2 / (ω0 Ā)")
+        for ax in axes.ravel():
+            ax.label_outer()
         fig.suptitle(f"Stability of the motions (2.3), l/R = {lR}: exact (black) vs restricted (blue) boundaries")
         fig.tight_layout()
         p = outdir / f"gyrostat_maps_lR{lR:g}.png"

@@ -9,7 +9,7 @@ import numpy as np
 
 from .common import get_ax
 
-__all__ = ["VERDICT_COLORS", "dumbbell_side_view", "stability_map_plot"]
+__all__ = ["VERDICT_COLORS", "dumbbell_side_view", "normalized_map_plot", "stability_map_plot"]
 
 #: colours of the verdict codes -1 (invalid), 0 (stable), 1 (unstable), 2 (undecided)
 VERDICT_COLORS = {-1: "0.85", 0: "#7fc97f", 1: "#e7298a", 2: "#fdc086"}
@@ -73,6 +73,36 @@ def stability_map_plot(
         ax.legend(handles=handles + h, labels=["stable", "unstable", "undecided", *lbl], fontsize=6, loc="best",
                   framealpha=0.8)
     return ax
+
+
+def normalized_map_plot(sat: Any, R0: float, theta0: Any, u: Any, ax: Any = None, *, legend: bool = True) -> tuple:
+    """Compute and draw the map in the plane (theta0, u = k2 / (omega0 Abar)) with all boundaries.
+
+    Exact boundaries s2 = 0, s3 = 0 (explicit curves, :func:`rigidbody.gyrostat.exact_boundaries`) and
+    s1 = 0 (sign changes on the theta0 grid) in black; the restricted ones r2 = 0, r3 = 0, r1 = 0 (closed
+    form) in blue.
+
+    Returns
+    -------
+    (Axes, StabilityMap, boundaries dict)
+    """
+    from rigidbody import gyrostat
+
+    th = np.asarray(theta0, dtype=float)
+    mp, b = gyrostat.normalized_stability_map(sat, R0, th, u)
+    s1 = b["s1"]
+    s1_zero = th[:-1][np.sign(s1[:-1]) != np.sign(s1[1:])]
+    r1_zero = b["theta_r1"][(b["theta_r1"] >= th.min()) & (b["theta_r1"] <= th.max())]
+    ax = stability_map_plot(
+        th, u, mp.code, ax,
+        boundaries={"s2 = 0": (th, b["u_s2"]), "s3 = 0": (th, b["u_s3"])},
+        restricted={"restricted r3 = 0": (th, b["u_r3"]), "restricted r2 = 0": (th, b["u_r2"])},
+        vlines={"s1 = 0": s1_zero, "restricted r1 = 0": r1_zero},
+        legend=legend,
+    )
+    ax.set_xlabel("θ0 (rad)")
+    ax.set_ylabel("k2 / (ω0 Ā)")
+    return ax, mp, b
 
 
 def dumbbell_side_view(
