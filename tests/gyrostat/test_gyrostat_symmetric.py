@@ -136,3 +136,19 @@ def test_symmetric_rejects():
         gyrostat.symmetric_stationary_motion(sat, 1.0, 0.0)
     with pytest.raises(ValueError, match="k1 = k2 = 0"):
         gyrostat.symmetric_stationary_motion(gyrostat.Satellite(M=1, A1=0.3, A2=0.3, A3=0.2, k2=1.0), 1.0, 0.3)
+
+
+def test_34_alone_is_not_enough_for_large_bodies():
+    """'For real satellites' (3.4) is the single condition: a random sample with l/R <= 0.25 has no
+    counterexample, but at l/R ~ 0.3 a needle-like body (A3 = 0.07 A1) satisfies (3.4) and has degree 1."""
+    rng = np.random.default_rng(2)
+    for _ in range(300):
+        lR, a3, th = rng.uniform(0.01, 0.25), rng.uniform(0.05, 0.95), rng.uniform(-1.5, 1.5)
+        if abs(th) < 1e-3:
+            continue
+        sat = _sym_sat(lR, 1.0, a3)
+        st = gyrostat.stability(sat, gyrostat.symmetric_stationary_motion(sat, 1.0, th))
+        assert st.paper_condition and st.verdict == "stable"
+    sat = _sym_sat(0.30509094874109205, 1.0, 0.07144399935950324)
+    st = gyrostat.stability(sat, gyrostat.symmetric_stationary_motion(sat, 1.0, -0.2273222483527575))
+    assert st.paper_condition and st.verdict == "unstable" and st.degree == 1
