@@ -193,3 +193,25 @@ def test_inertia_helper_on_badly_scaled_matrices():
         D = np.diag(10.0 ** rng.uniform(-10, 10, 4))
         _, n_neg, n_zero = inertia(D @ A @ D)
         assert int(n_neg) == int(np.sum(lam < 0)) and int(n_zero) == 0
+
+
+@pytest.mark.parametrize("rel", [1e-3, 1e-6, 1e-9])
+@pytest.mark.parametrize("side", [1, -1])
+def test_si_degree_next_to_a_boundary_matches_extended_precision(rel, side):
+    """Real satellite, k2 within rel of the boundary s3 = 0: the small eigenvalue of the a-block
+    (~ s3 / (a11 a22) ~ 1e-6 rel) is far below eps * W_kk ~ 1e-5, so a raw float64 eigvalsh of the
+    constrained form miscounts here (it does with numpy 2 / LAPACK); the equilibrated count must agree
+    with the eigenvalues of the same float64 matrix computed at 50 digits."""
+    import mpmath
+
+    si = gyrostat.Satellite(M=1000.0, A1=1200.0, A2=1000.0, A3=800.0, mu=3.986e14)
+    th = 0.4
+    k2s3 = float(gyrostat.exact_boundaries(si, 7e6, np.array([th]))["k2_s3"][0])
+    m = gyrostat.stationary_motion(si, 7e6, th, k2=k2s3 * (1 + side * rel))
+    st = gyrostat.stability(si, m)
+    Hc = gyrostat.constrained_second_variation(si, m)
+    with mpmath.workdps(50):
+        ev = mpmath.eigsy(mpmath.matrix(Hc.tolist()), eigvals_only=True)
+        n_neg = sum(1 for e in ev if e < 0)
+    assert st.degree == n_neg
+    assert st.verdict == ("unstable" if n_neg % 2 else "undecided")
