@@ -145,3 +145,29 @@ def test_finite_difference_hessian_route():
     H = gyrostat.hessian_W1(m.satellite, m)
     # truncation O(h^8) ~ 1e-24, round-off ~ eps |W1| / h^2 ~ 1e-10 (|W1| ~ 1, h = 1e-3)
     assert np.max(np.abs(H - H_fd)) < 1e-8 * np.max(np.abs(H))
+
+
+@settings(max_examples=50, deadline=None)
+@given(
+    lR=st.floats(1e-4, 0.4),
+    a=st.tuples(st.floats(0.3, 1.0), st.floats(0.3, 1.0), st.floats(0.3, 1.0)),
+    th=st.floats(-3.1, 3.1),
+    u=st.floats(-5, 5),
+    use_k3=st.booleans(),
+)
+def test_gradient_vanishes_hypothesis(lR, a, th, u, use_k3):
+    a = np.array(a)
+    assume(all(a[i] <= a[(i + 1) % 3] + a[(i + 2) % 3] for i in range(3)))
+    assume(min(abs(np.cos(th)), abs(np.sin(th))) > 1e-3)
+    A = a / a.mean() * lR**2
+    sat = gyrostat.Satellite(M=1.0, A1=float(A[0]), A2=float(A[1]), A3=float(A[2]))
+    kw = {"k3": u * sat.Abar} if use_k3 else {"k2": u * sat.Abar}
+    try:
+        m = gyrostat.stationary_motion(sat, 1.0, th, **kw)
+    except ValueError:
+        assume(False)
+    assume(abs(np.cos(m.theta0 + m.kappa0)) > 1e-3 and abs(np.sin(m.theta0 + m.kappa0)) > 1e-3)
+    g = gyrostat.gradient_W1(m.satellite, m.point, k=m.k, lam=m.lambda0, branch=m.branch)
+    # rounding of the largest terms of each equation; k2 from k3 divides by sin(th + ka) >= 1e-3 (x1e3)
+    amp = 1.0 / min(abs(np.sin(m.theta0 + m.kappa0)), 1.0) if use_k3 else 1.0
+    assert np.all(np.abs(g) <= 4e-14 * amp * _term_scales(m.satellite, m))
