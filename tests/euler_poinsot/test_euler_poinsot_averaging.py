@@ -129,3 +129,26 @@ def test_G_and_T_strictly_decrease_for_every_k2():
             for kind in ("max", "min"):
                 dG, dT = ep.drag_rates(BODY, np.diag(d), 1.0, k2, kind)
                 assert dG < 0 and dT < 0
+
+
+@settings(max_examples=20, deadline=None)
+@given(G0=st.floats(0.5, 50.0), Omega0=st.floats(0.5, 20.0), omega0=st.floats(1e-3, 0.05),
+       scale=st.floats(0.1, 10.0), k2=st.floats(0.0, 0.99), nu=st.floats(-3.0, 3.0))
+def test_dimensional_6_and_nondimensional_9_are_the_same_system(G0, Omega0, omega0, scale, k2, nu):
+    # sec. 3 scaling: A~ = A Omega0/G0, eps = omega0/Omega0, eps^2 I~ = I/G0, tau = eps^2 Omega0 t,
+    # T~ = T/(G0 Omega0). (9) per tau is (6) with omega0 = 1 and I~.
+    Adim = ep.Body(3.2 * scale, 2.6 * scale, 1.67 * scale)
+    Idim = np.diag([2.322, 1.31, 1.425]) * scale * 1e-3
+    G = 0.7 * G0
+    eps = omega0 / Omega0
+    And = ep.Body(*(Adim.A * Omega0 / G0))
+    Ind = Idim / (G0 * eps**2)
+    d = ep.averaged_rates(Adim, Idim, G, k2, 0.6, 0.2, nu, omega0=omega0)
+    n = ep.averaged_rates(And, Ind, G / G0, k2, 0.6, 0.2, nu)
+    rate = eps**2 * Omega0  # d/dt = rate * d/dtau
+    # the same floating-point expressions up to rescaling: agreement to rounding (1e-12 relative)
+    assert d["dG"] == pytest.approx(G0 * rate * n["dG"], rel=1e-12)
+    assert d["dT"] == pytest.approx(G0 * Omega0 * rate * n["dT"], rel=1e-12)
+    assert d["dk2"] == pytest.approx(rate * n["dk2"], rel=1e-12, abs=1e-300)
+    assert d["ddelta"] == pytest.approx(rate * n["ddelta"], rel=1e-12, abs=1e-300)
+    assert d["dlam"] == pytest.approx(rate * n["dlam"], rel=1e-12, abs=1e-300)

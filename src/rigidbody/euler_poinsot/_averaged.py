@@ -294,8 +294,19 @@ def averaged(
     -------
     Solution
         ``sol.tau``, ``sol.G``, ``sol.T``, ``sol.k2``, ``sol.delta`` (in [0, pi]), ``sol.lam`` (continuous,
-        unwrapped), ``sol.nu``, ``sol.n`` (unit vector of G in :math:`Ox_i`, shape (3, n)), ``sol.status``
-        (0 end reached, 1 an event ended the run, -1 failure), ``sol.message``, ``sol.event``.
+        unwrapped), ``sol.nu`` (the true anomaly; constant ``nu0`` when ``eps = 0``, where it is averaged
+        out), ``sol.n`` (unit vector of G in :math:`Ox_i`, shape (3, n)), ``sol.status`` (0 end reached,
+        1 an event ended the run, -1 failure), ``sol.message``, ``sol.event`` (``'separatrix'``,
+        ``'slow_rotation'`` or None).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> sol = ep.averaged(body, np.diag([2.322, 1.31, 1.425]), 0.0, tau_span=(0, 3), tau_eval=[0, 3])
+    >>> bool(sol.G[-1] < sol.G[0]), sol.status
+    (True, 0)
     """
     eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)
     _check_kind(kind)

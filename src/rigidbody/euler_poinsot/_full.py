@@ -69,13 +69,11 @@ def initial_state(
             "T": m.T}
 
 
-def _k2_osc(A: tuple[float, float, float], D: float, kind: str) -> float:
+def _k2_osc(A: tuple[float, float, float], D: float) -> float:
+    """Osculating k2 of (5) from D = G^2/2T, with the moments in the labelling of the kind ('max' formula)."""
     A1, A2, A3 = A
-    if kind == "max":
-        den = (A1 - A2) * (D - A3)
-        return (A2 - A3) * (A1 - D) / den if den > 0 else math.inf
-    den = (A2 - A3) * (A1 - D)
-    return (A1 - A2) * (D - A3) / den if den > 0 else math.inf
+    den = (A1 - A2) * (D - A3)
+    return (A2 - A3) * (A1 - D) / den if den > 0 else math.inf
 
 
 def simulate(
@@ -195,12 +193,12 @@ def simulate(
         def ev_k2(tau: float, y: np.ndarray) -> float:
             G2 = y[0] ** 2 + y[1] ** 2 + y[2] ** 2
             D = G2 / (y[0] ** 2 / A1 + y[1] ** 2 / A2 + y[2] ** 2 / A3)
-            return _k2_osc(Alab, D, kind) - k2_max
+            return _k2_osc(Alab, D) - k2_max
 
         def ev_spin(tau: float, y: np.ndarray) -> float:
             G2 = y[0] ** 2 + y[1] ** 2 + y[2] ** 2
             D = G2 / (y[0] ** 2 / A1 + y[1] ** 2 / A2 + y[2] ** 2 / A3)
-            k2 = min(max(_k2_osc(Alab, D, kind), 0.0), 1.0)
+            k2 = min(max(_k2_osc(Alab, D), 0.0), 1.0)
             return _nut_freq(Alab, math.sqrt(G2), k2) / eps - min_spin_ratio
 
         extra_events: list[Event] = []
@@ -278,10 +276,10 @@ def simulate(
             return np.array([np.sin(de) * np.cos(la), np.sin(de) * np.sin(la), np.cos(de)])
 
         def ev_k2(tau: float, y: np.ndarray) -> float:
-            return _k2_osc(Alab, y[0] ** 2 / (2 * y[6]), kind) - k2_max
+            return _k2_osc(Alab, y[0] ** 2 / (2 * y[6])) - k2_max
 
         def ev_spin(tau: float, y: np.ndarray) -> float:
-            k2 = min(max(_k2_osc(Alab, y[0] ** 2 / (2 * y[6]), kind), 0.0), 1.0)
+            k2 = min(max(_k2_osc(Alab, y[0] ** 2 / (2 * y[6])), 0.0), 1.0)
             return _nut_freq(Alab, y[0], k2) / eps - min_spin_ratio
 
         extra_events = [
@@ -306,7 +304,7 @@ def simulate(
     def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
         G, T = GT(y)
         D = G**2 / (2 * T)
-        k2 = np.array([_k2_osc(Alab, float(d), kind) for d in np.atleast_1d(D)])
+        k2 = np.array([_k2_osc(Alab, float(d)) for d in np.atleast_1d(D)])
         n = nvec(y) if y.shape[1] else np.empty((3, 0))
         nu = y[inu] if not circular else tau * ie + nu0
         out = {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1, 1)), "n": n, "nu": nu}

@@ -64,7 +64,7 @@ class EulerPoinsot:
     >>> from rigidbody.euler_poinsot import Body, EulerPoinsot
     >>> m = EulerPoinsot(Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
     >>> g = m.g(0.3)
-    >>> abs((g**2).sum() - 1.0) < 1e-14
+    >>> bool(abs((g**2).sum() - 1.0) < 1e-14)
     True
     """
 
