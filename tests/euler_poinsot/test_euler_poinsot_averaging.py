@@ -152,3 +152,17 @@ def test_dimensional_6_and_nondimensional_9_are_the_same_system(G0, Omega0, omeg
     assert d["dk2"] == pytest.approx(rate * n["dk2"], rel=1e-12, abs=1e-300)
     assert d["ddelta"] == pytest.approx(rate * n["ddelta"], rel=1e-12, abs=1e-300)
     assert d["dlam"] == pytest.approx(rate * n["dlam"], rel=1e-12, abs=1e-300)
+
+
+def test_motion_average_method_reproduces_the_independent_average():
+    I = np.array([[2.0, 0.3, 0.1], [0.0, 1.0, -0.2], [0.1, 0.2, 1.5]])
+    G, k2, delta, lam, nu = 1.2, 0.6, 0.9, 0.3, -0.5
+    Lg, Lr, _ = numerical_average_torque(BODY, I, G, k2, "max", delta, lam, nu)
+    beta = np.array([math.cos(nu - lam) * math.cos(delta), math.sin(nu - lam), math.cos(nu - lam) * math.sin(delta)])
+
+    def torque(alpha, omega):
+        S = np.einsum("...ip,p,...jp->...ij", alpha, BODY.A, alpha)
+        return 3.0 * np.cross(beta, S @ beta) - np.einsum("...mi,ij,...j->...m", alpha, I, omega)
+
+    m = ep.EulerPoinsot(BODY, G, k2)
+    assert m.average(torque) == pytest.approx(Lg + Lr, abs=1e-12)

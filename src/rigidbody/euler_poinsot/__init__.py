@@ -15,7 +15,8 @@ Orbit(e=0.0)                 circular (paper) or eccentric orbit (factor of (3),
 Euler--Poinsot motion (unperturbed)
 -----------------------------------
 EulerPoinsot(body, G, k2, kind='max'|'min', sigma=1)   closed form in Jacobi functions: .omega(t),
-                             .g(t), .angles(t) (psi, theta, phi), .period, .T, .nodes(n)
+                             .g(t), .angles(t) (psi, theta, phi), .period, .T, .nodes(n),
+                             .average(f): mean over psi and the period (the averaging of sec. 2)
 k2_from(body, G, T, kind)    formula (5) and its counterpart for rotation about the A3 axis
 T_from(body, G, k2, kind)    the inverse of (5);   kind_of(body, G, T)
 

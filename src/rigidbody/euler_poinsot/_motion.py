@@ -36,6 +36,7 @@ import numpy as np
 
 from ..core import averaging as avg
 from ..core import elliptic as ell
+from ..core import euler
 from ._model import Body, T_from, _check_kind, _real, k2_from
 
 __all__ = ["EulerPoinsot"]
@@ -244,3 +245,37 @@ class EulerPoinsot:
             n = avg.n_nodes(mc=self.mc, period="4K")
         t = np.arange(n) * (self.period / n)
         return t, self.g(t)
+
+    def average(self, f: Any, n: int | None = None, n_psi: int = 16) -> Any:
+        r"""Mean of ``f`` over the precession angle and one period of the motion (the averaging of sec. 2).
+
+        Rachinskaya averages first over :math:`\psi` (uniformly: no resonance between the precession and
+        the Euler--Poinsot period is assumed), then over time along :math:`\theta(t), \varphi(t)`. Both
+        means use the trapezoid rule on uniform grids (spectrally accurate for periodic integrands).
+
+        Parameters
+        ----------
+        f : callable
+            ``f(alpha, omega)`` with ``alpha`` of shape ``(n_psi, n, 3, 3)`` (direction cosines
+            :math:`\alpha_{ij} = y_i\cdot z_j`, body -> :math:`Oy_i`) and ``omega`` of shape ``(n, 3)``
+            (body angular velocity); returns an array of shape ``(n_psi, n, ...)``.
+        n : int, optional
+            Time nodes per period (default from ``rigidbody.core.averaging.n_nodes``).
+        n_psi : int
+            Nodes in :math:`\psi`; exact for trigonometric polynomials of degree < ``n_psi``.
+
+        Returns
+        -------
+        float or numpy.ndarray
+            The mean over the two leading axes.
+        """
+        t, g = self.nodes(n)
+        omega = (g / self.body.A[:, None]).T
+        theta = np.arctan2(np.hypot(g[0], g[1]), g[2])
+        phi = np.arctan2(g[0], g[1])
+        psi = np.arange(n_psi) * (2.0 * math.pi / n_psi)
+        alpha = euler.dcm(psi[:, None], theta[None, :], phi[None, :])
+        vals = np.asarray(f(alpha, omega), dtype=float)
+        res = vals.mean(axis=(0, 1))
+        return float(res) if np.ndim(res) == 0 else res
+
