@@ -56,5 +56,20 @@ def test_dumbbell_figure_data():
 
 def test_builder_writes_pngs(tmp_path):
     paths = fg.build(tmp_path)
-    assert len(paths) == 4
+    assert len(paths) == 5
     assert all(p.exists() and p.stat().st_size > 10_000 for p in paths)
+
+
+def test_symmetric_map_figure_data():
+    sm = fg.symmetric_map_data()
+    assert sm.code.shape == (fg.SYM_THETA.size, fg.SYM_RATIO.size)
+    # away from cos theta0 = 0 (O(l^2/R^2) terms decide there) and the chart's singular line sin theta0 = 0
+    ok_th = (np.abs(np.cos(fg.SYM_THETA)) > 0.3) & (np.abs(np.sin(fg.SYM_THETA)) > 1e-6)
+    assert np.all(sm.code[np.abs(np.sin(fg.SYM_THETA)) < 1e-6] == -1)
+    below = fg.SYM_RATIO < 0.9
+    mid = (fg.SYM_RATIO > 1.1) & (fg.SYM_RATIO < 1.23)
+    above = fg.SYM_RATIO > 1.45
+    v = sm.verdict[ok_th]
+    assert np.all(v[:, below] == "stable")
+    assert np.all(v[:, mid] == "unstable")
+    assert np.all(v[:, above] == "undecided")

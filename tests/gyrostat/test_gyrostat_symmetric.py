@@ -152,3 +152,28 @@ def test_34_alone_is_not_enough_for_large_bodies():
     sat = _sym_sat(0.30509094874109205, 1.0, 0.07144399935950324)
     st = gyrostat.stability(sat, gyrostat.symmetric_stationary_motion(sat, 1.0, -0.2273222483527575))
     assert st.paper_condition and st.verdict == "unstable" and st.degree == 1
+
+
+def test_symmetric_map_matches_scalar_calls_and_the_4A1_3A3_line():
+    s = 0.01
+    sat = gyrostat.Satellite(M=1.0, A1=s, A2=s, A3=0.6 * s)
+    th = np.linspace(-3.0, 3.0, 41)
+    th = th[np.abs(np.sin(th)) > 1e-6]
+    r = np.linspace(0.1, 1.9, 19)
+    mp = gyrostat.symmetric_stability_map(sat, 1.0, th, A3=r * s)
+    assert mp.code.shape == (th.size, r.size)
+    for i in range(0, th.size, 5):
+        for j in range(0, r.size, 3):
+            sat2 = gyrostat.Satellite(M=1.0, A1=s, A2=s, A3=float(r[j] * s))
+            st = gyrostat.stability(sat2, gyrostat.symmetric_stationary_motion(sat2, 1.0, float(th[i])))
+            assert mp.verdict[i, j] == st.verdict and mp.degree[i, j] == st.degree
+    # l/R = 0.1: away from the lines A3 = A1, A3 = 4/3 A1 (by 0.1 >> (l/R)^2) and from cos th0 = 0
+    ok_th = np.abs(np.cos(th)) > 0.3
+    for j, rr in enumerate(r):
+        col = mp.verdict[ok_th, j]
+        if rr < 0.9:
+            assert np.all(col == "stable")
+        elif 1.1 < rr < 1.23:
+            assert np.all(col == "unstable")
+        elif rr > 1.45:
+            assert np.all(col == "undecided")

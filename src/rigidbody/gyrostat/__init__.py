@@ -10,6 +10,7 @@ Public API
 Satellite                       frozen dataclass (M, A1, A2, A3, mu, k1, k2, k3), validated
 stationary_motion(sat, R0, theta0, k2=.. | k3=.., omega_sign=+1)    the family (2.3)-(2.4)
 symmetric_stationary_motion(sat, R0, theta0)                        section 3, (3.2)-(3.3)
+symmetric_stability_map(sat, R0, theta0, A3=...)                    section 3 verdicts over grids
 stability(sat, motion)          Sylvester quantities s1, s2, s3 of (2.5), degree of instability and a
                                 verdict 'stable' / 'unstable' / 'undecided'; section-4 Jacobian
 stability_map(sat, R0, theta0, k2=.. | k3=..)    vectorised verdicts over parameter grids
@@ -44,11 +45,13 @@ from ._symmetric import (
     SYM_COORDS,
     SymmetricMotion,
     SymmetricStability,
+    SymmetricStabilityMap,
     W_psipsi_34,
     gradient_W_sym,
     hessian_W_sym,
     stability_symmetric,
     symmetric_potential,
+    symmetric_stability_map,
     symmetric_stationary_motion,
 )
 
@@ -89,6 +92,7 @@ __all__ = [
     "StationaryMotion",
     "SymmetricMotion",
     "SymmetricStability",
+    "SymmetricStabilityMap",
     "W_psipsi_34",
     "amended_potential",
     "amended_potential_W",
@@ -109,5 +113,6 @@ __all__ = [
     "stability_map",
     "stationary_motion",
     "symmetric_potential",
+    "symmetric_stability_map",
     "symmetric_stationary_motion",
 ]

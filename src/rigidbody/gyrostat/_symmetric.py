@@ -18,10 +18,12 @@ from ._stationary import SINGULAR_TOL, _wrap
 __all__ = [
     "SymmetricMotion",
     "SymmetricStability",
+    "SymmetricStabilityMap",
     "gradient_W_sym",
     "hessian_W_sym",
     "symmetric_family_arrays",
     "symmetric_potential",
+    "symmetric_stability_map",
     "symmetric_stationary_motion",
 ]
 
@@ -307,3 +309,73 @@ def stability_symmetric(sat: Satellite, m: SymmetricMotion, *, rtol: float = 1e-
         verdict=VERDICTS[code], paper_condition=bool(H[3, 3] > 0), jacobian=jac,
         unconditionally_stable=(code == 0 and jac != 0.0),
     )
+
+
+@dataclass(frozen=True)
+class SymmetricStabilityMap:
+    """Verdicts of the motions (3.2) over a grid (codes as in :class:`rigidbody.gyrostat.StabilityMap`)."""
+
+    params: dict[str, np.ndarray]
+    kappa0: np.ndarray
+    omega0: np.ndarray
+    c: np.ndarray
+    W_psipsi: np.ndarray
+    minors: np.ndarray
+    degree: np.ndarray
+    code: np.ndarray
+
+    @property
+    def verdict(self) -> np.ndarray:
+        names = np.array([VERDICTS[0], VERDICTS[1], VERDICTS[2], VERDICTS[-1]])
+        return names[np.where(self.code < 0, 3, self.code)]
+
+    @property
+    def paper_condition(self) -> np.ndarray:
+        """(3.4) > 0."""
+        return self.W_psipsi > 0
+
+
+def symmetric_stability_map(
+    sat: Satellite, R0: Any, theta0: Any, *, omega_sign: int = 1, grid: bool = True, rtol: float = 1e-12,
+    **overrides: Any,
+) -> SymmetricStabilityMap:
+    """Vectorised verdicts of the motions (3.2) from the full 4x4 second variation.
+
+    Parameters as in :func:`rigidbody.gyrostat.stability_map`; overridable: ``M, A1, A3, mu`` (A2 = A1).
+    With ``grid=True`` the 1-D arrays among theta0, R0, M, A1, A3, mu form an outer grid in that order.
+    Points with sin theta0 = 0 (Euler chart) or no motion get code -1.
+    """
+    _check_symmetric(sat)
+    bad = set(overrides) - {"M", "A1", "A3", "mu"}
+    if bad:
+        raise TypeError(f"unknown parameter(s) {sorted(bad)}; overridable: M, A1, A3, mu")
+    vals = {"theta0": theta0, "R0": R0, "M": overrides.get("M", sat.M), "A1": overrides.get("A1", sat.A1),
+            "A3": overrides.get("A3", sat.A3), "mu": overrides.get("mu", sat.mu)}
+    arrs = {n: np.asarray(v, dtype=float) for n, v in vals.items()}
+    if grid:
+        axes = [n for n in arrs if arrs[n].ndim == 1 and arrs[n].size > 1]
+        for n, m in zip(axes, np.meshgrid(*[arrs[n] for n in axes], indexing="ij")):
+            arrs[n] = m
+    shape = np.broadcast(*arrs.values()).shape
+    P = {n: np.broadcast_to(v, shape) for n, v in arrs.items()}
+    f = symmetric_family_arrays(P["M"], P["A1"], P["A3"], P["mu"], P["R0"], P["theta0"], omega_sign)
+    physical = (P["A3"] > 0) & (P["A1"] > 0) & (P["A3"] <= 2 * P["A1"] * (1 + 1e-12)) & (P["M"] > 0)
+    valid = f["exists"] & physical & (np.abs(f["sin_t"]) > SINGULAR_TOL) & (np.abs(f["cos_tk"]) > SINGULAR_TOL)
+    with np.errstate(all="ignore"):
+        _, H = _derivs(P["M"], P["A1"], P["A3"], P["mu"], f["k"], f["c"], P["R0"], f["kappa0"], f["theta0"],
+                       np.pi + 0 * f["kappa0"])
+    H = np.array(H)
+    H[..., 3, :3] = 0.0  # the psi row decouples at psi = pi (sin psi = 0 analytically)
+    H[..., :3, 3] = 0.0
+    valid &= np.all(np.isfinite(H), axis=(-1, -2))
+    n_neg = np.full(shape, -1, dtype=np.int64)
+    code = np.full(shape, -1, dtype=np.int8)
+    minors = np.full((*shape, 4), np.nan)
+    if np.any(valid):
+        _, nn, nz = inertia(H[valid], rtol=rtol)
+        n_neg[valid] = nn
+        code[valid] = _verdict_codes(nn, nz)
+        minors[valid] = leading_minors(H[valid])
+    W_pp = np.where(valid, H[..., 3, 3], np.nan)
+    return SymmetricStabilityMap(params=P, kappa0=f["kappa0"], omega0=f["omega0"], c=f["c"], W_psipsi=W_pp,
+                                 minors=minors, degree=n_neg, code=code)

@@ -6,6 +6,8 @@ Choices the paper leaves open (stated here and in docs/gyrostat.md):
 - maps in the plane (theta0, u = k2 / (omega0 Abar)) on a 301 x 301 grid, theta0 in (-1.5, 1.5),
   u in (-6, 6), omega0 > 0;
 - kappa0 curves for l/R = 0.05, 0.1, 0.2, 0.3 with the ordering A1 : A2 : A3 = 1.2 : 1.0 : 0.8;
+- the symmetric family (3.2): verdicts over theta0 in (-pi, pi) and A3/A1 in (0.05, 2) at l/R = 0.1, with
+  the paper's boundary A3 = A1 ((3.4)) and the line 3 A3 = 4 A1 beyond which its instability claim fails;
 - the dumbbell: two equal balls at arm a = 0.3 R0 from G (A1 = A2 = M a^2, A3 = 0.01 A1 for the rod),
   theta0 = pi/4, the symmetric family (3.2)-(3.3), drawn to scale.
 """
@@ -55,6 +57,18 @@ def kappa_data() -> dict[float, np.ndarray]:
         sat = body(lR)
         out[lR] = gyrostat.stability_map(sat, 1.0, THETA, k2=0.0).kappa0
     return out
+
+
+SYM_THETA = np.linspace(-3.1, 3.1, 311)
+SYM_RATIO = np.linspace(0.05, 2.0, 196)
+SYM_L_OVER_R = 0.1
+
+
+def symmetric_map_data():
+    """Verdicts of (3.2) on SYM_THETA x SYM_RATIO (A3/A1), l/R = SYM_L_OVER_R (A1 fixed, A3 varied)."""
+    A1 = SYM_L_OVER_R**2
+    sat = gyrostat.Satellite(M=1.0, A1=A1, A2=A1, A3=A1)
+    return gyrostat.symmetric_stability_map(sat, 1.0, SYM_THETA, A3=SYM_RATIO * A1)
 
 
 def dumbbell_data() -> tuple[gyrostat.Satellite, gyrostat.SymmetricMotion]:
@@ -112,6 +126,20 @@ def build(outdir: Path) -> list[Path]:
     ax1.set_title(f"latitude of the orbit, A1:A2:A3 = {BASE[0]}:{BASE[1]}:{BASE[2]}", fontsize=10)
     fig.tight_layout()
     p = outdir / "gyrostat_kappa0.png"
+    fig.savefig(p, dpi=100)
+    plt.close(fig)
+    paths.append(p)
+
+    sm = symmetric_map_data()
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    pg.stability_map_plot(SYM_THETA, SYM_RATIO, sm.code, ax,
+                          boundaries={"A3 = A1 ((3.4) changes sign)": (SYM_THETA, np.ones_like(SYM_THETA)),
+                                      "3 A3 = 4 A1": (SYM_THETA, np.full_like(SYM_THETA, 4 / 3))})
+    ax.set_xlabel("θ0 (rad)")
+    ax.set_ylabel("A3 / A1")
+    ax.set_title(f"Symmetric gyrostat (3.2), l/R ≈ {SYM_L_OVER_R}: full second variation", fontsize=10)
+    fig.tight_layout()
+    p = outdir / "gyrostat_symmetric_map.png"
     fig.savefig(p, dpi=100)
     plt.close(fig)
     paths.append(p)
