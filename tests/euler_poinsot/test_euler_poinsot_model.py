@@ -201,3 +201,18 @@ def test_k2_to_separatrix_when_I11_over_A1_exceeds_I33_over_A3():
     assert sol.status == 1 and sol.event == "separatrix"
     assert "separatrix" in sol.message
     assert sol.k2[-1] == pytest.approx(1 - 1e-6, abs=1e-9)
+
+
+def test_equilibrium_stability_by_integration():
+    # the labels of k2_equilibria against trajectories of (8) (eps = 0 averaged system)
+    kstar = ep.k2_equilibria(BODY, CASE1)[1][0]
+    up = ep.averaged(BODY, CASE1, 0.0, k2_0=1e-6, tau_span=(0, 400), tau_eval=[400])
+    assert up.k2[-1] == pytest.approx(kstar, abs=1e-6)  # k2 = 0 unstable, k* attracts from below
+    down = ep.averaged(BODY, CASE2, 0.0, k2_0=0.05, tau_span=(0, 20), tau_eval=[20])
+    assert down.k2[-1] < 1e-8  # case 2: k2 = 0 attracts
+
+
+def test_start_next_to_the_separatrix():
+    # k2 within 1e-8 of the separatrix: logarithmic period, finite right-hand sides, k2 moves away (case 1)
+    sol = ep.averaged(BODY, CASE1, 0.0, k2_0=1 - 1e-8, k2_max=1 - 1e-10, tau_span=(0, 0.1))
+    assert sol.status == 0 and np.all(np.diff(sol.k2) < 0) and np.all(np.isfinite(sol.lam))
