@@ -141,3 +141,32 @@ def test_section4_lyapunov_addendum(th):
     st = gyrostat.stability(m.satellite, m)
     assert st.verdict == "stable" and st.unconditionally_stable
     assert math.isclose(abs(st.jacobian), math.cos(m.kappa0) ** 2 / math.cos(th) ** 2 * st.s2 * st.s3, rel_tol=1e-12)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_s_quantities_tend_to_the_restricted_ones_first_third_second(seed):
+    """After (2.5): s1, s2 and s3 (through a33) tend "respectively" to the first, third and second restricted
+    inequalities: s1 ~ 3 n^2 r1, s2 ~ 3 n^4 r3, a33 ~ 4 omega0^2 r2, with relative errors O(l^2/R^2)
+    (measured against the natural scale of each quantity, since r_i itself may be small)."""
+    rng = np.random.default_rng(seed)
+    errs = []
+    lRs = (0.04, 0.02, 0.01)
+    a = rng.uniform(0.5, 1.0, 3)
+    th = float(rng.uniform(-1.2, 1.2))
+    u = float(rng.uniform(-3, 3))
+    for lR in lRs:
+        s = lR**2 * 3 / a.sum()
+        sat = gyrostat.Satellite(M=1.0, A1=a[0] * s, A2=a[1] * s, A3=a[2] * s)
+        m = gyrostat.stationary_motion(sat, 1.0, th, k2=u * sat.Abar)
+        st = gyrostat.stability(m.satellite, m)
+        r1, r2, r3 = st.restricted
+        A = sat.Abar
+        om2 = m.omega0**2
+        e1 = abs(st.s1 - 3 * r1) / (3 * A)  # n^2 = mu / R0^3 = 1
+        e2 = abs(st.s2 - 3 * r3) / (3 * A**2 * (1 + abs(u)))
+        e3 = abs(st.a[2, 2] - 4 * om2 * r2) / (4 * A * (1 + abs(u)))
+        errs.append(max(e1, e2, e3))
+    errs = np.array(errs)
+    # O(l^2/R^2): halving l/R divides the error by ~4 (it is already tiny: < (l/R)^2 * 20)
+    assert np.all(errs < 20 * np.array(lRs) ** 2)
+    assert np.all(errs[:-1] / errs[1:] > 3.0)
