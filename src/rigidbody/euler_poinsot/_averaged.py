@@ -107,6 +107,8 @@ def averaged_rates(
     orb = _as_orbit(orbit)
     A, Id = _labels(body, kind, as_drag(I).diag)
     G = _real(G, "G")
+    if G <= 0:
+        raise ValueError(f"G must be positive, got {G}")
     k2 = _real(k2, "k2")
     if not (0.0 <= k2 <= 1.0):
         raise ValueError(f"k2 must lie in [0, 1], got {k2}")

@@ -449,7 +449,10 @@ def drag_rates(body: Body, I: Any, G: float, k2: float, kind: str = "max") -> tu
     """
     _check_kind(kind)
     A, Id = _labels(body, kind, as_drag(I).diag)
-    return _drag_rates(A, Id, _real(G, "G"), _real(k2, "k2"))
+    G, k2 = _real(G, "G"), _real(k2, "k2")
+    if G <= 0 or not (0.0 <= k2 <= 1.0):
+        raise ValueError(f"need G > 0 and k2 in [0, 1], got G={G}, k2={k2}")
+    return _drag_rates(A, Id, G, k2)
 
 
 def _nstar(A: tuple[float, float, float], k2: float) -> float:
