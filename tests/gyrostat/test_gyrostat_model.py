@@ -90,3 +90,14 @@ def test_motion_geometry_and_omega_sign():
         gyrostat.stability(sat, "m")
     with pytest.raises(ValueError, match="differs"):
         gyrostat.stability(gyrostat.Satellite(M=2.0, A1=0.03, A2=0.02, A3=0.012), m)
+
+
+def test_map_marks_singular_places_invalid_without_warnings():
+    sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.009)
+    th = np.array([-math.pi, -math.pi / 2, 0.0, 1e-300, math.pi / 2, math.pi, 0.3])
+    a = gyrostat.stability_map(sat, 1.0, th, k2=np.array([0.0, 1e-3]))
+    # cos theta0 = 0: the chart is singular
+    assert np.all(a.code[[1, 4]] == -1) and np.all(a.code[[0, 2, 3, 5, 6]] >= 0)
+    b = gyrostat.stability_map(sat, 1.0, th, k3=np.array([0.0, 1e-3]))
+    # with k3 given, theta0 = 0, pi (and 1e-300) leave k2 undetermined / ill-conditioned
+    assert np.all(b.code[:6] == -1) and np.all(b.code[6] >= 0)

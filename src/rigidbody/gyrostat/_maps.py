@@ -9,7 +9,7 @@ import numpy as np
 
 from ._model import Satellite
 from ._stability import VERDICTS, a_matrix, hessian_entries, restricted_conditions, stability_arrays
-from ._stationary import family_arrays
+from ._stationary import SINGULAR_TOL, family_arrays
 
 __all__ = ["StabilityMap", "exact_boundaries", "normalized_stability_map", "stability_map"]
 
@@ -21,7 +21,8 @@ class StabilityMap:
     """Verdicts over a grid.  All arrays have the grid's shape (``minors``: plus a trailing axis of 5).
 
     ``code``: 0 stable, 1 unstable (odd degree), 2 undecided, -1 invalid (no motion of the family,
-    singular chart, or a non-physical body); :attr:`verdict` gives the strings.  ``r1, r2, r3`` are the
+    singular chart, k2 ill-conditioned (|sin(theta0 + kappa0)| <= 1e-6 with k3 given), or a non-physical
+    body); :attr:`verdict` gives the strings.  ``r1, r2, r3`` are the
     restricted-problem quantities and ``restricted_stable`` their conjunction.
     """
 
@@ -137,6 +138,8 @@ def stability_map(
         f = family_arrays(M, A1, A2, A3, mu, Rv, P["theta0"], k2=P.get("k2"), k3=P.get("k3"),
                           omega_sign=omega_sign)
         f["exists"] = f["exists"] & physical
+        if "k3" in P:  # k2 from k3 divides by sin(theta0 + kappa0): ill-conditioned near theta0 = 0, pi
+            f["exists"] = f["exists"] & (np.abs(f["sin_tk"]) > SINGULAR_TOL)
         d = stability_arrays(f, M, A1, A2, A3, mu, Rv, rtol=rtol)
         r1, r2, r3 = restricted_conditions(A1, A2, A3, f["theta0"], f["k2"], f["omega0"])
     return StabilityMap(
