@@ -18,7 +18,8 @@ _MAP_ORDER = ("theta0", "R0", "k2", "k3", "M", "A1", "A2", "A3", "mu")
 
 @dataclass(frozen=True)
 class StabilityMap:
-    """Verdicts over a grid.  All arrays have the grid's shape (``minors``: plus a trailing axis of 5).
+    """Verdicts over a grid.  All arrays have the grid's shape (``minors``: plus a trailing axis of 5); they
+    may be read-only broadcast views (copy before writing).
 
     ``code``: 0 stable, 1 unstable (odd degree), 2 undecided, -1 invalid (no motion of the family,
     singular chart, k2 ill-conditioned (|sin(theta0 + kappa0)| <= 1e-6 with k3 given), or a non-physical
@@ -124,27 +125,34 @@ def stability_map(
         axes = [n for n in _MAP_ORDER if n in arrs and arrs[n].ndim == 1 and arrs[n].size > 1]
         if any(arrs[n].ndim > 1 for n in arrs):
             raise ValueError("with grid=True pass 1-D arrays (or use grid=False and broadcastable arrays)")
-        mesh = np.meshgrid(*[arrs[n] for n in axes], indexing="ij") if axes else []
+        # sparse: trigonometry runs on the 1-D axes, broadcasting does the rest
+        mesh = np.meshgrid(*[arrs[n] for n in axes], indexing="ij", sparse=True) if axes else []
         for n, m in zip(axes, mesh):
             arrs[n] = m
     shape = np.broadcast(*arrs.values()).shape
     P = {n: np.broadcast_to(v, shape) for n, v in arrs.items()}
-    M, A1, A2, A3, mu, Rv = P["M"], P["A1"], P["A2"], P["A3"], P["mu"], P["R0"]
+    M, A1, A2, A3, mu, Rv = arrs["M"], arrs["A1"], arrs["A2"], arrs["A3"], arrs["mu"], arrs["R0"]
     physical = (
         (M > 0) & (A1 > 0) & (A2 > 0) & (A3 > 0) & (mu > 0) & (Rv > 0)
         & (A1 <= (A2 + A3) * (1 + 1e-12)) & (A2 <= (A1 + A3) * (1 + 1e-12)) & (A3 <= (A1 + A2) * (1 + 1e-12))
     )
     with np.errstate(invalid="ignore", divide="ignore"):
-        f = family_arrays(M, A1, A2, A3, mu, Rv, P["theta0"], k2=P.get("k2"), k3=P.get("k3"),
+        f = family_arrays(M, A1, A2, A3, mu, Rv, arrs["theta0"], k2=arrs.get("k2"), k3=arrs.get("k3"),
                           omega_sign=omega_sign)
+        f = {key: np.broadcast_to(v, shape) if key in ("exists", "sin_tk", "cos_tk", "cos_t", "sin_t") else v
+             for key, v in f.items()}
         f["exists"] = f["exists"] & physical
-        if "k3" in P:  # k2 from k3 divides by sin(theta0 + kappa0): ill-conditioned near theta0 = 0, pi
+        if "k3" in arrs:  # k2 from k3 divides by sin(theta0 + kappa0): ill-conditioned near theta0 = 0, pi
             f["exists"] = f["exists"] & (np.abs(f["sin_tk"]) > SINGULAR_TOL)
         d = stability_arrays(f, M, A1, A2, A3, mu, Rv, rtol=rtol)
         r1, r2, r3 = restricted_conditions(A1, A2, A3, f["theta0"], f["k2"], f["omega0"])
+    def full(x: Any) -> np.ndarray:
+        return np.broadcast_to(x, shape)
+
     return StabilityMap(
-        params=P, kappa0=f["kappa0"], omega0=f["omega0"], k2=f["k2"], k3=f["k3"], s1=d["s1"], s2=d["s2"],
-        s3=d["s3"], minors=d["minors"], degree=d["n_neg"], code=d["code"], r1=r1, r2=r2, r3=r3,
+        params=P, kappa0=full(f["kappa0"]), omega0=full(f["omega0"]), k2=full(f["k2"]), k3=full(f["k3"]),
+        s1=full(d["s1"]), s2=full(d["s2"]), s3=full(d["s3"]), minors=d["minors"], degree=full(d["n_neg"]),
+        code=full(d["code"]), r1=full(r1), r2=full(r2), r3=full(r3),
     )
 
 

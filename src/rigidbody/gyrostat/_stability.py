@@ -165,11 +165,13 @@ def stability_arrays(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any
     for v in e.values():
         valid = valid & np.isfinite(v)
     valid = valid & np.all(np.isfinite(a), axis=(-1, -2))
-    s1 = e["g1g1"]
-    s2 = e["g1g1"] * e["b1b1"] - e["b1g1"] ** 2
-    B = np.stack(np.broadcast_arrays(e["g1g1"], e["b1g1"], e["b1g1"], e["b1b1"]), axis=-1)
-    B = B.reshape(*B.shape[:-1], 2, 2)
-    shape = valid.shape
+    shape = np.broadcast_shapes(valid.shape, a.shape[:-2], *(np.shape(v) for v in e.values()))
+    valid = np.broadcast_to(valid, shape)
+    a = np.broadcast_to(a, (*shape, 3, 3))
+    s1 = np.broadcast_to(e["g1g1"], shape)
+    s2 = np.broadcast_to(e["g1g1"] * e["b1b1"] - e["b1g1"] ** 2, shape)
+    B = np.stack([np.broadcast_to(v, shape) for v in (e["g1g1"], e["b1g1"], e["b1g1"], e["b1b1"])], axis=-1)
+    B = B.reshape(*shape, 2, 2)
     n_neg = np.zeros(shape, dtype=np.int64)
     n_zero = np.zeros(shape, dtype=np.int64)
     if np.any(valid):
