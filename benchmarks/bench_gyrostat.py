@@ -38,6 +38,11 @@ def main() -> None:
     t, _ = timed(lambda: gyrostat.normalized_stability_map(sat, R0, theta0, np.linspace(-6, 6, 1000)))
     print(f"normalized_stability_map 1000 x 1000: {t:.2f} s")
 
+    sym = gyrostat.Satellite(M=1000.0, A1=1200.0, A2=1200.0, A3=800.0, mu=3.986e14)
+    t, _ = timed(lambda: gyrostat.symmetric_stability_map(sym, R0, np.linspace(0.01, 3.1, 1000),
+                                                          A3=np.linspace(100.0, 2400.0, 1000)))
+    print(f"symmetric_stability_map 1000 x 1000 (full 4x4 second variation): {t:.2f} s")
+
     def scalar(n=2000):
         rng = np.random.default_rng(0)
         for th, k in zip(rng.uniform(-1.5, 1.5, n), rng.uniform(-4, 4, n) * sat.Abar * n0):
