@@ -99,15 +99,20 @@ def _scaled_minors(Hs: NDArray[np.float64]) -> NDArray[np.float64]:
 def leading_minors(H: ArrayLike) -> NDArray[np.float64]:
     """All leading principal minors ``det H[:k, :k]``, k = 1..n (Sylvester's criterion).
 
-    Computed on the equilibrated matrix and scaled back, so their signs are reliable even when the
-    entries of ``H`` span many orders of magnitude.
+    Computed on the diagonally scaled matrix (Ruiz-equilibrated if a diagonal entry vanishes) and scaled
+    back, so their signs are reliable even when the entries of ``H`` span many orders of magnitude.
 
     Returns
     -------
     ndarray, shape (..., n)
     """
     A = _as_square_stack(H)
-    Hs, d = equilibrate(A)
+    diag = np.abs(np.diagonal(A, axis1=-2, axis2=-1))
+    if np.all(diag > 0):  # one diagonal scaling (a congruence) is enough to balance the products
+        d = 1.0 / np.sqrt(diag)
+        Hs = A * d[..., :, None] * d[..., None, :]
+    else:
+        Hs, d = equilibrate(A)
     D = _scaled_minors(Hs)
     scale = np.cumprod(d, axis=-1) ** 2
     return D / scale
