@@ -8,6 +8,8 @@ import mpmath
 import numpy as np
 import pytest
 from gyrostat_testlib import DPS
+from hypothesis import assume, given, settings
+from hypothesis import strategies as hst
 
 from rigidbody import gyrostat
 
@@ -177,3 +179,21 @@ def test_symmetric_map_matches_scalar_calls_and_the_4A1_3A3_line():
             assert np.all(col == "unstable")
         elif rr > 1.45:
             assert np.all(col == "undecided")
+
+
+@settings(max_examples=20, deadline=None)
+@given(lR=hst.floats(1e-3, 0.3), a3=hst.floats(0.05, 1.95), th=hst.floats(-3.0, 3.0), sign=hst.sampled_from([-1, 1]))
+def test_symmetric_hessian_hypothesis(lR, a3, th, sign):
+    assume(abs(np.sin(th)) > 0.05)
+    sat = _sym_sat(lR, 1.0, a3)
+    try:
+        ms = gyrostat.symmetric_stationary_motion(sat, 1.0, th, omega_sign=sign)
+    except ValueError:
+        assume(False)
+    assume(abs(np.cos(ms.theta0 + ms.kappa0)) > 0.05)
+    H_mp, G_mp, *_ = _mp_hessian_and_gradient(sat, ms)
+    H = gyrostat.hessian_W_sym(sat, ms.point, k=ms.k, c=ms.c)
+    D = np.max(np.abs(H_mp), axis=1)
+    # float64 chain rule: rounding of O(row-scale) terms, amplified by 1/cos(th + ka) <= 20 through c
+    assert np.all(np.abs(H - H_mp) <= 1e-11 * np.sqrt(np.outer(D, D)))
+    assert np.all(np.abs(G_mp) < 1e-30)
