@@ -22,5 +22,6 @@ def test_ci_runs_the_readme_test_command_verbatim():
 def test_readme_python_example_runs():
     code = re.findall(r"```python\n(.*?)```", (ROOT / "README.md").read_text(), flags=re.S)
     assert code
-    for block in code:
-        exec(compile(block, "README.md", "exec"), {})
+    namespace: dict = {}
+    for block in code:  # later blocks may use names (np) from earlier ones, as in a notebook
+        exec(compile(block, "README.md", "exec"), namespace)
