@@ -8,8 +8,13 @@
     Spectrally convergent period averages over motions written in Jacobi functions.
 :mod:`rigidbody.core.ode`
     ``solve_ivp`` wrapper returning named trajectories with a clear status.
+:mod:`rigidbody.core.quadform`
+    Quadratic forms: inertia-preserving scaling, leading minors, inertia (degree of instability),
+    constrained (null-space) forms, finite-difference Hessians, complex-step gradients.
+:mod:`rigidbody.core.validate`
+    Validation of scalar user input (clear ``TypeError``/``ValueError`` naming the parameter).
 """
 
-from . import averaging, elliptic, euler, ode
+from . import averaging, elliptic, euler, ode, quadform, validate
 
-__all__ = ["averaging", "elliptic", "euler", "ode"]
+__all__ = ["averaging", "elliptic", "euler", "ode", "quadform", "validate"]

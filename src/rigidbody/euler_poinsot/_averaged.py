@@ -39,6 +39,7 @@ from typing import Any
 import numpy as np
 
 from ..core.ode import Event, Solution, integrate
+from ..core.validate import real
 from ._model import (
     Body,
     Orbit,
@@ -49,7 +50,6 @@ from ._model import (
     _labels,
     _nstar,
     _nut_freq,
-    _real,
     _S_over_R,
     as_drag,
 )
@@ -106,17 +106,17 @@ def averaged_rates(
     _check_kind(kind)
     orb = _as_orbit(orbit)
     A, Id = _labels(body, kind, as_drag(I).diag)
-    G = _real(G, "G")
+    G = real(G, "G")
     if G <= 0:
         raise ValueError(f"G must be positive, got {G}")
-    k2 = _real(k2, "k2")
+    k2 = real(k2, "k2")
     if not (0.0 <= k2 <= 1.0):
         raise ValueError(f"k2 must lie in [0, 1], got {k2}")
     dG, dT = _drag_rates(A, Id, G, k2)
     dk2 = _dk2(A, Id, k2)
     Ns = _nstar(A, k2)
-    sd, cd = math.sin(_real(delta, "delta")), math.cos(delta)
-    lam = _real(lam, "lam")
+    sd, cd = math.sin(real(delta, "delta")), math.cos(delta)
+    lam = real(lam, "lam")
     w2 = omega0 * omega0
     if nu is None:
         ddelta = 0.0
@@ -141,9 +141,9 @@ def precession_rate(body: Body, G: float, k2: float, delta: float, *, kind: str 
     _check_body(body)
     _check_kind(kind)
     orb = _as_orbit(orbit)
-    return 0.75 * omega0**2 * orb.mean_factor * _nstar(_labels(body, kind), _real(k2, "k2")) * math.cos(
+    return 0.75 * omega0**2 * orb.mean_factor * _nstar(_labels(body, kind), real(k2, "k2")) * math.cos(
         delta
-    ) / _real(G, "G")
+    ) / real(G, "G")
 
 
 def _slow_msg(r: float) -> str:
@@ -152,7 +152,7 @@ def _slow_msg(r: float) -> str:
 
 
 def _check_spin(A: tuple[float, float, float], G0: float, k2_0: float, eps: float, r: float) -> None:
-    r = _real(r, "min_spin_ratio")
+    r = real(r, "min_spin_ratio")
     if eps > 0 and r > 0 and _nut_freq(A, G0, k2_0) / eps <= r:
         raise ValueError(
             f"eps = {eps:g} is too large for this state: the Euler-Poinsot frequency over the orbital rate is "
@@ -221,18 +221,18 @@ def _finish(
 def _validate_common(body: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any,
                      tau_span: Any, nu0: Any) -> tuple[float, float, float, float, float, float]:
     _check_body(body)
-    eps = _real(eps, "eps")
+    eps = real(eps, "eps")
     if eps < 0:
         raise ValueError(f"eps must be >= 0 (eps = omega0/omega), got {eps}")
-    G0 = _real(G0, "G0")
+    G0 = real(G0, "G0")
     if G0 <= 0:
         raise ValueError(f"G0 must be positive, got {G0}")
-    k2_0 = _real(k2_0, "k2_0")
+    k2_0 = real(k2_0, "k2_0")
     if not (0.0 <= k2_0 < 1.0):
         raise ValueError(f"k2_0 must lie in [0, 1) (k2 = 1 is the separatrix), got {k2_0}")
-    delta0 = _real(delta0, "delta0")
-    lam0 = _real(lam0, "lam0")
-    nu0 = _real(nu0, "nu0")
+    delta0 = real(delta0, "delta0")
+    lam0 = real(lam0, "lam0")
+    nu0 = real(nu0, "nu0")
     if len(tau_span) != 2:
         raise ValueError(f"tau_span must be a pair (tau0, tau1), got {tau_span!r}")
     return eps, G0, k2_0, delta0, lam0, nu0
@@ -315,7 +315,7 @@ def averaged(
     orb = _as_orbit(orbit)
     drag = as_drag(I)
     A, Id = _labels(body, kind, drag.diag)
-    k2_max = _real(k2_max, "k2_max")
+    k2_max = real(k2_max, "k2_max")
     if not (k2_0 < k2_max <= 1.0):
         raise ValueError(f"k2_max must lie in (k2_0, 1], got {k2_max}")
     _check_spin(A, G0, k2_0, eps, min_spin_ratio)

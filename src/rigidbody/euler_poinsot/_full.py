@@ -31,8 +31,9 @@ import numpy as np
 
 from ..core import euler
 from ..core.ode import Event, Solution, integrate
+from ..core.validate import real
 from ._averaged import _check_spin, _finish, _slow_msg, _validate_common
-from ._model import Body, Orbit, _as_orbit, _check_kind, _nut_freq, _real, as_drag
+from ._model import Body, Orbit, _as_orbit, _check_kind, _nut_freq, as_drag
 from ._motion import EulerPoinsot
 
 __all__ = ["initial_state", "simulate"]
@@ -133,7 +134,7 @@ def simulate(
         raise ValueError(f"formulation must be 'body' or 'angles', got {formulation!r}")
     orb = _as_orbit(orbit)
     Im = as_drag(I).I
-    k2_max = _real(k2_max, "k2_max")
+    k2_max = real(k2_max, "k2_max")
     if not (k2_0 < k2_max <= 1.0):
         raise ValueError(f"k2_max must lie in (k2_0, 1], got {k2_max}")
     A1, A2, A3 = body.A1, body.A2, body.A3

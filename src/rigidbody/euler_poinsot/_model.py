@@ -25,11 +25,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from numbers import Real
 from typing import Any
 
 import numpy as np
 from scipy import special
+
+from ..core.validate import real
 
 __all__ = [
     "KINDS",
@@ -54,15 +55,6 @@ KINDS = ("max", "min")
 def _check_kind(kind: str) -> None:
     if kind not in KINDS:
         raise ValueError(f"kind must be 'max' (rotation about the axis of A1) or 'min' (about A3), got {kind!r}")
-
-
-def _real(x: Any, name: str) -> float:
-    if isinstance(x, bool) or not isinstance(x, (Real, np.floating, np.integer)):
-        raise TypeError(f"{name} must be a real number, got {type(x).__name__}")
-    v = float(x)
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {v!r}")
-    return v
 
 
 @dataclass(frozen=True)
@@ -91,7 +83,7 @@ class Body:
     A3: float
 
     def __post_init__(self) -> None:
-        vals = [_real(getattr(self, n), n) for n in ("A1", "A2", "A3")]
+        vals = [real(getattr(self, n), n) for n in ("A1", "A2", "A3")]
         for n, v in zip(("A1", "A2", "A3"), vals):
             object.__setattr__(self, n, v)
             if v <= 0.0:
@@ -197,7 +189,7 @@ class Orbit:
     e: float = 0.0
 
     def __post_init__(self) -> None:
-        e = _real(self.e, "e")
+        e = real(self.e, "e")
         if not (0.0 <= e < 1.0):
             raise ValueError(f"e (eccentricity) must lie in [0, 1), got {e!r}")
         object.__setattr__(self, "e", e)
@@ -346,7 +338,7 @@ def T_from(body: Body, G: Any, k2: Any, kind: str = "max") -> Any:
 
 def kind_of(body: Body, G: float, T: float) -> str:
     """'max', 'min' or 'separatrix' for a state (G, T) (compares :math:`G^2` with :math:`2TA_2`)."""
-    D = _real(G, "G") ** 2 / (2.0 * _real(T, "T"))
+    D = real(G, "G") ** 2 / (2.0 * real(T, "T"))
     if D > body.A2:
         return "max"
     if D < body.A2:
@@ -408,7 +400,7 @@ def dk2_dtau(body: Body, I: Any, k2: float, kind: str = "max") -> float:
     :math:`O(k^2)`). For ``kind='min'`` the labels 1 and 3 are exchanged.
     """
     _check_kind(kind)
-    k2f = _real(k2, "k2")
+    k2f = real(k2, "k2")
     if not (0.0 <= k2f <= 1.0):
         raise ValueError(f"k2 must lie in [0, 1], got {k2f}")
     A, Id = _labels(body, kind, as_drag(I).diag)
@@ -449,7 +441,7 @@ def drag_rates(body: Body, I: Any, G: float, k2: float, kind: str = "max") -> tu
     """
     _check_kind(kind)
     A, Id = _labels(body, kind, as_drag(I).diag)
-    G, k2 = _real(G, "G"), _real(k2, "k2")
+    G, k2 = real(G, "G"), real(k2, "k2")
     if G <= 0 or not (0.0 <= k2 <= 1.0):
         raise ValueError(f"need G > 0 and k2 in [0, 1], got G={G}, k2={k2}")
     return _drag_rates(A, Id, G, k2)
@@ -529,7 +521,7 @@ def spin_ratio(body: Body, eps: float, G: float, k2: float, kind: str = "max") -
     integrators stop when it falls to ``min_spin_ratio``.
     """
     _check_kind(kind)
-    eps = _real(eps, "eps")
+    eps = real(eps, "eps")
     if eps <= 0:
         raise ValueError("eps must be positive")
-    return _nut_freq(_labels(body, kind), _real(G, "G"), _real(k2, "k2")) / eps
+    return _nut_freq(_labels(body, kind), real(G, "G"), real(k2, "k2")) / eps

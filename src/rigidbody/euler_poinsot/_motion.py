@@ -37,7 +37,8 @@ import numpy as np
 from ..core import averaging as avg
 from ..core import elliptic as ell
 from ..core import euler
-from ._model import Body, T_from, _check_kind, _real, k2_from
+from ..core.validate import real
+from ._model import Body, T_from, _check_kind, k2_from
 
 __all__ = ["EulerPoinsot"]
 
@@ -80,11 +81,11 @@ class EulerPoinsot:
         if not isinstance(self.body, Body):
             raise TypeError(f"body must be a Body, got {type(self.body).__name__}")
         _check_kind(self.kind)
-        G = _real(self.G, "G")
+        G = real(self.G, "G")
         if G <= 0:
             raise ValueError(f"G must be positive, got {G}")
-        k2 = _real(self.k2, "k2")
-        mc = 1.0 - k2 if self.mc is None else _real(self.mc, "mc")
+        k2 = real(self.k2, "k2")
+        mc = 1.0 - k2 if self.mc is None else real(self.mc, "mc")
         if not (0.0 <= k2 <= 1.0):
             raise ValueError(f"k2 must lie in [0, 1), got {k2}")
         if mc <= 0.0:

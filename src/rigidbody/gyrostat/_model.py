@@ -3,32 +3,15 @@
 from __future__ import annotations
 
 import math
-import numbers
 from dataclasses import dataclass
+
+from ..core.validate import positive, real
 
 __all__ = ["GyrostatWarning", "Satellite"]
 
 
 class GyrostatWarning(UserWarning):
     """Raised (as a warning) near the singular places of the stationary family or of its chart."""
-
-
-def _positive(name: str, value: float) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} must be a real number; got {type(value).__name__}")
-    v = float(value)
-    if not math.isfinite(v) or v <= 0.0:
-        raise ValueError(f"{name} must be finite and > 0; got {value!r}")
-    return v
-
-
-def _finite(name: str, value: float) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} must be a real number; got {type(value).__name__}")
-    v = float(value)
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite; got {value!r}")
-    return v
 
 
 @dataclass(frozen=True)
@@ -65,9 +48,9 @@ class Satellite:
 
     def __post_init__(self) -> None:
         for name in ("M", "A1", "A2", "A3", "mu"):
-            object.__setattr__(self, name, _positive(name, getattr(self, name)))
+            object.__setattr__(self, name, positive(getattr(self, name), name))
         for name in ("k1", "k2", "k3"):
-            object.__setattr__(self, name, _finite(name, getattr(self, name)))
+            object.__setattr__(self, name, real(getattr(self, name), name))
         A = (self.A1, self.A2, self.A3)
         for i, name in enumerate(("A1", "A2", "A3")):
             others = A[(i + 1) % 3] + A[(i + 2) % 3]

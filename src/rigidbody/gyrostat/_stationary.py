@@ -9,7 +9,8 @@ from typing import Any
 
 import numpy as np
 
-from ._model import GyrostatWarning, Satellite, _finite, _positive
+from ..core.validate import positive, real
+from ._model import GyrostatWarning, Satellite
 
 __all__ = ["StationaryMotion", "stationary_motion"]
 
@@ -184,16 +185,16 @@ def stationary_motion(
         raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
     if sat.k1 != 0.0:
         raise ValueError(f"the family (2.3) requires k1 = 0; sat.k1 = {sat.k1!r}")
-    R0 = _positive("R0", R0)
-    theta0 = float(_wrap(_finite("theta0", theta0)))
+    R0 = positive(R0, "R0")
+    theta0 = float(_wrap(real(theta0, "theta0")))
     if omega_sign not in (1, -1):
         raise ValueError(f"omega_sign must be +1 or -1; got {omega_sign!r}")
     if (k2 is None) == (k3 is None):
         raise TypeError("give exactly one of k2 and k3 (the other is computed from (2.4))")
     if k2 is not None:
-        k2 = _finite("k2", k2)
+        k2 = real(k2, "k2")
     if k3 is not None:
-        k3 = _finite("k3", k3)
+        k3 = real(k3, "k3")
     f = family_arrays(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, theta0, k2=k2, k3=k3, omega_sign=omega_sign)
     if not f["n2"] > 0:
         raise ValueError(

@@ -11,7 +11,8 @@ from typing import Any
 import numpy as np
 
 from ..core.quadform import inertia, leading_minors
-from ._model import GyrostatWarning, Satellite, _finite, _positive
+from ..core.validate import positive, real
+from ._model import GyrostatWarning, Satellite
 from ._stability import VERDICTS, _verdict_codes
 from ._stationary import SINGULAR_TOL, _wrap
 
@@ -212,8 +213,8 @@ def symmetric_stationary_motion(
         (``omega0^2 cos^2 kappa0 <= 0``).
     """
     _check_symmetric(sat)
-    R0 = _positive("R0", R0)
-    theta0 = float(_wrap(_finite("theta0", theta0)))
+    R0 = positive(R0, "R0")
+    theta0 = float(_wrap(real(theta0, "theta0")))
     if omega_sign not in (1, -1):
         raise ValueError(f"omega_sign must be +1 or -1; got {omega_sign!r}")
     if math.sin(theta0) == 0.0:

@@ -9,6 +9,7 @@ import numpy as np
 
 from ..core import euler as _euler
 from ..core.ode import Event, Solution, integrate
+from ..core.validate import positive, span
 from ._averaging import (
     V_matrix,
     averaged_slow_rates,
@@ -20,23 +21,6 @@ from ._torques import LinearDrag, Torque, check_torque
 __all__ = ["averaged", "simulate"]
 
 _CHARTS = ("auto", "u", "GHr")
-
-
-def _check_span(span: Any, name: str) -> tuple[float, float]:
-    try:
-        a, b = (float(x) for x in span)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a pair of finite numbers (start, end), got {span!r}") from None
-    if not (math.isfinite(a) and math.isfinite(b)) or b < a:
-        raise ValueError(f"{name} must be finite with end >= start, got {span!r}")
-    return a, b
-
-
-def _check_positive(x: Any, name: str) -> float:
-    xf = float(x)
-    if not math.isfinite(xf) or xf <= 0.0:
-        raise ValueError(f"{name} must be finite and > 0, got {x!r}")
-    return xf
 
 
 def _s13(u1: float, u2: float, u3: float) -> float:
@@ -121,11 +105,11 @@ def averaged(
     """
     top = _check_top(top)
     torque = check_torque(torque)
-    t0, t1 = _check_span(tau_span, "tau_span")
+    t0, t1 = span(tau_span, "tau_span")
     if chart not in _CHARTS:
         raise ValueError(f"chart must be one of {_CHARTS}, got {chart!r}")
-    degenerate_tol = _check_positive(degenerate_tol, "degenerate_tol")
-    switch_tol = _check_positive(switch_tol, "switch_tol")
+    degenerate_tol = positive(degenerate_tol, "degenerate_tol")
+    switch_tol = positive(switch_tol, "switch_tol")
     try:
         Gz0, H0, r0 = (float(x) for x in initial)
     except (TypeError, ValueError):
@@ -390,7 +374,7 @@ def simulate(
     eps = float(eps)
     if not math.isfinite(eps) or eps < 0.0:
         raise ValueError(f"eps must be finite and >= 0, got {eps!r}")
-    t0, t1 = _check_span(t_span, "t_span")
+    t0, t1 = span(t_span, "t_span")
     try:
         p0, q0, r0, phi0, th0, psi0 = (float(x) for x in state0)
     except (TypeError, ValueError):

@@ -7,18 +7,11 @@ import numbers
 from dataclasses import dataclass
 from typing import Literal
 
+from ..core.validate import positive
+
 __all__ = ["Body", "Medium", "ball_and_rod", "decay_rates", "regime"]
 
 Regime = Literal["contracting", "unwinding", "circle"]
-
-
-def _positive(value: float, name: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
-    value = float(value)
-    if not math.isfinite(value) or value <= 0.0:
-        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    return value
 
 
 @dataclass(frozen=True)
@@ -38,8 +31,8 @@ class Body:
     theta3: float
 
     def __post_init__(self) -> None:
-        t12 = _positive(self.theta12, "theta12")
-        t3 = _positive(self.theta3, "theta3")
+        t12 = positive(self.theta12, "theta12")
+        t3 = positive(self.theta3, "theta3")
         if t3 > 2.0 * t12 * (1.0 + 1e-14):
             raise ValueError(
                 f"theta3 must satisfy theta3 <= 2*theta12 (triangle inequality), got theta3={t3!r}, "
@@ -65,8 +58,8 @@ class Medium:
     B3: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "B12", _positive(self.B12, "B12"))
-        object.__setattr__(self, "B3", _positive(self.B3, "B3"))
+        object.__setattr__(self, "B12", positive(self.B12, "B12"))
+        object.__setattr__(self, "B3", positive(self.B3, "B3"))
 
 
 def _check(body: Body, medium: Medium) -> None:
@@ -156,11 +149,11 @@ def ball_and_rod(
     N = int(N)
     if N < 3:
         raise ValueError(f"N must be >= 3 (N balls on a circle; N = 2 is not axisymmetric), got {N}")
-    a = _positive(a, "a")
+    a = positive(a, "a")
     if not (isinstance(b, numbers.Real) and math.isfinite(b) and b >= 0):
         raise ValueError(f"b must be finite and >= 0, got {b!r}")
-    beta = _positive(beta, "beta")
-    m = _positive(mass, "mass")
+    beta = positive(beta, "beta")
+    m = positive(mass, "mass")
     for name, val in (("ball_radius", ball_radius), ("rod_mass", rod_mass), ("spoke_mass", spoke_mass)):
         if not (isinstance(val, numbers.Real) and math.isfinite(val) and val >= 0):
             raise ValueError(f"{name} must be finite and >= 0, got {val!r}")

@@ -1,0 +1,52 @@
+"""Validation of scalar user input, shared by all modules.
+
+Every public function of the library rejects bad input with a ``TypeError`` (not a real number) or a
+``ValueError`` (NaN, infinite, out of range) whose message names the parameter and the allowed range.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from typing import Any
+
+import numpy as np
+
+__all__ = ["positive", "real", "span"]
+
+
+def real(value: Any, name: str) -> float:
+    """Return ``value`` as a finite float.
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not a real number (``bool`` is rejected too).
+    ValueError
+        If ``value`` is NaN or infinite.
+    """
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
+        raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
+    v = float(value)
+    if not math.isfinite(v):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return v
+
+
+def positive(value: Any, name: str) -> float:
+    """Return ``value`` as a finite float > 0 (``TypeError``/``ValueError`` naming ``name`` otherwise)."""
+    v = real(value, name)
+    if v <= 0.0:
+        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    return v
+
+
+def span(value: Any, name: str) -> tuple[float, float]:
+    """Return an integration span ``(start, end)`` of finite floats with ``end >= start``."""
+    try:
+        a, b = (float(x) for x in value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a pair of finite numbers (start, end), got {value!r}") from None
+    if not (math.isfinite(a) and math.isfinite(b)) or b < a:
+        raise ValueError(f"{name} must be finite with end >= start, got {value!r}")
+    return a, b
