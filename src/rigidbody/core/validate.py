@@ -35,8 +35,10 @@ def real(value: Any, name: str) -> float:
 
 def positive(value: Any, name: str) -> float:
     """Return ``value`` as a finite float > 0 (``TypeError``/``ValueError`` naming ``name`` otherwise)."""
-    v = real(value, name)
-    if v <= 0.0:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
+        raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
+    v = float(value)
+    if not (math.isfinite(v) and v > 0.0):
         raise ValueError(f"{name} must be finite and > 0, got {value!r}")
     return v
 
