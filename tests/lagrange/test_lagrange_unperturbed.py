@@ -23,6 +23,33 @@ def test_top_rejects_bad_parameters(kw):
         L.Top(**kw)
 
 
+def test_top_rejects_bodies_violating_the_triangle_inequality():
+    # 2A - C = 2 * integral of z^2 dm >= 0 for any real body (moments about any point on the axis)
+    with pytest.raises(ValueError, match=r"Top\.C must satisfy C <= 2A"):
+        L.Top(A=1.0, C=2.5, mgl=1.0)
+    assert L.Top(A=1.0, C=2.0, mgl=1.0).C == 2.0  # the limiting flat body is still accepted
+
+
+def test_maps_reject_non_finite_input():
+    with pytest.raises(ValueError, match="finite"):
+        L.from_roots(TOP, math.nan, 0.5, 2.0)
+    with pytest.raises(ValueError, match="finite"):
+        L.from_roots(TOP, np.array([0.1, math.nan]), 0.5, 2.0)
+    with pytest.raises(ValueError, match="theta must be finite"):
+        L.integrals(TOP, 0.1, 0.2, 1.0, 0.3, math.inf)
+
+
+def test_singular_formulas_reject_coincident_roots():
+    # (2.13) and (3.4) divide by (u_i - u_j): regular precession / separatrix must not give inf or nan
+    for u in [(0.3, 0.3, 2.0), (0.3, 1.0, 1.0)]:
+        with pytest.raises(ValueError, match="distinct roots"):
+            L.V_matrix(TOP, *u, 1.0, 1.0)
+        with pytest.raises(ValueError, match="distinct roots"):
+            L.drag_rhs(TOP, L.LinearDrag(0.1, 0.1), *u)
+        with pytest.raises(ValueError, match="distinct roots"):
+            L.drag_rhs(TOP, L.LinearDrag(0.1, 0.1), np.array([0.1, u[0]]), np.array([0.5, u[1]]), u[2])
+
+
 def test_top_rejects_non_numbers():
     with pytest.raises(TypeError, match=r"Top\.A"):
         L.Top(A="1", C=1, mgl=1)

@@ -112,7 +112,14 @@ def V_matrix(top: Top, u1: Any, u2: Any, u3: Any, Gz: Any, r: Any) -> np.ndarray
     -------
     numpy.ndarray
         Shape ``(3, 3, ...)``.
+
+    Raises
+    ------
+    ValueError
+        Unless ``u1 < u2 < u3`` (the determinant of (2.10) vanishes otherwise).
     """
+    top = _check_top(top)
+    _check_roots(u1, u2, u3)
     A, C, mgl = top.A, top.C, top.mgl
     us = [np.asarray(x, dtype=float) for x in (u1, u2, u3)]
     rows = []
@@ -127,8 +134,8 @@ def V_matrix(top: Top, u1: Any, u2: Any, u3: Any, Gz: Any, r: Any) -> np.ndarray
     return np.array(rows, dtype=float)
 
 
-def _check_roots(u1: float, u2: float, u3: float) -> None:
-    if not (u1 < u2 < u3):
+def _check_roots(u1: Any, u2: Any, u3: Any) -> None:
+    if not np.all((np.asarray(u1) < np.asarray(u2)) & (np.asarray(u2) < np.asarray(u3))):
         raise ValueError(
             "the averaged system (2.15) needs distinct roots u1 < u2 < u3 (the determinant of (2.10) is "
             f"(u1-u2)(u1-u3)(u2-u3)); got u1={u1!r}, u2={u2!r}, u3={u3!r}"
@@ -207,12 +214,22 @@ def drag_rhs(
     -------
     numpy.ndarray
         Shape ``(3, ...)``.
+
+    Raises
+    ------
+    ValueError
+        Unless ``u1 < u2 < u3`` (regular precession ``u1 = u2`` and the separatrix ``u2 = u3`` are
+        singular points of (3.4)).
     """
     A, C, mgl = top.A, top.C, top.mgl
     a, b = drag.a, drag.b
     scalar = all(isinstance(x, (float, int)) for x in (u1, u2, u3, delta1, delta2))
-    if not scalar:
+    if scalar:
+        if not (u1 < u2 < u3):
+            _check_roots(u1, u2, u3)
+    else:
         u1, u2, u3 = (np.asarray(x, dtype=float) for x in (u1, u2, u3))
+        _check_roots(u1, u2, u3)
     Gz, H, r = from_roots(top, u1, u2, u3, delta1, delta2)
     _, mc = modulus(u1, u2, u3)
     v = u3 - (u3 - u1) * _ell.E(mc=mc) / _ell.K(mc=mc)

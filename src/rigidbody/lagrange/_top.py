@@ -42,11 +42,19 @@ class Top:
         Weight times the distance from O to the centre of mass, ``mgl > 0`` (the centre of mass
         lies on the positive symmetry axis).
 
+    Raises
+    ------
+    TypeError
+        If a parameter is not a real number.
+    ValueError
+        If a parameter is not finite and positive, or ``C > 2A``.
+
     Notes
     -----
     Units are arbitrary but consistent; the paper's figures use ``A = 1.5, C = 1, mgl = 0.5``.
-    ``C > 2A`` is not excluded here (a rigid body about a fixed point need not satisfy the
-    triangle inequality of central moments).
+    ``C <= 2A`` is required: the moments of inertia of a real body about any point obey the triangle
+    inequality (``2A - C = 2 * integral of z^2 dm >= 0`` on the symmetry axis), so ``C > 2A`` is no
+    rigid body.
     """
 
     A: float
@@ -61,6 +69,11 @@ class Top:
             if not math.isfinite(float(val)) or float(val) <= 0.0:
                 raise ValueError(f"Top.{name} must be finite and > 0, got {val!r}")
             object.__setattr__(self, name, float(val))
+        if self.C > 2.0 * self.A:
+            raise ValueError(
+                f"Top.C must satisfy C <= 2A (triangle inequality of the moments of inertia of a real "
+                f"body), got A={self.A!r}, C={self.C!r}"
+            )
 
 
 def _check_top(top: Any) -> Top:
@@ -92,6 +105,9 @@ def integrals(top: Top, p: Any, q: Any, r: Any, phi: Any, theta: Any) -> tuple[A
     """
     top = _check_top(top)
     p, q, r, phi, theta = (np.asarray(x, dtype=float) for x in (p, q, r, phi, theta))
+    for name, x in zip(("p", "q", "r", "phi", "theta"), (p, q, r, phi, theta)):
+        if not np.all(np.isfinite(x)):
+            raise ValueError(f"{name} must be finite, got {x!r}")
     st, ct = np.sin(theta), np.cos(theta)
     Gz = top.A * st * (p * np.sin(phi) + q * np.cos(phi)) + top.C * r * ct
     H = 0.5 * (top.A * (p * p + q * q) + top.C * r * r) + top.mgl * ct
@@ -315,6 +331,8 @@ def from_roots(
     d1 = _check_delta(delta1, "delta1")
     d2 = _check_delta(delta2, "delta2")
     tol = 1e-12
+    if not (np.all(np.isfinite(u1)) and np.all(np.isfinite(u2)) and np.all(np.isfinite(u3))):
+        raise ValueError(f"u1, u2, u3 must be finite, got u1={u1!r}, u2={u2!r}, u3={u3!r}")
     if np.any(u1 < -1.0 - tol) or np.any(u1 > u2 + tol) or np.any(u2 > 1.0 + tol) or np.any(u3 < 1.0 - tol):
         raise ValueError(
             "roots must satisfy -1 <= u1 <= u2 <= 1 <= u3 (1.5); got "
@@ -344,6 +362,8 @@ def _from_roots_scalar(top: Top, u1: float, u2: float, u3: float, d1: float, d2:
     if d2 not in (1.0, -1.0):
         raise ValueError(f"delta2 must be +1 or -1, got {d2!r}")
     tol = 1e-12
+    if not (math.isfinite(u1) and math.isfinite(u2) and math.isfinite(u3)):
+        raise ValueError(f"u1, u2, u3 must be finite, got u1={u1!r}, u2={u2!r}, u3={u3!r}")
     if u1 < -1.0 - tol or u1 > u2 + tol or u2 > 1.0 + tol or u3 < 1.0 - tol:
         raise ValueError(
             f"roots must satisfy -1 <= u1 <= u2 <= 1 <= u3 (1.5); got u1={u1!r}, u2={u2!r}, u3={u3!r}"
