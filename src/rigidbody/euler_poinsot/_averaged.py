@@ -39,11 +39,12 @@ from typing import Any
 import numpy as np
 
 from ..core.ode import Event, Solution, integrate
-from ..core.validate import real
+from ..core.validate import positive, real, span
 from ._model import (
     Body,
     Orbit,
     _as_orbit,
+    _check_body,
     _check_kind,
     _dk2,
     _drag_rates,
@@ -55,12 +56,6 @@ from ._model import (
 )
 
 __all__ = ["averaged", "averaged_rates", "precession_rate"]
-
-
-def _check_body(body: Any) -> Body:
-    if not isinstance(body, Body):
-        raise TypeError(f"body must be a Body, got {type(body).__name__}")
-    return body
 
 
 def averaged_rates(
@@ -117,11 +112,15 @@ def averaged_rates(
     Ns = _nstar(A, k2)
     sd, cd = math.sin(real(delta, "delta")), math.cos(delta)
     lam = real(lam, "lam")
+    omega0 = real(omega0, "omega0")
+    if omega0 <= 0:
+        raise ValueError(f"omega0 (orbital mean motion) must be positive, got {omega0}")
     w2 = omega0 * omega0
     if nu is None:
         ddelta = 0.0
         dlam = 0.75 * w2 * orb.mean_factor * Ns * cd / G
     else:
+        nu = real(nu, "nu")
         f = orb.factor(nu)
         b2 = math.sin(nu - lam)
         b3 = math.cos(nu - lam) * sd
@@ -141,9 +140,14 @@ def precession_rate(body: Body, G: float, k2: float, delta: float, *, kind: str 
     _check_body(body)
     _check_kind(kind)
     orb = _as_orbit(orbit)
-    return 0.75 * omega0**2 * orb.mean_factor * _nstar(_labels(body, kind), real(k2, "k2")) * math.cos(
-        delta
-    ) / real(G, "G")
+    G, k2, delta, omega0 = real(G, "G"), real(k2, "k2"), real(delta, "delta"), real(omega0, "omega0")
+    if G <= 0:
+        raise ValueError(f"G must be positive, got {G}")
+    if not (0.0 <= k2 <= 1.0):
+        raise ValueError(f"k2 must lie in [0, 1], got {k2}")
+    if omega0 <= 0:
+        raise ValueError(f"omega0 (orbital mean motion) must be positive, got {omega0}")
+    return 0.75 * omega0**2 * orb.mean_factor * _nstar(_labels(body, kind), k2) * math.cos(delta) / G
 
 
 def _slow_msg(r: float) -> str:
@@ -231,11 +235,35 @@ def _validate_common(body: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0:
     if not (0.0 <= k2_0 < 1.0):
         raise ValueError(f"k2_0 must lie in [0, 1) (k2 = 1 is the separatrix), got {k2_0}")
     delta0 = real(delta0, "delta0")
+    if not (0.0 <= delta0 <= math.pi):
+        raise ValueError(f"delta0 (polar angle of G from x3) must lie in [0, pi], got {delta0}")
     lam0 = real(lam0, "lam0")
     nu0 = real(nu0, "nu0")
-    if len(tau_span) != 2:
-        raise ValueError(f"tau_span must be a pair (tau0, tau1), got {tau_span!r}")
+    span(tau_span, "tau_span")
     return eps, G0, k2_0, delta0, lam0, nu0
+
+
+def _check_tau_eval(tau_eval: Any, tau_span: Any) -> None:
+    """tau_eval must be finite, sorted and inside tau_span (points beyond an early stop are dropped)."""
+    if tau_eval is None:
+        return
+    try:
+        te = np.asarray(tau_eval, dtype=float).ravel()
+    except (TypeError, ValueError):
+        raise TypeError(f"tau_eval must be an array of real numbers, got {tau_eval!r}") from None
+    a, b = span(tau_span, "tau_span")
+    if not np.all(np.isfinite(te)):
+        raise ValueError("tau_eval must be finite")
+    if np.any(np.diff(te) < 0):
+        raise ValueError("tau_eval must be sorted (increasing)")
+    if te.size and (te[0] < a or te[-1] > b):
+        raise ValueError(f"tau_eval must lie within tau_span = {tuple(tau_span)!r}, got [{te[0]}, {te[-1]}]")
+
+
+def _check_tol(rtol: Any, atol: Any) -> None:
+    positive(rtol, "rtol")
+    if real(atol, "atol") < 0:
+        raise ValueError(f"atol must be >= 0, got {atol}")
 
 
 def averaged(
@@ -311,13 +339,16 @@ def averaged(
     (True, 0)
     """
     eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)
+    _check_tau_eval(tau_eval, tau_span)
+    _check_tol(rtol, atol)
     _check_kind(kind)
     orb = _as_orbit(orbit)
     drag = as_drag(I)
     A, Id = _labels(body, kind, drag.diag)
     k2_max = real(k2_max, "k2_max")
     if not (k2_0 < k2_max <= 1.0):
-        raise ValueError(f"k2_max must lie in (k2_0, 1], got {k2_max}")
+        raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {k2_max}: "
+                         "raise k2_max or start further from the separatrix")
     _check_spin(A, G0, k2_0, eps, min_spin_ratio)
     circular = orb.e == 0.0
     mf = orb.mean_factor

@@ -32,7 +32,7 @@ import numpy as np
 from ..core import euler
 from ..core.ode import Event, Solution, integrate
 from ..core.validate import real
-from ._averaged import _check_spin, _finish, _slow_msg, _validate_common
+from ._averaged import _check_spin, _check_tau_eval, _check_tol, _finish, _slow_msg, _validate_common
 from ._model import Body, Orbit, _as_orbit, _check_kind, _nut_freq, as_drag
 from ._motion import EulerPoinsot
 
@@ -61,6 +61,7 @@ def initial_state(
         ``g`` (body components of G), ``R`` (body -> Ox_i), ``q`` (its quaternion), ``psi``, ``theta``,
         ``phi`` (Euler angles relative to Oy_i), ``T``.
     """
+    u0, psi0 = real(u0, "u0"), real(psi0, "psi0")
     m = EulerPoinsot(body, G0, k2_0, kind, sigma)
     g = m.g(0.0, u0)
     _, theta, phi = m.angles(0.0, u0)
@@ -127,6 +128,8 @@ def simulate(
         energy of (4).
     """
     eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)
+    _check_tau_eval(tau_eval, tau_span)
+    _check_tol(rtol, atol)
     if eps <= 0:
         raise ValueError("eps must be positive for the full equations (eps = 0 has no fast rotation to resolve)")
     _check_kind(kind)
@@ -136,7 +139,8 @@ def simulate(
     Im = as_drag(I).I
     k2_max = real(k2_max, "k2_max")
     if not (k2_0 < k2_max <= 1.0):
-        raise ValueError(f"k2_max must lie in (k2_0, 1], got {k2_max}")
+        raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {k2_max}: "
+                         "raise k2_max or start further from the separatrix")
     A1, A2, A3 = body.A1, body.A2, body.A3
     Alab = (A1, A2, A3) if kind == "max" else (A3, A2, A1)
     ie2 = 1.0 / (eps * eps)

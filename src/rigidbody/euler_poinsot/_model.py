@@ -53,7 +53,7 @@ KINDS = ("max", "min")
 
 
 def _check_kind(kind: str) -> None:
-    if kind not in KINDS:
+    if not isinstance(kind, str) or kind not in KINDS:
         raise ValueError(f"kind must be 'max' (rotation about the axis of A1) or 'min' (about A3), got {kind!r}")
 
 
@@ -101,6 +101,19 @@ class Body:
     def A(self) -> np.ndarray:
         """The moments as an array ``[A1, A2, A3]``."""
         return np.array([self.A1, self.A2, self.A3])
+
+
+def _check_body(body: Any) -> Body:
+    if not isinstance(body, Body):
+        raise TypeError(f"body must be a Body, got {type(body).__name__}")
+    return body
+
+
+def _float_array(x: Any, name: str) -> np.ndarray:
+    try:
+        return np.asarray(x, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be a real number or an array of them, got {x!r}") from None
 
 
 def _as_matrix(I: Any) -> np.ndarray:
@@ -279,9 +292,10 @@ def k2_from(body: Body, G: Any, T: Any, kind: str = "max") -> Any:
         If :math:`G^2/2T` lies outside :math:`[A_3, A_1]` (no rigid-body state) or on the other side of the
         separatrix :math:`G^2 = 2TA_2` than ``kind`` says (use :func:`kind_of`).
     """
+    _check_body(body)
     _check_kind(kind)
-    G_ = np.asarray(G, dtype=float)
-    T_ = np.asarray(T, dtype=float)
+    G_ = _float_array(G, "G")
+    T_ = _float_array(T, "T")
     if np.any(~np.isfinite(G_)) or np.any(G_ <= 0):
         raise ValueError("G must be positive and finite")
     if np.any(~np.isfinite(T_)) or np.any(T_ <= 0):
@@ -324,9 +338,10 @@ def T_from(body: Body, G: Any, k2: Any, kind: str = "max") -> Any:
     -------
     float or numpy.ndarray
     """
+    _check_body(body)
     _check_kind(kind)
-    G_ = np.asarray(G, dtype=float)
-    k2_ = np.asarray(k2, dtype=float)
+    G_ = _float_array(G, "G")
+    k2_ = _float_array(k2, "k2")
     if np.any(~np.isfinite(G_)) or np.any(G_ <= 0):
         raise ValueError("G must be positive and finite")
     if np.any(~np.isfinite(k2_)) or np.any(k2_ < 0) or np.any(k2_ > 1):
@@ -337,8 +352,22 @@ def T_from(body: Body, G: Any, k2: Any, kind: str = "max") -> Any:
 
 
 def kind_of(body: Body, G: float, T: float) -> str:
-    """'max', 'min' or 'separatrix' for a state (G, T) (compares :math:`G^2` with :math:`2TA_2`)."""
-    D = real(G, "G") ** 2 / (2.0 * real(T, "T"))
+    """'max', 'min' or 'separatrix' for a state (G, T) (compares :math:`G^2` with :math:`2TA_2`).
+
+    Raises
+    ------
+    ValueError
+        If ``G`` or ``T`` is not positive, or :math:`G^2/2T` lies outside :math:`[A_3, A_1]` (no rigid-body
+        state has it).
+    """
+    _check_body(body)
+    G, T = real(G, "G"), real(T, "T")
+    if G <= 0 or T <= 0:
+        raise ValueError(f"G and T must be positive, got G={G}, T={T}")
+    D = G**2 / (2.0 * T)
+    tol = 1e-12 * body.A1
+    if D > body.A1 + tol or D < body.A3 - tol:
+        raise ValueError(f"G**2/(2T) = {D:g} must lie in [A3, A1] = [{body.A3}, {body.A1}] for a rigid body")
     if D > body.A2:
         return "max"
     if D < body.A2:
@@ -360,6 +389,7 @@ def chi(body: Body, I: Any) -> float:
         If :math:`I_{33}A_1 = I_{11}A_3` (then :math:`N = \infty` and :math:`\chi` is undefined; the
         :math:`k^2` equation itself stays finite: use :func:`dk2_dtau`).
     """
+    _check_body(body)
     I11, I22, I33 = as_drag(I).diag
     A1, A2, A3 = body.A1, body.A2, body.A3
     den = (I33 * A1 - I11 * A3) * A2
@@ -370,6 +400,7 @@ def chi(body: Body, I: Any) -> float:
 
 def N_time(body: Body, I: Any) -> float:
     r"""The time scale :math:`N = A_1A_3/(I_{33}A_1 - I_{11}A_3)` of (7) (:math:`\xi = (t-t_*)/N`)."""
+    _check_body(body)
     I11, _, I33 = as_drag(I).diag
     den = I33 * body.A1 - I11 * body.A3
     if den == 0.0:
@@ -399,6 +430,7 @@ def dk2_dtau(body: Body, I: Any, k2: float, kind: str = "max") -> float:
     stays finite when :math:`I_{33}A_1 = I_{11}A_3` and has no 0/0 at :math:`k \to 0` (both terms are
     :math:`O(k^2)`). For ``kind='min'`` the labels 1 and 3 are exchanged.
     """
+    _check_body(body)
     _check_kind(kind)
     k2f = real(k2, "k2")
     if not (0.0 <= k2f <= 1.0):
@@ -439,6 +471,7 @@ def drag_rates(body: Body, I: Any, G: float, k2: float, kind: str = "max") -> tu
     dG, dT : float
         Per unit dimensional time :math:`t` (or per :math:`\tau` with the nondimensional :math:`\tilde I`).
     """
+    _check_body(body)
     _check_kind(kind)
     A, Id = _labels(body, kind, as_drag(I).diag)
     G, k2 = real(G, "G"), real(k2, "k2")
@@ -462,9 +495,10 @@ def N_star(body: Body, k2: Any, kind: str = "max") -> Any:
     :math:`N^* = A_1+A_2+A_3-3\langle J_{GG}\rangle`, where :math:`J_{GG}` is the moment of inertia
     about the direction of :math:`\mathbf G` averaged over the Euler--Poinsot motion.
     """
+    _check_body(body)
     _check_kind(kind)
     A = _labels(body, kind)
-    k2a = np.asarray(k2, dtype=float)
+    k2a = _float_array(k2, "k2")
     if np.any(~np.isfinite(k2a)) or np.any(k2a < 0) or np.any(k2a > 1):
         raise ValueError("k2 must lie in [0, 1]")
     out = np.vectorize(lambda x: _nstar(A, float(x)))(k2a)
@@ -480,13 +514,26 @@ def k2_equilibria(body: Body, I: Any, kind: str = "max", n_grid: int = 2001) -> 
     side has the sign of :math:`-(I_{33}/A_3 - I_{11}/A_1)`: when that is positive, :math:`k^2` reaches the
     separatrix in finite time.
 
+    Parameters
+    ----------
+    body : Body
+    I : array_like or Drag
+        Drag tensor (only its diagonal enters (8)).
+    kind : {'max', 'min'}
+    n_grid : int
+        Points of the uniform grid in :math:`[0, 1]` on which sign changes are bracketed (>= 4); two
+        roots closer than its spacing can be missed.
+
     Returns
     -------
     list of (k2, 'stable' | 'unstable' | 'neutral')
     """
     from scipy.optimize import brentq
 
+    _check_body(body)
     _check_kind(kind)
+    if isinstance(n_grid, (bool, np.bool_)) or not isinstance(n_grid, (int, np.integer)) or n_grid < 4:
+        raise ValueError(f"n_grid must be an integer >= 4 (grid on which roots are bracketed), got {n_grid!r}")
     A, Id = _labels(body, kind, as_drag(I).diag)
     out: list[tuple[float, str]] = []
     slope0 = -(Id[2] / A[2] + Id[1] / A[1] - 2.0 * Id[0] / A[0])
@@ -520,8 +567,14 @@ def spin_ratio(body: Body, eps: float, G: float, k2: float, kind: str = "max") -
     (dimensional use: pass :math:`\omega_0` as ``eps``). The averaging needs this ratio to be large; the
     integrators stop when it falls to ``min_spin_ratio``.
     """
+    _check_body(body)
     _check_kind(kind)
     eps = real(eps, "eps")
     if eps <= 0:
         raise ValueError("eps must be positive")
-    return _nut_freq(_labels(body, kind), real(G, "G"), real(k2, "k2")) / eps
+    G, k2 = real(G, "G"), real(k2, "k2")
+    if G <= 0:
+        raise ValueError(f"G must be positive, got {G}")
+    if not (0.0 <= k2 <= 1.0):
+        raise ValueError(f"k2 must lie in [0, 1], got {k2}")
+    return _nut_freq(_labels(body, kind), G, k2) / eps
