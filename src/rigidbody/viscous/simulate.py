@@ -123,7 +123,9 @@ def simulate(
             dQ = ((t3 - t1) * c * r - b2 * s) / t2
             dlam = c * dP + s * dQ
             dmu = c * dQ - s * dP
-            drho = ((t1 - t2) * p * q / r - B3) / t3 if has_r else 0.0
+            # Euler's third equation divided by r: ((t1 - t2) p q / r - B3)/t3; t1 = t2 for the
+            # axisymmetric body, so the first term vanishes identically (and would be 0/0 once r underflows)
+            drho = -B3 / t3 if has_r else 0.0
             return [
                 -0.5 * (qx * p + qy * q + qz * r),
                 0.5 * (qw * p + qy * r - qz * q),
@@ -142,6 +144,13 @@ def simulate(
 
         def speed(y: np.ndarray) -> np.ndarray:
             return np.exp(y[4]) if has_w else np.zeros_like(y[4])
+
+        def curv(y: np.ndarray) -> np.ndarray | None:
+            # k = (t3/t12) r/|p + iq| from the logarithms: right even when v and Omega both underflow
+            if not (has_w and has_r):
+                return None
+            with np.errstate(over="ignore"):
+                return sr * np.exp(math.log(t3 / t12) + y[6] - y[4])
 
     else:
         y0 = [*q0, *wb0, 0.0]
@@ -165,6 +174,9 @@ def simulate(
         def speed(y: np.ndarray) -> np.ndarray:
             return np.hypot(y[4], y[5])
 
+        def curv(y: np.ndarray) -> np.ndarray | None:
+            return None
+
     def fields(t: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
         q = y[0:4]
         qn = np.linalg.norm(q, axis=0)
@@ -175,8 +187,10 @@ def simulate(
         n_ref = R[:, :, 2].T
         vv = speed(y)
         Om = wb[2]
-        with np.errstate(divide="ignore", invalid="ignore"):
-            k = np.where(vv > 0, t3 / t12 * Om / np.where(vv > 0, vv, 1.0), np.copysign(np.inf, Om))
+        k = curv(y)
+        if k is None:
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                k = np.where(vv > 0, t3 / t12 * Om / np.where(vv > 0, vv, 1.0), np.copysign(np.inf, Om))
         if not (v0 > 0 or Om0 != 0):
             k = np.full_like(vv, np.nan)
         return {
