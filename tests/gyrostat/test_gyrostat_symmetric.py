@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import mpmath
 import numpy as np
@@ -197,3 +198,41 @@ def test_symmetric_hessian_hypothesis(lR, a3, th, sign):
     # float64 chain rule: rounding of O(row-scale) terms, amplified by 1/cos(th + ka) <= 20 through c
     assert np.all(np.abs(H - H_mp) <= 1e-11 * np.sqrt(np.outer(D, D)))
     assert np.all(np.abs(G_mp) < 1e-30)
+
+
+@pytest.mark.parametrize("d", [1e-7, 1e-6, 1e-4])
+def test_si_theta_theta_entry_near_pi_over_2_has_no_cancellation(d):
+    """Real satellite (SI), theta0 = pi/2 - d.  The chain-rule W_thth is a sum of terms ~ mu R0^-3 (A1 - A3)
+    that cancel to O(l^2/R^2 + cos^2 theta0) of them (~1e-17 against terms ~1e-3 here): the float64 chain
+    rule got W_thth wrong by 54 % at d = 1e-7 and called this 'stable' motion 'unstable' (degree 1).  The
+    library uses the cancellation-free form :func:`W_thetatheta_stable`; checked against 50-digit
+    derivatives of W at the motion recomputed at 50 digits."""
+    sat = gyrostat.Satellite(M=1000.0, A1=1200.0, A2=1200.0, A3=800.0, mu=3.986e14)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrostat.GyrostatWarning)  # |cos(theta0 + kappa0)| < 1e-6 at d = 1e-7
+        ms = gyrostat.symmetric_stationary_motion(sat, 7e6, math.pi / 2 - d)
+    H_mp, *_ = _mp_hessian_and_gradient(sat, ms)
+    st = gyrostat.stability(sat, ms)
+    # float64 inputs (theta0 + kappa0, c) carry relative errors ~ eps / cos(theta0 + kappa0) <= 1e-9 here
+    assert abs(st.hessian[2, 2] - H_mp[2, 2]) <= 1e-7 * abs(H_mp[2, 2])
+    # degree of the 50-digit Hessian (its float64 entries are exact to rounding; the (kappa, theta) minor
+    # W_kk W_thth - W_kth^2 is ~0.8 W_kth^2 here, far above that rounding), by extended-precision eigenvalues
+    with mpmath.workdps(DPS):
+        ev = mpmath.eigsy(mpmath.matrix(H_mp.tolist()))[0]
+        degree = sum(1 for e in ev if e < 0)
+    assert degree == 0 and st.degree == degree and st.verdict == "stable"
+    mp = gyrostat.symmetric_stability_map(sat, 7e6, np.array([ms.theta0, 0.5]))
+    if abs(math.cos(ms.theta0 + ms.kappa0)) > 1e-6:
+        assert mp.verdict[0] == st.verdict and mp.degree[0] == st.degree
+    else:  # the map marks the near-singular places of (3.3) invalid (the scalar call warns)
+        assert mp.verdict[0] == "invalid"
+
+
+def test_si_theta0_exactly_pi_over_2_is_not_called_unstable():
+    """At theta0 = pi/2 (x3 along the orbit normal) c is free in (3.3) and the (kappa, theta) block of the
+    second variation is degenerate to float64 resolution (its 50-digit determinant is ~1e-19 of its terms,
+    positive); the old chain-rule W_thth reported degree 1 ('unstable')."""
+    sat = gyrostat.Satellite(M=1000.0, A1=1200.0, A2=1200.0, A3=800.0, mu=3.986e14)
+    with pytest.warns(gyrostat.GyrostatWarning):
+        ms = gyrostat.symmetric_stationary_motion(sat, 7e6, math.pi / 2)
+    assert gyrostat.stability(sat, ms).verdict in ("stable", "undecided")

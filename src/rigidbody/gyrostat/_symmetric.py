@@ -20,6 +20,7 @@ __all__ = [
     "SymmetricMotion",
     "SymmetricStability",
     "SymmetricStabilityMap",
+    "W_thetatheta_stable",
     "gradient_W_sym",
     "hessian_W_sym",
     "symmetric_family_arrays",
@@ -145,7 +146,10 @@ def symmetric_family_arrays(
         n2p = np.where(exists, n2, np.nan)
         kap = np.arctan(1.5 * (A1 - A3) * n0 * s2t / (M * R0**2 * n2p))
         om = np.asarray(omega_sign, dtype=float) * np.sqrt(n2p) / np.cos(kap)
-        sp, cp = np.sin(th + kap), np.cos(th + kap)
+        # sin, cos of theta0 + kappa0 by the addition formulas: cos(th + kap) evaluated after rounding the
+        # sum th + kap loses relative accuracy near theta0 = +-pi/2 (kappa0 ~ 1e-14 in SI units)
+        ck, sk = np.cos(kap), np.sin(kap)
+        sp, cp = st * ck + ct * sk, ct * ck - st * sk
         ok = cp != 0
         c = np.where(ok, (0.5 * A1 * om**2 * 2 * sp * cp + 1.5 * n0 * (A1 - A3) * s2t) / (om * np.where(ok, cp, 1)),
                      np.nan)
@@ -237,6 +241,32 @@ def symmetric_stationary_motion(
     )
 
 
+def W_thetatheta_stable(M: Any, A1: Any, A3: Any, mu: Any, R0: Any, theta0: Any, kappa0: Any, omega0: Any,
+                        c: Any) -> Any:
+    """``d^2 W / d theta^2`` at (3.2) in a form without cancellation (vectorised).
+
+    With ``b = beta3 = sin(theta0 + kappa0)``, ``S10 = M R0^2 cos^2 kappa0 + A1 cos^2(theta0 + kappa0)``:
+    ``W_thth = f_bb cos^2(theta0 + kappa0) - f_b b - U_thth`` with ``f_bb = (c - 2 A1 omega0 b)^2 / S10 +
+    A1 omega0^2``.  Eliminating ``f_b = omega0 (A1 omega0 b - c)`` by the third equation (3.1) (the first
+    relation (3.3)) and using ``cos 2 theta + sin theta cos theta tan(theta + kappa) =
+    (cos^3 theta cos kappa + sin^3 theta sin kappa) / cos(theta + kappa)`` gives
+
+        W_thth = [(c - 2 A1 omega0 b)^2 / S10 + A1 omega0^2] cos^2(theta0 + kappa0)
+                 + 3 mu R0^-3 (A1 - A3) (cos^3 theta0 cos kappa0 + sin^3 theta0 sin kappa0) / cos(theta0 + kappa0).
+
+    The chain-rule value adds terms of order ``mu R0^-3 (A1 - A3)`` that cancel near theta0 = +-pi/2, where
+    the true value is O(l^2/R^2) of them: in SI units float64 kept no correct digit within ~1e-7 of pi/2.
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        M, A1, A3, mu, R0, th, kap, om, c = (
+            np.asarray(v, dtype=float) for v in (M, A1, A3, mu, R0, theta0, kappa0, omega0, c))
+        ct, st, ck, sk = np.cos(th), np.sin(th), np.cos(kap), np.sin(kap)
+        cp, b = ct * ck - st * sk, st * ck + ct * sk
+        S = M * R0**2 * ck**2 + A1 * cp**2
+        return (((c - 2 * A1 * om * b) ** 2 / S + A1 * om**2) * cp**2
+                + 3 * mu / R0**3 * (A1 - A3) * (ct**3 * ck + st**3 * sk) / cp)
+
+
 def W_psipsi_34(sat: Satellite, R0: Any, theta0: Any, kappa0: Any) -> Any:
     """The paper's (3.4): ``3 mu R0^-3 (A1 - A3) sin^2 theta0 cos theta0 cos kappa0 / cos(theta0 + kappa0)``."""
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -251,7 +281,8 @@ class SymmetricStability:
     Attributes
     ----------
     hessian : ndarray (4, 4)
-        Second derivatives of W at (3.2), order (R, kappa, theta, psi).
+        Second derivatives of W at (3.2), order (R, kappa, theta, psi); the theta-theta entry from the
+        cancellation-free :func:`W_thetatheta_stable`, the others by the chain rule.
     minors : ndarray (4,)
         Its leading principal minors.
     W_psipsi : float
@@ -297,6 +328,7 @@ def stability_symmetric(sat: Satellite, m: SymmetricMotion, *, rtol: float = 1e-
         if getattr(sat, name) != getattr(m.satellite, name):
             raise ValueError(f"sat.{name} differs from the satellite the motion was computed for")
     H = hessian_W_sym(sat, m.point, k=m.k, c=m.c)
+    H[2, 2] = W_thetatheta_stable(sat.M, sat.A1, sat.A3, sat.mu, m.R0, m.theta0, m.kappa0, m.omega0, m.c)
     # the psi row/column vanish identically off the diagonal at psi = pi (sin psi = 0)
     H[3, :3] = 0.0
     H[:3, 3] = 0.0
@@ -366,6 +398,9 @@ def symmetric_stability_map(
         _, H = _derivs(P["M"], P["A1"], P["A3"], P["mu"], f["k"], f["c"], P["R0"], f["kappa0"], f["theta0"],
                        np.pi + 0 * f["kappa0"])
     H = np.array(H)
+    with np.errstate(all="ignore"):
+        H[..., 2, 2] = W_thetatheta_stable(P["M"], P["A1"], P["A3"], P["mu"], P["R0"], f["theta0"], f["kappa0"],
+                                           f["omega0"], f["c"])
     H[..., 3, :3] = 0.0  # the psi row decouples at psi = pi (sin psi = 0 analytically)
     H[..., :3, 3] = 0.0
     valid &= np.all(np.isfinite(H), axis=(-1, -2))
