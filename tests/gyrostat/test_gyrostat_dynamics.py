@@ -112,3 +112,29 @@ def test_verdicts_under_perturbation(u, verdict):
         assert dev > 1e-2
     else:
         assert dev < 1e-7
+
+
+@pytest.mark.parametrize(("th", "bounded"), [(0.8, True), (0.3, False)])
+def test_section3_reversed_34_is_not_always_unstable(th, bounded):
+    """Erratum (section 3): "with (3.4) reversed the motion is unstable".  For an oblate body with
+    3 A3 > 4 A1 (here A3 = 1.6 A1, l/R = 1e-3, a real satellite's order) the degree is 2, and the full
+    equations show both outcomes: at theta0 = 0.8 a 1e-8 kick stays bounded (gyroscopic stabilisation), at
+    theta0 = 0.3 it grows to O(1).  So the paper's claim is false there, and 'undecided' is the right verdict."""
+    s = 1e-3**2 * 3 / 3.6
+    sat = gyrostat.Satellite(M=1.0, A1=s, A2=s, A3=1.6 * s)
+    ms = gyrostat.symmetric_stationary_motion(sat, 1.0, th)
+    st = gyrostat.stability(sat, ms)
+    assert not st.paper_condition and st.degree == 2 and st.verdict == "undecided"
+    dy = np.zeros(13)
+    dy[[3, 10, 11]] = 1e-8  # radial velocity and two body rates
+    T = 60 * 2 * math.pi  # 60 orbits
+    sol = gyrostat.simulate(sat, ms, (0, T), dy0=dy, t_eval=np.linspace(0, T, 601))
+    dev = max(np.max(np.abs(sol.gamma[2] - math.cos(th))),
+              np.max(np.abs(sol.beta[2] - math.sin(th + ms.kappa0))))
+    if bounded:
+        # the response is ~5e-7 (50x the kick, the bounded linear oscillation) already in the first orbits
+        # and does not grow: below 1e-6 after 60 orbits means a growth factor < 2, whereas the unstable
+        # case below reaches O(1) within 5 orbits
+        assert dev < 1e-6
+    else:
+        assert dev > 1e-2
