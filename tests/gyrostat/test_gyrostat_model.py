@@ -45,9 +45,32 @@ def test_stationary_motion_argument_errors():
 
 def test_no_motion_for_a_too_large_body():
     # omega0^2 cos^2 kappa0 = mu/R0^3 {1 - 9/(2 M R0^2)[(A2 - A3) sin^2 th + (2 A3 - A1 - A2)/3]} <= 0
-    sat = gyrostat.Satellite(M=1.0, A1=0.12, A2=1.0, A3=0.9)  # 4.5 [...] = 1.06 > 1
+    # a rod along x1 (A2 = A3) of rms radius sqrt(0.705) < R0 = 1: it fits, but 4.5 [...] = 1.035 > 1
+    sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.7, A3=0.7)
     with pytest.raises(ValueError, match="too large"):
         gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.0)
+    assert gyrostat.stability_map(sat, 1.0, np.array([0.3, 1.0]), k2=0.0).verdict.tolist() == ["invalid"] * 2
+
+
+@pytest.mark.parametrize("R0", [0.1, 0.8, 0.8396])  # rms radius sqrt(0.705) = 0.83964
+def test_body_that_does_not_fit_inside_its_orbit_is_rejected(R0):
+    """rms radius sqrt((A1 + A2 + A3)/(2 M)) >= R0: some mass lies at least R0 from G, where the
+    second-order potential of section 2 describes no real body (the old code returned a 'motion' with
+    k3 ~ 1e11 for an SI body of size 1 m at R0 = 0.1 m)."""
+    sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.7, A3=0.7)
+    with pytest.raises(ValueError, match=r"R0 = .* must exceed the rms radius"):
+        gyrostat.stationary_motion(sat, R0, 0.3, k2=0.0)
+    with pytest.raises(ValueError, match="rms radius"):
+        gyrostat.exact_boundaries(sat, R0, np.array([0.3]))
+    with pytest.raises(ValueError, match="rms radius"):
+        gyrostat.normalized_stability_map(sat, R0, np.array([0.3]), np.array([0.1]))
+    assert np.all(gyrostat.stability_map(sat, R0, np.array([0.3, 1.0]), k2=0.0).code == -1)
+    sym = gyrostat.Satellite(M=1.0, A1=0.5, A2=0.5, A3=0.41)  # rms radius sqrt(0.705)
+    with pytest.raises(ValueError, match="rms radius"):
+        gyrostat.symmetric_stationary_motion(sym, R0, 0.3)
+    assert np.all(gyrostat.symmetric_stability_map(sym, R0, np.array([0.3, 1.0])).code == -1)
+    # just outside the rms radius the motion is computed
+    gyrostat.symmetric_stationary_motion(sym, 1.0, 0.3)
 
 
 def test_singular_places():

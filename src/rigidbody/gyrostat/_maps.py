@@ -7,9 +7,10 @@ from typing import Any
 
 import numpy as np
 
+from ..core.validate import positive
 from ._model import Satellite
 from ._stability import VERDICTS, a_matrix, hessian_entries, restricted_conditions, stability_arrays
-from ._stationary import SINGULAR_TOL, family_arrays
+from ._stationary import SINGULAR_TOL, check_fits, family_arrays
 
 __all__ = ["StabilityMap", "exact_boundaries", "normalized_stability_map", "stability_map"]
 
@@ -22,9 +23,10 @@ class StabilityMap:
     may be read-only broadcast views (copy before writing).
 
     ``code``: 0 stable, 1 unstable (odd degree), 2 undecided, -1 invalid (no motion of the family,
-    singular chart, k2 ill-conditioned (|sin(theta0 + kappa0)| <= 1e-6 with k3 given), or a non-physical
-    body); :attr:`verdict` gives the strings.  ``r1, r2, r3`` are the
-    restricted-problem quantities and ``restricted_stable`` their conjunction.
+    singular chart, k2 ill-conditioned (|sin(theta0 + kappa0)| <= 1e-6 with k3 given), a non-physical
+    body, or one that does not fit inside its orbit, ``R0^2 <= (A1 + A2 + A3) / (2 M)``);
+    :attr:`verdict` gives the strings.  ``r1, r2, r3`` are the restricted-problem quantities and
+    ``restricted_stable`` their conjunction.
     """
 
     params: dict[str, np.ndarray]
@@ -136,6 +138,8 @@ def stability_map(
         (M > 0) & (A1 > 0) & (A2 > 0) & (A3 > 0) & (mu > 0) & (Rv > 0)
         & (A1 <= (A2 + A3) * (1 + 1e-12)) & (A2 <= (A1 + A3) * (1 + 1e-12)) & (A3 <= (A1 + A2) * (1 + 1e-12))
     )
+    with np.errstate(all="ignore"):  # the body fits inside its orbit (see _stationary.check_fits)
+        physical = physical & (Rv**2 > (A1 + A2 + A3) / (2 * M))
     with np.errstate(invalid="ignore", divide="ignore"):
         f = family_arrays(M, A1, A2, A3, mu, Rv, arrs["theta0"], k2=arrs.get("k2"), k3=arrs.get("k3"),
                           omega_sign=omega_sign)
@@ -169,6 +173,10 @@ def exact_boundaries(sat: Satellite, R0: float, theta0: Any, *, omega_sign: int 
     -------
     dict with keys ``theta0, s1, k2_s2, k2_s3, r1, k2_r2, k2_r3, theta_r1, omega0`` (NaN where undefined).
     """
+    if not isinstance(sat, Satellite):
+        raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
+    R0 = positive(R0, "R0")
+    check_fits(sat, R0)
     th = np.asarray(theta0, dtype=float)
     f = family_arrays(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, k2=0.0, omega_sign=omega_sign)
     e = hessian_entries(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, f["kappa0"], f["omega0"], 0.0, f["S0"])
@@ -207,6 +215,10 @@ def normalized_stability_map(
         The map has shape ``(len(theta0), len(u))``; ``boundaries`` is :func:`exact_boundaries` with the
         k2-curves divided by ``omega0 Abar`` (keys ``u_s2, u_s3, u_r2, u_r3`` added).
     """
+    if not isinstance(sat, Satellite):
+        raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
+    R0 = positive(R0, "R0")
+    check_fits(sat, R0)
     th = np.asarray(theta0, dtype=float).ravel()
     uu = np.asarray(u, dtype=float).ravel()
     om = family_arrays(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, k2=0.0, omega_sign=omega_sign)["omega0"]

@@ -24,6 +24,22 @@ def _wrap(theta: Any) -> Any:
     return np.where(t == -np.pi, np.pi, t)
 
 
+def check_fits(sat: Satellite, R0: float) -> None:
+    """Reject an orbit radius the body does not fit into.
+
+    The mean square distance of the mass from G is ``(A1 + A2 + A3) / (2 M)``.  If ``R0`` does not exceed
+    its square root, some mass lies at least ``R0`` from G, where the second-order (MacCullagh) potential U
+    of section 2 no longer describes any real body (its expansion about G diverges at O).
+    """
+    r2 = (sat.A1 + sat.A2 + sat.A3) / (2.0 * sat.M)
+    if not R0 * R0 > r2:
+        raise ValueError(
+            f"R0 = {R0!r} must exceed the rms radius sqrt((A1 + A2 + A3)/(2 M)) = {math.sqrt(r2):.6g} of the body: "
+            "otherwise the body does not fit inside its orbit (some mass lies at least R0 from G) and the "
+            "second-order potential U of section 2 does not apply"
+        )
+
+
 def family_arrays(
     M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any,
     k2: Any = None, k3: Any = None, omega_sign: Any = 1,
@@ -171,6 +187,8 @@ def stationary_motion(
     Raises
     ------
     ValueError
+        ``R0`` does not exceed the rms radius ``sqrt((A1 + A2 + A3) / (2 M))`` of the body (it does not fit
+        inside its orbit, see :func:`check_fits`).
         No motion of the family exists: ``omega0^2 cos^2 kappa0 <= 0`` (body too large for R0), the
         denominator ``cos(theta0 + kappa0)`` vanishes when k2 is given, or ``sin(theta0 + kappa0)``
         vanishes when k3 is given (theta0 = 0 or pi: the classical kappa = 0 member, where k3 must be
@@ -186,6 +204,7 @@ def stationary_motion(
     if sat.k1 != 0.0:
         raise ValueError(f"the family (2.3) requires k1 = 0; sat.k1 = {sat.k1!r}")
     R0 = positive(R0, "R0")
+    check_fits(sat, R0)
     theta0 = float(_wrap(real(theta0, "theta0")))
     if omega_sign not in (1, -1):
         raise ValueError(f"omega_sign must be +1 or -1; got {omega_sign!r}")

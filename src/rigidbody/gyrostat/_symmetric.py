@@ -14,7 +14,7 @@ from ..core.quadform import inertia, leading_minors
 from ..core.validate import positive, real
 from ._model import GyrostatWarning, Satellite
 from ._stability import VERDICTS, _verdict_codes
-from ._stationary import SINGULAR_TOL, _wrap
+from ._stationary import SINGULAR_TOL, _wrap, check_fits
 
 __all__ = [
     "SymmetricMotion",
@@ -213,11 +213,13 @@ def symmetric_stationary_motion(
     Raises
     ------
     ValueError
-        Non-symmetric satellite, sin theta0 = 0, cos(theta0 + kappa0) = 0 (c undefined) or no motion
-        (``omega0^2 cos^2 kappa0 <= 0``).
+        Non-symmetric satellite, R0 not above the rms radius of the body (see
+        :func:`rigidbody.gyrostat._stationary.check_fits`), sin theta0 = 0, cos(theta0 + kappa0) = 0
+        (c undefined) or no motion (``omega0^2 cos^2 kappa0 <= 0``).
     """
     _check_symmetric(sat)
     R0 = positive(R0, "R0")
+    check_fits(sat, R0)
     theta0 = float(_wrap(real(theta0, "theta0")))
     if omega_sign not in (1, -1):
         raise ValueError(f"omega_sign must be +1 or -1; got {omega_sign!r}")
@@ -393,6 +395,8 @@ def symmetric_stability_map(
     P = {n: np.broadcast_to(v, shape) for n, v in arrs.items()}
     f = symmetric_family_arrays(P["M"], P["A1"], P["A3"], P["mu"], P["R0"], P["theta0"], omega_sign)
     physical = (P["A3"] > 0) & (P["A1"] > 0) & (P["A3"] <= 2 * P["A1"] * (1 + 1e-12)) & (P["M"] > 0)
+    with np.errstate(all="ignore"):  # the body fits inside its orbit (see check_fits)
+        physical &= (P["mu"] > 0) & (P["R0"] > 0) & (P["R0"] ** 2 > (2 * P["A1"] + P["A3"]) / (2 * P["M"]))
     valid = f["exists"] & physical & (np.abs(f["sin_t"]) > SINGULAR_TOL) & (np.abs(f["cos_tk"]) > SINGULAR_TOL)
     with np.errstate(all="ignore"):
         _, H = _derivs(P["M"], P["A1"], P["A3"], P["mu"], f["k"], f["c"], P["R0"], f["kappa0"], f["theta0"],
