@@ -124,3 +124,36 @@ def test_map_marks_singular_places_invalid_without_warnings():
     b = gyrostat.stability_map(sat, 1.0, th, k3=np.array([0.0, 1e-3]))
     # with k3 given, theta0 = 0, pi (and 1e-300) leave k2 undetermined / ill-conditioned
     assert np.all(b.code[:6] == -1) and np.all(b.code[6] >= 0)
+
+
+def test_map_input_errors_name_the_parameters():
+    sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    th, k2 = np.linspace(-1, 1, 5), np.linspace(-0.01, 0.01, 4)
+    with pytest.raises(ValueError, match=r"theta0 \(5,\), k2 \(4,\)"):
+        gyrostat.stability_map(sat, 1.0, th, k2=k2, grid=False)
+    with pytest.raises(TypeError, match="theta0 must be a real number"):
+        gyrostat.stability_map(sat, 1.0, "a", k2=0.0)
+    assert gyrostat.stability_map(sat, 1.0, np.array([]), k2=k2).code.shape == (0, 4)
+    sym = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.012, A3=0.008)
+    with pytest.raises(ValueError, match=r"theta0 \(2,\), A3 \(3,\)"):
+        gyrostat.symmetric_stability_map(sym, 1.0, np.array([0.2, 0.3]), A3=np.array([0.01, 0.02, 0.03]), grid=False)
+    with pytest.raises(TypeError, match="A3 must be a real number"):
+        gyrostat.symmetric_stability_map(sym, 1.0, np.array([0.2, 0.3]), A3="big")
+
+
+def test_potential_outside_the_domain_of_the_direction_cosines():
+    """beta1^2 + beta3^2 > 1 (or gamma1^2 + gamma2^2 > 1) has no real beta2 (gamma3): a clear error, not a
+    NaN with a RuntimeWarning from sqrt (nor math's 'math domain error', nor a silent mpmath complex)."""
+    import mpmath
+
+    sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008, k2=0.01)
+    for lib in (np, math, mpmath):
+        with pytest.raises(ValueError, match=r"beta1\^2 \+ beta3\^2 must be <= 1"):
+            gyrostat.amended_potential(sat, (1.0, 0.0, 0.8, 0.8, 0.0, 0.0), k=1.0, lam=0.1, lib=lib)
+        with pytest.raises(ValueError, match=r"gamma1\^2 \+ gamma2\^2 must be <= 1"):
+            gyrostat.chi((1.0, 0.0, 0.0, 0.0, 0.8, -0.8), lib=lib)
+    with pytest.raises(ValueError, match="beta1"):
+        gyrostat.gradient_W1(sat, (1.0, 0.0, np.array([0.1, 0.99]), 0.5, 0.0, 0.0), k=1.0, lam=0.1)
+    # complex-step input is not checked (its real part is inside the domain here)
+    z = gyrostat.amended_potential(sat, (1.0, 0.0, 0.1 + 1e-30j, 0.5, 0.0, 0.0), k=1.0, lam=0.1)
+    assert np.isfinite(z.real) and z.imag != 0.0

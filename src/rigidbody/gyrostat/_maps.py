@@ -10,7 +10,7 @@ import numpy as np
 from ..core.validate import positive
 from ._model import Satellite
 from ._stability import VERDICTS, a_matrix, hessian_entries, restricted_conditions, stability_arrays
-from ._stationary import SINGULAR_TOL, check_fits, family_arrays
+from ._stationary import SINGULAR_TOL, broadcast_shape, check_fits, family_arrays, float_arrays
 
 __all__ = ["StabilityMap", "exact_boundaries", "normalized_stability_map", "stability_map"]
 
@@ -122,16 +122,16 @@ def stability_map(
         "M": overrides.get("M", sat.M), "A1": overrides.get("A1", sat.A1), "A2": overrides.get("A2", sat.A2),
         "A3": overrides.get("A3", sat.A3), "mu": overrides.get("mu", sat.mu),
     }
-    arrs = {n: np.asarray(v, dtype=float) for n, v in vals.items() if v is not None}
+    arrs = float_arrays(vals)
     if grid:
-        axes = [n for n in _MAP_ORDER if n in arrs and arrs[n].ndim == 1 and arrs[n].size > 1]
+        axes = [n for n in _MAP_ORDER if n in arrs and arrs[n].ndim == 1 and arrs[n].size != 1]
         if any(arrs[n].ndim > 1 for n in arrs):
             raise ValueError("with grid=True pass 1-D arrays (or use grid=False and broadcastable arrays)")
         # sparse: trigonometry runs on the 1-D axes, broadcasting does the rest
         mesh = np.meshgrid(*[arrs[n] for n in axes], indexing="ij", sparse=True) if axes else []
         for n, m in zip(axes, mesh):
             arrs[n] = m
-    shape = np.broadcast(*arrs.values()).shape
+    shape = broadcast_shape(arrs)
     P = {n: np.broadcast_to(v, shape) for n, v in arrs.items()}
     M, A1, A2, A3, mu, Rv = arrs["M"], arrs["A1"], arrs["A2"], arrs["A3"], arrs["mu"], arrs["R0"]
     physical = (

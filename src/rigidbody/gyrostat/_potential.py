@@ -29,11 +29,27 @@ def _check_branch(branch: tuple[int, int]) -> tuple[int, int]:
     return int(b2), int(b3)
 
 
+def _check_domain(q: Any, name: str) -> None:
+    """Real direction cosines need ``q = 1 - (sum of two squares) >= 0`` (complex/mpc input: not checked)."""
+    a = np.asarray(q)
+    if np.iscomplexobj(a):
+        return
+    try:
+        bad = any(v < 0 for v in a.ravel()) if a.dtype == object else bool(np.any(a < 0))
+    except TypeError:  # mpmath.mpc and the like (complex-step routes)
+        return
+    if bad:
+        raise ValueError(f"{name} must be <= 1 (direction cosines): the point is outside the domain of W")
+
+
 def _dependent(x: Any, branch: tuple[int, int], lib: ModuleType) -> tuple[Any, Any]:
     b2s, g3s = _check_branch(branch)
     _, _, b1, b3, g1, g2 = x
-    beta2 = b2s * lib.sqrt(1 - b1 * b1 - b3 * b3)
-    gamma3 = g3s * lib.sqrt(1 - g1 * g1 - g2 * g2)
+    qb, qg = 1 - b1 * b1 - b3 * b3, 1 - g1 * g1 - g2 * g2
+    _check_domain(qb, "beta1^2 + beta3^2")
+    _check_domain(qg, "gamma1^2 + gamma2^2")
+    beta2 = b2s * lib.sqrt(qb)
+    gamma3 = g3s * lib.sqrt(qg)
     return beta2, gamma3
 
 

@@ -24,6 +24,28 @@ def _wrap(theta: Any) -> Any:
     return np.where(t == -np.pi, np.pi, t)
 
 
+def float_arrays(vals: dict[str, Any]) -> dict[str, np.ndarray]:
+    """The map parameters as float arrays (``TypeError`` naming the parameter otherwise); None is dropped."""
+    out = {}
+    for name, v in vals.items():
+        if v is None:
+            continue
+        try:
+            out[name] = np.asarray(v, dtype=float)
+        except (TypeError, ValueError):
+            raise TypeError(f"{name} must be a real number or an array of real numbers; got {v!r}") from None
+    return out
+
+
+def broadcast_shape(arrs: dict[str, np.ndarray]) -> tuple[int, ...]:
+    """Common shape of the map parameters (``ValueError`` listing their shapes if they do not broadcast)."""
+    try:
+        return np.broadcast(*arrs.values()).shape
+    except ValueError:
+        shapes = ", ".join(f"{n} {a.shape}" for n, a in arrs.items() if a.ndim)
+        raise ValueError(f"the parameter arrays do not broadcast together: {shapes}") from None
+
+
 def check_fits(sat: Satellite, R0: float) -> None:
     """Reject an orbit radius the body does not fit into.
 

@@ -14,7 +14,7 @@ from ..core.quadform import inertia, leading_minors
 from ..core.validate import positive, real
 from ._model import GyrostatWarning, Satellite
 from ._stability import VERDICTS, _verdict_codes
-from ._stationary import SINGULAR_TOL, _wrap, check_fits
+from ._stationary import SINGULAR_TOL, _wrap, broadcast_shape, check_fits, float_arrays
 
 __all__ = [
     "SymmetricMotion",
@@ -386,12 +386,12 @@ def symmetric_stability_map(
         raise TypeError(f"unknown parameter(s) {sorted(bad)}; overridable: M, A1, A3, mu")
     vals = {"theta0": theta0, "R0": R0, "M": overrides.get("M", sat.M), "A1": overrides.get("A1", sat.A1),
             "A3": overrides.get("A3", sat.A3), "mu": overrides.get("mu", sat.mu)}
-    arrs = {n: np.asarray(v, dtype=float) for n, v in vals.items()}
+    arrs = float_arrays(vals)
     if grid:
-        axes = [n for n in arrs if arrs[n].ndim == 1 and arrs[n].size > 1]
+        axes = [n for n in arrs if arrs[n].ndim == 1 and arrs[n].size != 1]
         for n, m in zip(axes, np.meshgrid(*[arrs[n] for n in axes], indexing="ij")):
             arrs[n] = m
-    shape = np.broadcast(*arrs.values()).shape
+    shape = broadcast_shape(arrs)
     P = {n: np.broadcast_to(v, shape) for n, v in arrs.items()}
     f = symmetric_family_arrays(P["M"], P["A1"], P["A3"], P["mu"], P["R0"], P["theta0"], omega_sign)
     physical = (P["A3"] > 0) & (P["A1"] > 0) & (P["A3"] <= 2 * P["A1"] * (1 + 1e-12)) & (P["M"] > 0)
