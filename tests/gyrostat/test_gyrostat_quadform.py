@@ -79,3 +79,20 @@ def test_fd_hessian_and_complex_step_gradient():
     assert np.allclose(qf.hessian_fd(f, x, 1e-2), H_ref, atol=1e-9)
     g_ref = np.array([3 * x[0] ** 2 * x[1] + np.sin(x[2]), x[0] ** 3 + x[2] * e, np.cos(x[2]) * x[0] + x[1] * e])
     assert np.allclose(qf.gradient_cs(f, x), g_ref, rtol=1e-15, atol=1e-15)
+
+
+@pytest.mark.parametrize("lam", [[1e-6, 1, 2, -3, 5], [-1e-6, 1, 2, 3, 4], [1e-6, -1e-6, 1, 1, 1],
+                                 [1e-4, -2, 1, 1, -1]])
+def test_inertia_survives_twenty_decades_of_scaling(lam):
+    """H = D A D with D spanning 1e-10..1e10 (the SI situation) has the inertia of A (Sylvester's law),
+    including an eigenvalue of A of 1e-6 relative.  A raw eigvalsh of H cannot resolve it (its absolute
+    error eps * |H| ~ 1e4 dwarfs the small eigenvalues: it reports 0 negative ones for the second case)."""
+    rng = np.random.default_rng(4)
+    A, lam = _random_sym(rng, 5, lam)
+    d = 10.0 ** rng.permutation(np.linspace(-10, 10, 5))
+    H = A * d[:, None] * d[None, :]
+    expect = (int(np.sum(lam > 0)), int(np.sum(lam < 0)), 0)
+    assert tuple(int(x) for x in qf.inertia(H)) == expect
+    # the same through the vectorised path (a stack with a well-scaled matrix of other inertia)
+    n_pos, n_neg, n_zero = qf.inertia(np.stack([H, np.eye(5)]))
+    assert (int(n_pos[0]), int(n_neg[0]), int(n_zero[0])) == expect and int(n_neg[1]) == 0
