@@ -215,3 +215,29 @@ def test_si_degree_next_to_a_boundary_matches_extended_precision(rel, side):
         n_neg = sum(1 for e in ev if e < 0)
     assert st.degree == n_neg
     assert st.verdict == ("unstable" if n_neg % 2 else "undecided")
+
+
+@pytest.mark.parametrize("key", ["k2_s2", "k2_s3"])
+@pytest.mark.parametrize("side", [1, -1])
+def test_si_degree_at_1e8_from_a_boundary_against_a_50_digit_pipeline(key, side):
+    """The whole pipeline (closed-form entries, elimination of delta gamma2, inertia) in SI units, 1e-8
+    (relative in k2) from the boundaries s2 = 0 and s3 = 0, against a route that shares nothing with it but
+    the family: the Hessian of W1 transcribed anew (MPMotion) at the motion recomputed at 50 digits,
+    delta gamma2 eliminated and the eigenvalues taken in mpmath.  (The entries of the Hessian are exact to
+    float64 rounding of themselves; the small eigenvalue is ~1e-8 of its block, far above that.)"""
+    import mpmath
+
+    si = gyrostat.Satellite(M=1000.0, A1=1200.0, A2=1000.0, A3=800.0, mu=3.986e14)
+    th = 0.785
+    kb = float(gyrostat.exact_boundaries(si, 7e6, np.array([th]))[key][0])
+    m = gyrostat.stationary_motion(si, 7e6, th, k2=kb * (1 + side * 1e-8))
+    st = gyrostat.stability(si, m)
+    H = MPMotion(m, given="k2").hessian()
+    with mpmath.workdps(50):
+        T = mpmath.matrix(_elimination_basis(m).tolist())
+        Hc = T.T * mpmath.matrix(H.tolist()) * T
+        n_neg = sum(1 for e in mpmath.eigsy(Hc, eigvals_only=True) if e < 0)
+    assert st.nullity == 0 and st.degree == n_neg
+    # both sides of each boundary are seen, and the degree changes by one across it
+    other = gyrostat.stability(si, gyrostat.stationary_motion(si, 7e6, th, k2=kb * (1 - side * 1e-8)))
+    assert abs(other.degree - st.degree) == 1
