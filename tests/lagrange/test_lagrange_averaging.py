@@ -299,6 +299,47 @@ def test_sleeping_tops():
         L.averaged(TOP, DRAG, L.integrals(TOP, 0.0, 0.0, 1.0, 0.0, 0.0), (0, 5))
 
 
+def test_fast_sleeping_top_slows_down_to_its_stability_limit():
+    # on the sleeping manifold the roots are 1, 1, u* = C^2 r^2/(2 A mgl) - 1 (test_sleeping_top_roots) and
+    # r = r0 exp(-b tau / C) exactly, so the root spread u* - 1 reaches the triple-root threshold 1e-3 at
+    # tau_e = (C/b) ln(r0 / r_e), r_e = sqrt(2 A mgl (2 + 1e-3)) / C. The run must stop there with a clear
+    # status (it used to end with status -1, "Required step size is less than spacing between numbers":
+    # the sqrt(eps) rounding noise of the double root u1 = u2 = 1 stalled the rtol-1e-12 integrator).
+    r0 = 3.0
+    ini = L.integrals(TOP, 0.0, 0.0, r0, 0.0, 0.0)
+    s = L.averaged(TOP, DRAG, ini, (0, 10))
+    assert s.status == 1 and s.event == "triple_root", s.message
+    assert "C^2 r^2 = 4 A mgl" in s.message
+    r_e = math.sqrt(2 * TOP.A * TOP.mgl * (2 + 1e-3)) / TOP.C
+    tau_e = TOP.C / DRAG.b * math.log(r0 / r_e)
+    assert s.tau[-1] == pytest.approx(tau_e, abs=1e-6)  # event location; the spread is smooth in (Gz, H, r)
+    np.testing.assert_allclose(s.Gz, TOP.C * s.r, rtol=1e-9)  # still sleeping: Gz = C r (rtol 1e-12 drift)
+    assert not s.t_events["delta1_flip"].size  # rounding noise of Gz^2 - C^2 r^2 = 0 is no sign change
+    # starting at (or within the threshold of) the triple root is refused
+    with pytest.raises(ValueError, match="triple root"):
+        L.averaged(TOP, DRAG, L.integrals(TOP, 0.0, 0.0, 1.0001 * math.sqrt(3), 0.0, 0.0), (0, 1))
+
+
+def test_non_spinning_top_against_full_equations():
+    # r = 0 (delta2 = sign r at its boundary) with a conical motion: no spurious sign-change events (r and
+    # Gz^2 - C^2 r^2 vanish or stay of one sign identically), r stays 0, and the run agrees with (1.1)
+    state = (0.3, 0.2, 0.0, 0.0, math.radians(60), 0.0)
+    ini = L.integrals(TOP, *state[:5])
+    err = []
+    for eps in (0.02, 0.01):
+        f = L.simulate(TOP, DRAG, eps, state, (0, 5 / eps), rtol=1e-10, atol=1e-12)
+        s = L.averaged(TOP, DRAG, ini, (0, 5), tau_eval=f.tau)
+        assert s.status == 0, s.message
+        assert not s.t_events["delta1_flip"].size and not s.t_events["delta2_flip"].size
+        assert np.all(s.r == 0.0) and np.all(f.r == 0.0)
+        err.append(max(np.abs(f.Gz - s.Gz).max(), np.abs(f.H - s.H).max()))
+    assert err[1] < 0.5 * 0.01  # O(eps) averaging error
+    assert 1.6 < err[0] / err[1] < 2.5, err  # ratio 2 for an O(eps) error; the band allows O(eps^2) terms
+    # the planar pendulum (Gz = r = 0 identically) has no events either
+    p = L.averaged(TOP, DRAG, L.integrals(TOP, 0.0, 0.0, 0.0, 0.0, 1.0), (0, 5))
+    assert p.status == 0 and not p.t_events["delta1_flip"].size and not p.t_events["delta2_flip"].size
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("case_theta", [5, 60, 170])
 def test_paper_cases_long_span_against_full(case_theta):

@@ -13,14 +13,18 @@ trapezoid rule on a uniform grid of the phase ``s`` over ``2K`` (spectrally conv
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
 
 from ..core import averaging as _avg
 from ..core import elliptic as _ell
-from ._top import Top, _check_top, from_roots, roots
+from ._top import Top, _check_top, from_roots, roots, vieta
 from ._torques import LinearDrag, Torque, check_torque
+
+#: width u2 - u1 (relative to max(u3 - u1, 1)) below which a pair of roots of the cubic counts as double
+_NEAR_DOUBLE = 1e-6
 
 __all__ = [
     "V_matrix",
@@ -87,9 +91,26 @@ def averaged_slow_rates(
         The roots of (1.5) if already known (else computed by :func:`roots`).
     n : int, optional
         Trapezoid nodes per nutation period.
+
+    Notes
+    -----
+    When the roots come from the cubic (``u123`` not given) and the pair is nearly double,
+    ``u2 - u1 <= 1e-6 max(u3 - u1, 1)`` (close to a regular precession, e.g. a sleeping top), the mean is
+    ``F`` at the double root, taken as the local maximum ``(s1 - (s1^2 - 3 s2)^{1/2})/3`` of the cubic
+    (1.6): that is smooth in (Gz, H, r), while ``u1, u2`` themselves carry ``sqrt(machine eps)``
+    rounding noise there, which would stall a tight integrator. The error is ``O((u2 - u1)^2)``.
     """
-    u1, u2, u3 = u123 if u123 is not None else roots(top, Gz, H, r)
-    if u2 - u1 <= 0.0:
+    if u123 is None:
+        u1, u2, u3 = roots(top, Gz, H, r)
+        near_double = u2 - u1 <= _NEAR_DOUBLE * max(u3 - u1, 1.0)
+    else:
+        u1, u2, u3 = u123
+        near_double = False
+    if near_double:
+        s1, s2, _ = vieta(top, Gz, H, r)
+        c_lo = (s1 - math.sqrt(max(s1 * s1 - 3.0 * s2, 0.0))) / 3.0
+        u = np.array([min(max(c_lo, -1.0), 1.0)])
+    elif u2 - u1 <= 0.0:
         # regular precession: the nutation is frozen at u = u1 = u2, the mean is the value there
         u = np.array([0.5 * (u1 + u2)])
     else:

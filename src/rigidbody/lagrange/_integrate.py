@@ -15,12 +15,15 @@ from ._averaging import (
     averaged_slow_rates,
     drag_rhs,
 )
-from ._top import Top, _check_top, deltas, from_roots, root_radical, roots
+from ._top import Top, _check_top, deltas, from_roots, root_radical, roots, vieta
 from ._torques import LinearDrag, Torque, check_torque
 
 __all__ = ["averaged", "simulate"]
 
 _CHARTS = ("auto", "u", "GHr")
+#: spread of the three roots below which they count as a triple root u1 = u2 = u3 = 1 (there the roots are
+#: only (machine eps)^(1/3)-conditioned and the nutation period diverges)
+_TRIPLE_TOL = 1e-3
 
 
 def _s13(u1: float, u2: float, u3: float) -> float:
@@ -67,8 +70,10 @@ def averaged(
 
     Degenerate states end the integration with ``status = 1`` and a message: ``u2 - u1 <
     degenerate_tol (u3 - u1)`` (regular precession; the determinant of (2.10) vanishes, event
-    ``'u1_eq_u2'``) and ``u3 - u2 < degenerate_tol (u3 - u1)`` (sleeping top / separatrix, infinite
-    nutation period, event ``'separatrix'``).
+    ``'u1_eq_u2'``), ``u3 - u2 < degenerate_tol (u3 - u1)`` (sleeping top / separatrix, infinite
+    nutation period, event ``'separatrix'``) and, in the ``GHr`` chart, a triple root ``u1 = u2 = u3 = 1``
+    (root spread below 1e-3: a fast sleeping top slowed down to ``C^2 r^2 = 4 A mgl``, event
+    ``'triple_root'``).
 
     Parameters
     ----------
@@ -141,11 +146,10 @@ def averaged(
         return V_matrix(top, u1, u2, u3, Gz, r) @ np.array(Fm)
 
     def rhs_g(tau: float, y: np.ndarray) -> np.ndarray:
-        try:
-            uu = roots(top, float(y[0]), float(y[1]), float(y[2]))
+        try:  # roots from the cubic inside: a nearly double pair is handled smoothly there
+            return np.array(averaged_slow_rates(top, torque, float(y[0]), float(y[1]), float(y[2]), n=n))
         except ValueError:
             return np.full(3, np.nan)
-        return np.array(averaged_slow_rates(top, torque, float(y[0]), float(y[1]), float(y[2]), uu, n=n))
 
     # ---- events ----------------------------------------------------------------------------------
     def ev_deg(tau: float, y: np.ndarray, *a: Any) -> float:
@@ -163,13 +167,25 @@ def averaged(
             u1, u2, u3 = roots(top, float(y[0]), float(y[1]), float(y[2]))
         except ValueError:
             return -1.0
+        if u3 - u1 <= 0.0:
+            return -1.0
         return (u3 - u2) / (u3 - u1) - degenerate_tol
 
+    def ev_triple(tau: float, y: np.ndarray) -> float:
+        # root spread sqrt(s1^2 - 3 s2) = sqrt(((u1-u2)^2 + (u1-u3)^2 + (u2-u3)^2)/2), smooth in (Gz, H, r)
+        s1, s2, _ = vieta(top, float(y[0]), float(y[1]), float(y[2]))
+        return math.sqrt(max(s1 * s1 - 3.0 * s2, 0.0)) - _TRIPLE_TOL
+
+    # sign-change events of Gz^2 - C^2 r^2 and r; a value that is zero to rounding (identically zero for a
+    # non-spinning top, r = 0, or a planar pendulum, Gz = r = 0; rounding noise for a sleeping top, Gz = C r)
+    # counts as positive, so that it does not report a flip at every step
     def ev_w(tau: float, y: np.ndarray) -> float:
-        return float(y[0] * y[0] - (top.C * y[2]) ** 2)
+        g2, c2 = float(y[0] * y[0]), float((top.C * y[2]) ** 2)
+        w = g2 - c2
+        return w if abs(w) > 1e-13 * (g2 + c2) else 1e-300
 
     def ev_r(tau: float, y: np.ndarray) -> float:
-        return float(y[2])
+        return float(y[2]) if y[2] != 0.0 else 1e-300
 
     def ev_leave(tau: float, y: np.ndarray) -> float:
         s = float(y[0] * y[0] + (top.C * y[2]) ** 2)
@@ -183,6 +199,8 @@ def averaged(
                "(u1-u2)(u1-u3)(u2-u3) of (2.10) vanishes")
     msg_sep = ("u3 - u2 reached degenerate_tol (u3 - u1): sleeping top / separatrix k -> 1, the nutation "
                "period is infinite")
+    msg_triple = (f"the roots of (1.5) merge, u1 = u2 = u3 = 1 (spread below {_TRIPLE_TOL:g}): a sleeping top at its "
+                  "stability limit C^2 r^2 = 4 A mgl, the nutation period is infinite")
     msg_branch = ("Gz^2 - C^2 r^2 or r is near zero: a sign delta1/delta2 of (2.8) may change; use "
                   "chart='auto' to continue through it")
 
@@ -215,6 +233,10 @@ def averaged(
     if (u3i - u2i) <= degenerate_tol * (u3i - u1i):
         raise ValueError("the initial state is a sleeping top on the separatrix (u2 = u3 = 1): "
                          "infinite nutation period, no average")
+    if ev_triple(t0, np.array([Gz0, H0, r0])) <= 0.0:
+        raise ValueError(f"the initial state has a (nearly) triple root u1 = u2 = u3 = 1 (root spread below "
+                         f"{_TRIPLE_TOL:g}): a sleeping top at its stability limit C^2 r^2 = 4 A mgl, infinite "
+                         "nutation period, no average")
 
     last_out = -math.inf
     for _ in range(max_segments):
@@ -253,7 +275,8 @@ def averaged(
             break
         # ---- chart GHr ----
         evs = [Event(ev_w, "delta1_flip", False, 0.0), Event(ev_r, "delta2_flip", False, 0.0),
-               Event(ev_sep_g, "separatrix", True, -1.0, msg_sep)]
+               Event(ev_sep_g, "separatrix", True, -1.0, msg_sep),
+               Event(ev_triple, "triple_root", True, -1.0, msg_triple)]
         if chart == "auto":
             evs.append(Event(ev_leave, "leave_branch", True, 1.0))
         sol = integrate(rhs_g, (tau, t1), ystate, t_eval=tev, rtol=rtol, atol=atol, method=method,
