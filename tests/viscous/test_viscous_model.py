@@ -175,3 +175,57 @@ def test_attitude0_sets_the_body_axes():
     # same dynamics, different initial body axes: differ only by the rtol=1e-12 integration error
     assert np.max(np.abs(a.n - b.n)) < 1e-11
     assert np.max(np.abs(a.omega - b.omega)) < 1e-11
+
+
+def test_more_bad_input_names_the_parameter():
+    """Adversarial input found in review: each raises naming the parameter (no cryptic numpy error,
+    no RuntimeWarning, no silent acceptance of a bool as a number)."""
+    body, medium = vs.Body(2.0, 1.0), vs.Medium(0.3, 0.1)
+    n0, nd0 = np.array([0.0, 0.0, 1.0]), np.array([0.3, 0.0, 0.0])
+    with pytest.raises(TypeError, match="Omega0"):
+        vs.curvature(body, medium, True, 0.3, 1.0)
+    with pytest.raises(TypeError, match="Omega0"):
+        vs.simulate(body, medium, n0, nd0, True, (0, 1))
+    with pytest.raises(TypeError, match="v0"):
+        vs.v(body, medium, "0.3", 1.0)
+    with pytest.raises(TypeError, match="t must be"):
+        vs.curvature(body, medium, 1.0, 0.3, "a")
+    with pytest.raises(TypeError, match="b must be"):
+        vs.ball_and_rod(b=True)
+    with pytest.raises(TypeError, match="rod_mass"):
+        vs.ball_and_rod(rod_mass="1")
+    with pytest.raises(ValueError, match="t1 must be finite and >= 0"):
+        vs.turn(body, medium, n0, nd0, 5.0, -1.0)
+    with pytest.raises(ValueError, match="samples"):
+        vs.turn(body, medium, n0, nd0, 5.0, samples=0)
+    with pytest.raises(ValueError, match="samples"):
+        vs.turn(body, medium, n0, nd0, 5.0, samples=1.5)
+    with pytest.raises(ValueError, match="q1 must be a unit quaternion"):
+        vs.axial_rotation([0.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="q2 must be a finite"):
+        vs.axial_rotation([1.0, 0.0, 0.0, 0.0], [1.0, 0.0, 0.0])
+    # 0-d arrays are numbers
+    assert vs.curvature(body, medium, np.array(1.0), np.array(0.3), 0.0) == pytest.approx(1.0 / 2.0 / 0.3)
+    # absurdly large rates saturate to inf without a RuntimeWarning (strict pytest turns it into an error),
+    # and v = 0 gives F4 = 0 even when (θ3 Ω/θ12)² overflows (no 0·inf = NaN)
+    assert vs.F4(body, medium, 1e200, 1e200, 1.0) == math.inf
+    assert vs.F4(body, medium, 1e200, 0.0, 1.0) == 0.0
+    assert vs.omega2(body, medium, 1e200, 1e200, 1.0) == math.inf
+
+
+def test_ndot0_perpendicularity_tolerance_is_relative_to_the_rates():
+    """n0·ndot0 is tolerated only up to 1e-10 max(|ndot0|, |Omega0|) (rounding of ndot0 = ω0×n0) — a
+    criterion independent of the unit of time. Before the review it was 1e-10 max(|ndot0|, 1): in slow
+    units (rates ~1e-6) a component along n0 of 1e-4 relative was silently projected away."""
+    body, medium = vs.Body(2.0, 1.0), vs.Medium(0.3, 0.1)
+    n0 = np.array([0.0, 0.0, 1.0])
+    with pytest.raises(ValueError, match="perpendicular"):
+        vs.axis_path(body, medium, n0, [1e-6, 0.0, 1e-10], 1e-6, [0.0, 1.0])
+    # rounding-level along-component of ω0×n0 is accepted and removed (|along| / |ω0| ~ 1e-16)
+    rng = np.random.default_rng(0)
+    w0 = rng.normal(size=3) * 1e-6
+    m = rng.normal(size=3)
+    m /= np.linalg.norm(m)
+    nd = np.cross(w0, m)
+    sim = vs.simulate(body, medium, m, nd, float(w0 @ m), (0.0, 1.0), t_eval=[0.0])
+    assert abs(sim.ndot[:, 0] @ sim.n[:, 0]) < 1e-20

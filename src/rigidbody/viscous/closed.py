@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import math
+import numbers
 from typing import Any
 
 import numpy as np
 
+from ..core.validate import real
 from .model import Body, Medium, _check
 
 __all__ = [
@@ -23,7 +25,10 @@ __all__ = [
 
 
 def _time(t: Any) -> np.ndarray:
-    arr = np.asarray(t, dtype=float)
+    try:
+        arr = np.asarray(t, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"t must be a real number or an array of times >= 0, got {type(t).__name__}") from None
     if np.any(np.isnan(arr)) or np.any(arr < 0):
         raise ValueError("t must be >= 0 (t = inf is allowed and gives the limit t -> infinity)")
     return arr
@@ -33,21 +38,20 @@ def _out(x: np.ndarray) -> Any:
     return float(x) if np.ndim(x) == 0 else x
 
 
+def _scalar(x: Any) -> Any:
+    """A 0-d array is accepted as the number it holds."""
+    return x.item() if isinstance(x, np.ndarray) and x.ndim == 0 else x
+
+
 def _Omega0(Omega0: Any) -> float:
-    try:
-        val = float(Omega0)
-    except (TypeError, ValueError):
-        raise TypeError(f"Omega0 must be a real number, got {type(Omega0).__name__}") from None
-    if not math.isfinite(val):
-        raise ValueError(f"Omega0 must be finite, got {Omega0!r}")
-    return val
+    return real(_scalar(Omega0), "Omega0")
 
 
 def _v0(v0: Any) -> float:
-    try:
-        val = float(v0)
-    except (TypeError, ValueError):
-        raise TypeError(f"v0 must be a real number, got {type(v0).__name__}") from None
+    v0 = _scalar(v0)
+    if isinstance(v0, (bool, np.bool_)) or not isinstance(v0, (numbers.Real, np.floating, np.integer)):
+        raise TypeError(f"v0 = |ndot0| must be a real number >= 0, got {type(v0).__name__}")
+    val = float(v0)
     if not (math.isfinite(val) and val >= 0):
         raise ValueError(f"v0 = |ndot0| must be finite and >= 0, got {v0!r}")
     return val
@@ -71,26 +75,29 @@ def f3(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> Any:
     """``f³ = n·(ṅ×n̈) = (θ3/θ12) Ω v²``, eq. (3.5)."""
     om = np.asarray(Omega(body, medium, Omega0, t))
     vv = np.asarray(v(body, medium, v0, t))
-    return _out(body.theta3 / body.theta12 * om * vv * vv)
+    with np.errstate(over="ignore"):  # saturates to inf for absurdly large rates, like curvature
+        return _out(body.theta3 / body.theta12 * om * vv * vv)
 
 
 def F4(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> Any:
     """``F⁴ = n̈·n̈ = f⁶/v² + v̇² + v⁴``, section 3 (after 3.6).
 
-    Evaluated as ``v² ((θ3 Ω/θ12)² + (B12/θ12)² + v²)``, which is regular at ``v = 0``.
+    Evaluated as ``(v θ3 Ω/θ12)² + (v B12/θ12)² + v⁴``, which is regular at ``v = 0``.
     """
     om = np.asarray(Omega(body, medium, Omega0, t))
     vv = np.asarray(v(body, medium, v0, t))
     w = body.theta3 / body.theta12 * om
     a = medium.B12 / body.theta12
-    return _out(vv * vv * (w * w + a * a + vv * vv))
+    with np.errstate(over="ignore", invalid="ignore"):  # saturates to inf for absurdly large rates
+        return _out((vv * w) ** 2 + (vv * a) ** 2 + vv**4)
 
 
 def omega2(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> Any:
     """``ω·ω = v² + Ω²``, end of section 3."""
     om = np.asarray(Omega(body, medium, Omega0, t))
     vv = np.asarray(v(body, medium, v0, t))
-    return _out(vv * vv + om * om)
+    with np.errstate(over="ignore"):  # saturates to inf for absurdly large rates
+        return _out(vv * vv + om * om)
 
 
 def _log_k(body: Body, medium: Medium, Omega0: float, v0: float, tt: np.ndarray) -> np.ndarray:

@@ -7,6 +7,8 @@ import numbers
 from dataclasses import dataclass
 from typing import Literal
 
+import numpy as np
+
 from ..core.validate import positive
 
 __all__ = ["Body", "Medium", "ball_and_rod", "decay_rates", "regime"]
@@ -150,12 +152,16 @@ def ball_and_rod(
     if N < 3:
         raise ValueError(f"N must be >= 3 (N balls on a circle; N = 2 is not axisymmetric), got {N}")
     a = positive(a, "a")
-    if not (isinstance(b, numbers.Real) and math.isfinite(b) and b >= 0):
+    if isinstance(b, (bool, np.bool_)) or not isinstance(b, (numbers.Real, np.floating, np.integer)):
+        raise TypeError(f"b must be a real number >= 0, got {type(b).__name__}")
+    if not (math.isfinite(b) and b >= 0):
         raise ValueError(f"b must be finite and >= 0, got {b!r}")
     beta = positive(beta, "beta")
     m = positive(mass, "mass")
     for name, val in (("ball_radius", ball_radius), ("rod_mass", rod_mass), ("spoke_mass", spoke_mass)):
-        if not (isinstance(val, numbers.Real) and math.isfinite(val) and val >= 0):
+        if isinstance(val, (bool, np.bool_)) or not isinstance(val, (numbers.Real, np.floating, np.integer)):
+            raise TypeError(f"{name} must be a real number >= 0, got {type(val).__name__}")
+        if not (math.isfinite(val) and val >= 0):
             raise ValueError(f"{name} must be finite and >= 0, got {val!r}")
     b = float(b)
     medium = Medium(B12=beta * (N * a * a / 2.0 + 2.0 * b * b), B3=beta * N * a * a)

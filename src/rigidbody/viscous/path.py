@@ -4,6 +4,7 @@ of the spiral with its solid angle (the solid-angle theorem, section 5)."""
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Any
 
@@ -11,7 +12,7 @@ import numpy as np
 
 from ..core.ode import Event, integrate
 from ._state import initial_state
-from .closed import curvature, quasi_coordinates, spiral_radius
+from .closed import _scalar, curvature, quasi_coordinates, spiral_radius
 from .model import Body, Medium, _check
 
 __all__ = ["Turn", "axis_path", "turn"]
@@ -228,9 +229,14 @@ def turn(
     """
     _check(body, medium)
     n, nd, v0, Om0 = initial_state(n0, ndot0, Omega0)
-    t1 = float(_times(t1)[0])
-    if not math.isfinite(t1):
-        raise ValueError("t1 must be finite")
+    t1 = _scalar(t1)
+    if isinstance(t1, (bool, np.bool_)) or not isinstance(t1, (numbers.Real, np.floating, np.integer)):
+        raise TypeError(f"t1 must be a real number >= 0, got {type(t1).__name__}")
+    t1 = float(t1)
+    if not (math.isfinite(t1) and t1 >= 0.0):
+        raise ValueError(f"t1 must be finite and >= 0, got {t1!r}")
+    if isinstance(samples, (bool, np.bool_)) or not isinstance(samples, (numbers.Integral, np.integer)) or samples < 2:
+        raise ValueError(f"samples must be an int >= 2, got {samples!r}")
     if v0 == 0.0 or Om0 == 0.0:
         raise ValueError("no turn: the path is a point (v0 = 0) or a great-circle arc (Omega0 = 0)")
     fr = _Frame(body, medium, v0, Om0)

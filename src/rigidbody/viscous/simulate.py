@@ -220,15 +220,25 @@ def axial_rotation(q1: Any, q2: Any) -> float:
     Parameters
     ----------
     q1, q2 : array_like, shape (4,)
-        Scalar-first attitude quaternions (body ``z`` = symmetry axis).
+        Scalar-first unit attitude quaternions (body ``z`` = symmetry axis), e.g. columns of
+        ``sim.attitude``; a norm differing from 1 by more than 1e-6 raises ``ValueError``.
 
     Returns
     -------
     float
         ``Δφ`` modulo ``2π``. Equal to ``χ + Δζ`` (mod 2π) by the solid-angle theorem.
     """
-    R1 = euler.dcm_from_quat(np.asarray(q1, dtype=float) / np.linalg.norm(q1))
-    R2 = euler.dcm_from_quat(np.asarray(q2, dtype=float) / np.linalg.norm(q2))
+    qs = []
+    for name, q in (("q1", q1), ("q2", q2)):
+        qa = np.asarray(q, dtype=float)
+        if qa.shape != (4,) or not np.all(np.isfinite(qa)):
+            raise ValueError(f"{name} must be a finite scalar-first quaternion of shape (4,), got {q!r}")
+        nq = float(np.linalg.norm(qa))
+        if abs(nq - 1.0) > 1e-6:
+            raise ValueError(f"{name} must be a unit quaternion (|{name}| = 1 within 1e-6), got norm {nq!r}")
+        qs.append(qa / nq)
+    R1 = euler.dcm_from_quat(qs[0])
+    R2 = euler.dcm_from_quat(qs[1])
     n1, n2 = R1[:, 2], R2[:, 2]
     e1, e2 = R1[:, 0], R2[:, 0]
     c = float(n2 @ n1)
