@@ -157,3 +157,23 @@ def test_potential_outside_the_domain_of_the_direction_cosines():
     # complex-step input is not checked (its real part is inside the domain here)
     z = gyrostat.amended_potential(sat, (1.0, 0.0, 0.1 + 1e-30j, 0.5, 0.0, 0.0), k=1.0, lam=0.1)
     assert np.isfinite(z.real) and z.imag != 0.0
+
+
+@pytest.mark.parametrize("bad", [5, 0, 0.5, True, np.True_])
+def test_omega_sign_is_plus_or_minus_one_everywhere(bad):
+    """omega_sign multiplies omega0: symmetric_stability_map and exact_boundaries silently returned
+    5 omega0 for omega_sign=5."""
+    sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    sym = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.012, A3=0.008)
+    th = np.array([0.3, 0.5])
+    calls = [
+        lambda: gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.0, omega_sign=bad),
+        lambda: gyrostat.stability_map(sat, 1.0, th, k2=0.0, omega_sign=bad),
+        lambda: gyrostat.exact_boundaries(sat, 1.0, th, omega_sign=bad),
+        lambda: gyrostat.normalized_stability_map(sat, 1.0, th, np.array([0.1]), omega_sign=bad),
+        lambda: gyrostat.symmetric_stationary_motion(sym, 1.0, 0.3, omega_sign=bad),
+        lambda: gyrostat.symmetric_stability_map(sym, 1.0, th, omega_sign=bad),
+    ]
+    for call in calls:
+        with pytest.raises(ValueError, match="omega_sign must be"):
+            call()

@@ -10,7 +10,14 @@ import numpy as np
 from ..core.validate import positive
 from ._model import Satellite
 from ._stability import VERDICTS, a_matrix, hessian_entries, restricted_conditions, stability_arrays
-from ._stationary import SINGULAR_TOL, broadcast_shape, check_fits, family_arrays, float_arrays
+from ._stationary import (
+    SINGULAR_TOL,
+    broadcast_shape,
+    check_fits,
+    check_omega_sign,
+    family_arrays,
+    float_arrays,
+)
 
 __all__ = ["StabilityMap", "exact_boundaries", "normalized_stability_map", "stability_map"]
 
@@ -115,8 +122,7 @@ def stability_map(
         raise TypeError(f"unknown parameter(s) {sorted(bad)}; overridable: M, A1, A2, A3, mu")
     if (k2 is None) == (k3 is None):
         raise TypeError("give exactly one of k2 and k3")
-    if omega_sign not in (1, -1):
-        raise ValueError(f"omega_sign must be +1 or -1; got {omega_sign!r}")
+    omega_sign = check_omega_sign(omega_sign)
     vals: dict[str, Any] = {
         "theta0": theta0, "R0": R0, "k2": k2, "k3": k3,
         "M": overrides.get("M", sat.M), "A1": overrides.get("A1", sat.A1), "A2": overrides.get("A2", sat.A2),
@@ -177,6 +183,7 @@ def exact_boundaries(sat: Satellite, R0: float, theta0: Any, *, omega_sign: int 
         raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
     R0 = positive(R0, "R0")
     check_fits(sat, R0)
+    omega_sign = check_omega_sign(omega_sign)
     th = np.asarray(theta0, dtype=float)
     f = family_arrays(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, k2=0.0, omega_sign=omega_sign)
     e = hessian_entries(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, f["kappa0"], f["omega0"], 0.0, f["S0"])
@@ -219,6 +226,7 @@ def normalized_stability_map(
         raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
     R0 = positive(R0, "R0")
     check_fits(sat, R0)
+    omega_sign = check_omega_sign(omega_sign)
     th = np.asarray(theta0, dtype=float).ravel()
     uu = np.asarray(u, dtype=float).ravel()
     om = family_arrays(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, R0, th, k2=0.0, omega_sign=omega_sign)["omega0"]

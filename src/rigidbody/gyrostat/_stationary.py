@@ -24,6 +24,13 @@ def _wrap(theta: Any) -> Any:
     return np.where(t == -np.pi, np.pi, t)
 
 
+def check_omega_sign(omega_sign: Any) -> int:
+    """``omega_sign`` must be the integer +1 or -1 (it multiplies omega0: any other value rescales it)."""
+    if isinstance(omega_sign, (bool, np.bool_)) or omega_sign not in (1, -1):
+        raise ValueError(f"omega_sign must be +1 or -1; got {omega_sign!r}")
+    return int(omega_sign)
+
+
 def float_arrays(vals: dict[str, Any]) -> dict[str, np.ndarray]:
     """The map parameters as float arrays (``TypeError`` naming the parameter otherwise); None is dropped."""
     out = {}
@@ -228,8 +235,7 @@ def stationary_motion(
     R0 = positive(R0, "R0")
     check_fits(sat, R0)
     theta0 = float(_wrap(real(theta0, "theta0")))
-    if omega_sign not in (1, -1):
-        raise ValueError(f"omega_sign must be +1 or -1; got {omega_sign!r}")
+    omega_sign = check_omega_sign(omega_sign)
     if (k2 is None) == (k3 is None):
         raise TypeError("give exactly one of k2 and k3 (the other is computed from (2.4))")
     if k2 is not None:

@@ -14,7 +14,7 @@ from ..core.quadform import inertia, leading_minors
 from ..core.validate import positive, real
 from ._model import GyrostatWarning, Satellite
 from ._stability import VERDICTS, _verdict_codes
-from ._stationary import SINGULAR_TOL, _wrap, broadcast_shape, check_fits, float_arrays
+from ._stationary import SINGULAR_TOL, _wrap, broadcast_shape, check_fits, check_omega_sign, float_arrays
 
 __all__ = [
     "SymmetricMotion",
@@ -221,8 +221,7 @@ def symmetric_stationary_motion(
     R0 = positive(R0, "R0")
     check_fits(sat, R0)
     theta0 = float(_wrap(real(theta0, "theta0")))
-    if omega_sign not in (1, -1):
-        raise ValueError(f"omega_sign must be +1 or -1; got {omega_sign!r}")
+    omega_sign = check_omega_sign(omega_sign)
     if math.sin(theta0) == 0.0:
         raise ValueError(
             "theta0 = 0 or pi: x3 along the radius vector is the singular line of the Euler angles "
@@ -381,6 +380,7 @@ def symmetric_stability_map(
     Points with sin theta0 = 0 (Euler chart) or no motion get code -1.
     """
     _check_symmetric(sat)
+    omega_sign = check_omega_sign(omega_sign)
     bad = set(overrides) - {"M", "A1", "A3", "mu"}
     if bad:
         raise TypeError(f"unknown parameter(s) {sorted(bad)}; overridable: M, A1, A3, mu")
