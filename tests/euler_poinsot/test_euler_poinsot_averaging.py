@@ -166,3 +166,21 @@ def test_motion_average_method_reproduces_the_independent_average():
 
     m = ep.EulerPoinsot(BODY, G, k2)
     assert m.average(torque) == pytest.approx(Lg + Lr, abs=1e-12)
+
+
+@pytest.mark.parametrize("orbit", [None, ep.Orbit(0.3)])
+@pytest.mark.parametrize("nu0", [0.0, 1.1, -2.5])
+def test_integrator_starts_on_the_rates_of_6(nu0, orbit):
+    # The integrated system (unit-vector form) has, at tau = 0, the right-hand sides of (6)/(9) evaluated at
+    # nu = nu0 (those are checked above against numerical averages): guards the nu0 phase and the
+    # n <-> (delta, lambda) map of the integrator.
+    I = np.diag([2.322, 1.31, 1.425])
+    eps, h = 0.02, 1e-6
+    kw = dict(G0=0.8, k2_0=0.6, delta0=1.0, lam0=0.3, nu0=nu0, orbit=orbit, rtol=1e-13, atol=1e-15)
+    s = ep.averaged(BODY, I, eps, tau_span=(0, 2 * h), tau_eval=[0, h, 2 * h], **kw)
+    r = ep.averaged_rates(BODY, I, 0.8, 0.6, 1.0, 0.3, nu0, orbit=orbit)
+    # second-order one-sided difference: truncation h^2 |f'''| / 3 ~ 1e-12 * 5 / eps^2 ~ 1e-8 (the rates
+    # vary at the orbital rate 1/eps in tau), rounding ~ 1e-16 / h = 1e-10
+    for name, field in (("dG", "G"), ("dk2", "k2"), ("ddelta", "delta"), ("dlam", "lam")):
+        y = getattr(s, field)
+        assert (-3 * y[0] + 4 * y[1] - y[2]) / (2 * h) == pytest.approx(r[name], abs=1e-7), name
