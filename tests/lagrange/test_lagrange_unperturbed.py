@@ -231,6 +231,16 @@ def test_closed_form_motion_matches_full_equations_without_torque():
     assert m2.u[1] == pytest.approx(m2.u[0], abs=1e-10)  # period 2K/alpha of (1.3)
 
 
+def test_closed_form_motion_refuses_motions_through_a_pole():
+    # a planar pendulum (r = 0, Gz = 0) swings through theta = pi: u1 = -1 and the quadratures (1.7)
+    # for psi, phi would silently miss the jump of the Euler angles there
+    with pytest.raises(ValueError, match="theta = pi"):
+        L.lagrange_motion(TOP, (0.5, 0.0, 0.0, 0.0, 1.0, 0.0), [0.0, 1.0])
+    # Gz = C r exactly: the top passes through the upright position theta = 0
+    with pytest.raises(ValueError, match="theta = 0"):
+        L.lagrange_motion(TOP, (0.0, 0.3, 2.0, 0.0, 1e-300, 0.0), [0.0, 1.0])
+
+
 def test_full_equations_pass_through_the_vertical():
     # theta0 = 0 exactly with a small transverse rate: Euler angles are singular there, the quaternion is not
     state = (0.05, 0.0, 1.0, 0.0, 0.0, 0.0)

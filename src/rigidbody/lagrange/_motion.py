@@ -43,7 +43,7 @@ def lagrange_motion(
     top : Top
     state0 : (p, q, r, phi, theta, psi)
         Initial state; ``0 < theta0 < pi`` is required for psi, phi (Euler angles are singular at the
-        poles) and the motion must not pass through ``u = +-1``.
+        poles) and the motion must not reach ``u = +-1`` (``Gz = +-C r``; a ``ValueError`` is raised).
     t : array_like
         Increasing output times starting at 0 or later.
 
@@ -62,6 +62,13 @@ def lagrange_motion(
         raise ValueError("t must be a non-empty increasing 1-D array of times >= 0")
     Gz, H, r = integrals(top, p0, q0, r0, phi0, th0)
     u1, u2, u3 = roots(top, Gz, H, r)
+    if u1 <= -1.0 + 1e-12 or u2 >= 1.0 - 1e-12:
+        # Q(-1) = -(Gz + Cr)^2/A^2 = 0 or Q(1) = -(Gz - Cr)^2/A^2 = 0: a turning point at a pole
+        pole = "pi" if u1 <= -1.0 + 1e-12 else "0"
+        raise ValueError(
+            f"the motion reaches theta = {pole} (u1 = -1 or u2 = 1, i.e. Gz = -+C r): the Euler angles "
+            "psi, phi of (1.7) are singular there; use simulate (quaternion attitude) instead"
+        )
     k2, mc = modulus(u1, u2, u3)
     alpha = nutation_frequency(top, u1, u3)
     u0 = math.cos(th0)
