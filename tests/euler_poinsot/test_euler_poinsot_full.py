@@ -243,3 +243,17 @@ def test_eccentric_orbit_averaged_vs_full():
         a = ep.averaged(BODY, CASE1, eps, **kw)
         errs.append(max(np.abs(getattr(s, f) - getattr(a, f)).max() for f in FIELDS))
     assert errs[1] < 20 * 0.01**2 and errs[0] / errs[1] > 2.5
+
+
+def test_averaged_vs_full_with_a_nonzero_initial_true_anomaly():
+    # nu0 != 0 on the circular orbit (the other comparisons start at nu0 = 0): the orbital-frequency wobble
+    # of delta, lambda (amplitude ~ (3/4) eps |N*| / G) must be in phase in both systems, leaving the O(eps^2)
+    # averaging error (same constant as above, 20 eps^2; a phase error of the full system would give O(eps))
+    eps = 0.02
+    te = np.linspace(0, 0.2, 9)
+    kw = dict(k2_0=0.6, delta0=1.0, lam0=0.3, nu0=1.1, tau_span=(0, 0.2), tau_eval=te)
+    s = ep.simulate(BODY, CASE1, eps, **kw)
+    a = ep.averaged(BODY, CASE1, eps, **kw)
+    assert s.status == 0 and a.status == 0
+    for f in FIELDS:
+        assert np.abs(getattr(s, f) - getattr(a, f)).max() < 20 * eps**2, f
