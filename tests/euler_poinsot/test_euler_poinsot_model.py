@@ -216,3 +216,16 @@ def test_start_next_to_the_separatrix():
     # k2 within 1e-8 of the separatrix: logarithmic period, finite right-hand sides, k2 moves away (case 1)
     sol = ep.averaged(BODY, CASE1, 0.0, k2_0=1 - 1e-8, k2_max=1 - 1e-10, tau_span=(0, 0.1))
     assert sol.status == 0 and np.all(np.diff(sol.k2) < 0) and np.all(np.isfinite(sol.lam))
+
+
+@pytest.mark.parametrize("kind", ["max", "min"])
+@pytest.mark.parametrize("k2", [0.0, 0.3, 0.99])
+def test_spin_ratio_is_the_Euler_Poinsot_frequency_over_the_orbital_rate(kind, k2):
+    # independent route: the period of the closed-form motion (tested against Euler's equations and the
+    # classical k -> 0 frequency in test_euler_poinsot_motion.py); same elliptic K, rounding only
+    G, eps = 1.3, 0.01
+    P = ep.EulerPoinsot(BODY, G, k2, kind).period
+    assert ep.spin_ratio(BODY, eps, G, k2, kind) == pytest.approx(2 * math.pi / P / eps, rel=1e-12)
+    # the number the docs quote for the paper's start: 2 pi / P = 0.052 at G = 1, k2 = 0.99
+    if kind == "max" and k2 == 0.99:
+        assert ep.spin_ratio(BODY, 1.0, 1.0, 0.99) == pytest.approx(0.0528, abs=5e-4)
