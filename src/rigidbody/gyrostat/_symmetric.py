@@ -127,7 +127,12 @@ def gradient_W_sym(sat: Satellite, x: Any, *, k: float, c: float) -> np.ndarray:
 
 
 def hessian_W_sym(sat: Satellite, x: Any, *, k: float, c: float) -> np.ndarray:
-    """Hessian of the section-3 W at ``x = (R, kappa, theta, psi)`` (shape (..., 4, 4)), chain rule."""
+    """Hessian of the section-3 W at ``x = (R, kappa, theta, psi)`` (shape (..., 4, 4)), chain rule.
+
+    Valid at any point.  At a motion (3.2) near theta0 = +-pi/2 its theta-theta entry is a difference of
+    terms that cancel to O(l^2/R^2) (no correct digit in SI units within ~1e-7 of pi/2): the verdicts
+    (:class:`SymmetricStability`) use :func:`W_thetatheta_stable` for that entry instead.
+    """
     R, kap, th, ps = (np.asarray(v, dtype=float) for v in x)
     return _derivs(sat.M, sat.A1, sat.A3, sat.mu, k, c, R, kap, th, ps)[1]
 
