@@ -19,7 +19,7 @@ normalized_stability_map(sat, R0, theta0, u)     the same in the plane (theta0, 
 amended_potential, amended_potential_W, chi, gradient_W1    W, (2.1), W1 = W + lambda chi, (2.2)
 hessian_W1 (closed forms), hessian_W1_numerical (finite differences), constrained_second_variation,
 restricted_conditions
-symmetric_potential, gradient_W_sym, hessian_W_sym, W_psipsi_34
+symmetric_potential, gradient_W_sym, hessian_W_sym, W_psipsi_34, W_thetatheta_stable
 simulate(sat, motion, t_span), initial_state    full Newton-Euler equations (validation route)
 """
 
@@ -47,6 +47,7 @@ from ._symmetric import (
     SymmetricStability,
     SymmetricStabilityMap,
     W_psipsi_34,
+    W_thetatheta_stable,
     gradient_W_sym,
     hessian_W_sym,
     stability_symmetric,
@@ -94,6 +95,7 @@ __all__ = [
     "SymmetricStability",
     "SymmetricStabilityMap",
     "W_psipsi_34",
+    "W_thetatheta_stable",
     "amended_potential",
     "amended_potential_W",
     "chi",
