@@ -154,7 +154,8 @@ class Turn:
     chi_approx, chi_approx_start, chi_approx_end : float
         The paper's ``sgn(k) 2π(1 - sqrt(1 - R²))`` with ``R`` of (5.2) at mid-turn ``(t1+t2)/2``, at
         ``t1`` and at ``t2``. Relative error: ~``λT`` with ``R`` at the start or end,
-        ``O((λT)²)`` at mid-turn, ``λ = B12/θ12 - B3/θ3``, ``T = t2 - t1``; exact for the circle.
+        second order in ``T`` at mid-turn (measured ``≈ -(0.14 B12/θ12 + 0.08 B3/θ3) λ T²``),
+        ``λ = B12/θ12 - B3/θ3``, ``T = t2 - t1``; exact for the circle.
     R1, R_mid, R2 : float
         Spiral radius (5.2) at ``t1``, ``(t1+t2)/2`` and ``t2``.
     dzeta : float
