@@ -229,3 +229,17 @@ def test_ndot0_perpendicularity_tolerance_is_relative_to_the_rates():
     nd = np.cross(w0, m)
     sim = vs.simulate(body, medium, m, nd, float(w0 @ m), (0.0, 1.0), t_eval=[0.0])
     assert abs(sim.ndot[:, 0] @ sim.n[:, 0]) < 1e-20
+
+
+@pytest.mark.parametrize("b", [0.5, 0.8, 1.5, 2.0])
+def test_rotational_drag_of_finite_balls_reverses_the_verdict(b):
+    """Documented caveat (docs/viscous.md): with the Stokes rotational drag (4/3) β r² of each of the N+2
+    balls added to B12 and B3 by hand, the ball model contracts iff b² < N a²/4 — the opposite of the
+    paper's drag model (force only), for which it contracts iff b² > N a²/4."""
+    N, a, beta, r = 4, 1.0, 0.1, 0.1
+    body, medium = vs.ball_and_rod(N=N, a=a, b=b, beta=beta, mass=1.0, ball_radius=r)
+    paper = "contracting" if b * b > N * a * a / 4 else "unwinding"
+    assert vs.regime(body, medium) == paper
+    rot = (N + 2) * 4.0 / 3.0 * beta * r * r
+    stokes = vs.regime(body, vs.Medium(medium.B12 + rot, medium.B3 + rot))
+    assert stokes == ("unwinding" if paper == "contracting" else "contracting")

@@ -144,7 +144,9 @@ def ball_and_rod(
     Notes
     -----
     With point balls and massless rods ``B = (β/m) θ`` exactly: Routh's circle. With ball radius
-    only, the spiral contracts iff ``b² > N a²/4``; rod mass pushes towards unwinding.
+    only, the spiral contracts iff ``b² > N a²/4``; rod mass pushes towards unwinding. This verdict
+    depends on the paper's drag model: adding the Stokes rotational drag of each ball,
+    ``(4/3) β r²`` to ``B12`` and ``B3``, reverses it (see docs/viscous.md).
     """
     if isinstance(N, bool) or not isinstance(N, numbers.Integral):
         raise TypeError(f"N must be an int >= 3, got {type(N).__name__}")
