@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -177,3 +178,27 @@ def test_omega_sign_is_plus_or_minus_one_everywhere(bad):
     for call in calls:
         with pytest.raises(ValueError, match="omega_sign must be"):
             call()
+
+
+@pytest.mark.parametrize("th", [1e-12, -3e-9, 1e-5, 0.3])
+def test_small_tilts_are_not_rounded_by_the_angle_reduction(th):
+    """theta0 in (-pi, pi] is used as given: the reduction (theta + pi) mod 2 pi - pi used to round it to the
+    ulp of pi (theta0 = 1e-12 became 1.00009e-12, and kappa0 ~ theta0 with it).  kappa0 is checked against
+    tan kappa0 = 3/2 (A2 - A3) n0 sin 2 theta0 / (M R0^2 n^2) at 50 digits (relative rounding only)."""
+    import mpmath
+
+    sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    m = gyrostat.stationary_motion(sat, 1.0, th, k2=0.001)
+    assert m.theta0 == th
+    with mpmath.workdps(50):
+        A1, A2, A3, t = (mpmath.mpf(v) for v in (sat.A1, sat.A2, sat.A3, th))
+        n2 = 1 - mpmath.mpf(9) / 2 * ((A2 - A3) * mpmath.sin(t) ** 2 + (2 * A3 - A1 - A2) / 3)
+        kap = float(mpmath.atan(mpmath.mpf(3) / 2 * (A2 - A3) * mpmath.sin(2 * t) / n2))
+    assert math.isclose(m.kappa0, kap, rel_tol=1e-14)
+    sym = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.012, A3=0.008)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", gyrostat.GyrostatWarning)  # near the Euler chart's singular line
+        assert gyrostat.symmetric_stationary_motion(sym, 1.0, th).theta0 == th
+    # angles outside (-pi, pi] are still reduced
+    assert math.isclose(gyrostat.stationary_motion(sat, 1.0, th + 2 * math.pi, k2=0.001).theta0, th,
+                        abs_tol=1e-15)

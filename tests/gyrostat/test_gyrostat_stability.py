@@ -241,3 +241,47 @@ def test_si_degree_at_1e8_from_a_boundary_against_a_50_digit_pipeline(key, side)
     # both sides of each boundary are seen, and the degree changes by one across it
     other = gyrostat.stability(si, gyrostat.stationary_motion(si, 7e6, th, k2=kb * (1 - side * 1e-8)))
     assert abs(other.degree - st.degree) == 1
+
+
+@pytest.mark.parametrize("units", ["SI", "nondimensional"])
+def test_map_matches_scalar_calls_on_random_points(units):
+    """grid=False over random bodies (overrides A1, A2, A3), radii, tilts (all four quadrants), k2 and
+    omega signs: every valid map point equals the scalar stationary_motion + stability, and every invalid
+    one is a point where the scalar route raises or warns."""
+    import warnings
+
+    rng = np.random.default_rng(11)
+    n = 150
+    a = rng.uniform(0.2, 1.0, (n, 3))
+    if units == "SI":
+        M, mu = 1000.0, 3.986e14
+        R0 = rng.uniform(6.6e6, 4.2e7, n)
+        A = a / a.mean(axis=1, keepdims=True) * rng.uniform(300, 3000, n)[:, None]
+    else:
+        M, mu = 1.0, 1.0
+        R0 = np.ones(n)
+        A = a / a.mean(axis=1, keepdims=True) * rng.uniform(0.01, 0.5, n)[:, None] ** 2
+    n0 = np.sqrt(mu / R0**3)
+    k2 = rng.uniform(-4, 4, n) * n0 * A.mean(axis=1)
+    th = rng.uniform(-3.1, 3.1, n)
+    for sign in (1, -1):
+        base = gyrostat.Satellite(M=M, A1=1.0, A2=1.0, A3=1.0, mu=mu)
+        mp = gyrostat.stability_map(base, R0, th, k2=k2, omega_sign=sign, grid=False,
+                                    A1=A[:, 0], A2=A[:, 1], A3=A[:, 2])
+        seen = set()
+        for i in range(n):
+            try:
+                sat = gyrostat.Satellite(M=M, A1=A[i, 0], A2=A[i, 1], A3=A[i, 2], mu=mu)
+                with warnings.catch_warnings():
+                    warnings.simplefilter("error", gyrostat.GyrostatWarning)
+                    m = gyrostat.stationary_motion(sat, float(R0[i]), float(th[i]), k2=float(k2[i]), omega_sign=sign)
+                    st = gyrostat.stability(m.satellite, m)
+            except (ValueError, gyrostat.GyrostatWarning):
+                assert mp.code[i] == -1
+                continue
+            seen.add(st.verdict)
+            assert mp.verdict[i] == st.verdict and mp.degree[i] == st.degree
+            # the same float64 formulas, evaluated vectorised: equal to rounding
+            assert np.isclose(mp.s3[i], st.s3, rtol=1e-12, atol=0)
+            assert np.isclose(mp.kappa0[i], m.kappa0, rtol=1e-13, atol=0)
+        assert seen == {"stable", "unstable", "undecided"}

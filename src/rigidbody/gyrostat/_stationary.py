@@ -19,9 +19,15 @@ SINGULAR_TOL = 1e-6
 
 
 def _wrap(theta: Any) -> Any:
-    """Reduce an angle to (-pi, pi]."""
-    t = np.remainder(np.asarray(theta, dtype=float) + np.pi, 2 * np.pi) - np.pi
-    return np.where(t == -np.pi, np.pi, t)
+    """Reduce an angle to (-pi, pi]; angles already there are returned unchanged (bit for bit).
+
+    (Reducing every angle as ``(theta + pi) mod 2 pi - pi`` rounds it to the ulp of pi: theta0 = 1e-12
+    came back as 1.00009e-12.)
+    """
+    t = np.asarray(theta, dtype=float)
+    w = np.remainder(t + np.pi, 2 * np.pi) - np.pi
+    w = np.where(w == -np.pi, np.pi, w)
+    return np.where((t > -np.pi) & (t <= np.pi), t, w)
 
 
 def check_omega_sign(omega_sign: Any) -> int:
