@@ -202,3 +202,15 @@ def test_small_tilts_are_not_rounded_by_the_angle_reduction(th):
     # angles outside (-pi, pi] are still reduced
     assert math.isclose(gyrostat.stationary_motion(sat, 1.0, th + 2 * math.pi, k2=0.001).theta0, th,
                         abs_tol=1e-15)
+
+
+def test_second_variation_helpers_check_the_body():
+    """hessian_W1 / constrained_second_variation with another body silently mixed the two."""
+    sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.001)
+    other = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.009)
+    for f in (gyrostat.hessian_W1, gyrostat.constrained_second_variation, gyrostat.stability):
+        with pytest.raises(ValueError, match=r"sat\.A3 differs"):
+            f(other, m)
+    with pytest.raises(TypeError, match="StationaryMotion"):
+        gyrostat.hessian_W1(sat, "motion")

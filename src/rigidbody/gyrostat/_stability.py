@@ -201,6 +201,7 @@ def hessian_W1(sat: Satellite, m: StationaryMotion, *, form: str = "stable") -> 
 
     ``form``: "stable" (default) or "printed", see :func:`hessian_entries`.
     """
+    _check_same_body(sat, m)
     e = hessian_entries(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, m.R0, m.theta0, m.kappa0, m.omega0, m.k2, m.S0,
                         form=form)
     return _hessian_matrix(e)
@@ -234,6 +235,7 @@ def constrained_second_variation(sat: Satellite, m: StationaryMotion) -> np.ndar
 
     Block diagonal: ``[[W_g1g1, W_b1g1], [W_b1g1, W_b1b1]]`` and the a_ij of (2.5).
     """
+    _check_same_body(sat, m)
     e = hessian_entries(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, m.R0, m.theta0, m.kappa0, m.omega0, m.k2, m.S0)
     a = a_matrix(e, m.theta0, m.kappa0)
     Hc = np.zeros((5, 5))
@@ -294,10 +296,18 @@ class Stability:
         return all(r > 0 for r in self.restricted)
 
 
-def stability_triaxial(sat: Satellite, m: StationaryMotion, *, rtol: float = 1e-12) -> Stability:
+def _check_same_body(sat: Satellite, m: StationaryMotion) -> None:
+    if not isinstance(sat, Satellite):
+        raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
+    if not isinstance(m, StationaryMotion):
+        raise TypeError(f"m must be a StationaryMotion (from stationary_motion); got {type(m).__name__}")
     for name in ("M", "A1", "A2", "A3", "mu"):
         if getattr(sat, name) != getattr(m.satellite, name):
             raise ValueError(f"sat.{name} differs from the satellite the motion was computed for")
+
+
+def stability_triaxial(sat: Satellite, m: StationaryMotion, *, rtol: float = 1e-12) -> Stability:
+    _check_same_body(sat, m)
     if abs(np.cos(m.theta0)) < SINGULAR_TOL or abs(np.cos(m.theta0 + m.kappa0)) < SINGULAR_TOL:
         raise ValueError(
             "the chart (beta1, beta3, gamma1, gamma2) is singular at cos(theta0) = 0 or "
