@@ -218,6 +218,8 @@ def hessian_W1_numerical(sat: Satellite, m: StationaryMotion, *, h: float | None
     from ..core.quadform import hessian_fd
     from ._potential import amended_potential
 
+    _check_same_body(sat, m)
+
     steps = np.array([m.R0, 1, 1, 1, 1, 1]) * (1e-3 if h is None else h)
     return hessian_fd(lambda x: float(amended_potential(m.satellite, x, k=m.k, lam=m.lambda0, branch=m.branch)),
                       np.array(m.point), steps)
