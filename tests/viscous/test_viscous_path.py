@@ -112,6 +112,11 @@ def test_zero_spin_gives_a_great_circle_arc():
     assert angle(vs.axis_path(body, medium, n0, nd0, 0.0, t), exact) < 1e-11
     assert np.all(vs.curvature(body, medium, 0.0, 0.4, t) == 0.0)
     assert np.all(sim.Omega == 0.0) and np.all(sim.zeta == 0.0)
+    # the end point t = inf is at arc length s_inf along the great circle (contracting medium: b < a,
+    # the compactified-time exponent of the spin term is negative: it used to raise ZeroDivisionError)
+    s_inf = vs.limits(body, medium, 0.0, 0.4)[0]
+    end = vs.axis_path(body, medium, n0, nd0, 0.0, [np.inf])[:, 0]
+    assert np.linalg.norm(end - (np.cos(s_inf) * n0 + np.sin(s_inf) * nd0 / 0.4)) < 1e-11
 
 
 def test_fixed_axis_when_v0_is_zero():

@@ -47,7 +47,8 @@ class _Frame:
         if x <= 0.0:
             x = 0.0
         cv = self.cv0 * (x**self.pv if self.pv != 0.0 else 1.0)
-        cw = self.cw0 * (x**self.pw if self.pw != 0.0 else 1.0)
+        # cw0 = 0 (Omega0 = 0, gamma = a) may come with pw < 0: no 0**negative at u = 1
+        cw = self.cw0 * (x**self.pw if self.pw != 0.0 else 1.0) if self.cw0 != 0.0 else 0.0
         return cv, cw
 
     def rhs(self, u: float, y: np.ndarray) -> list[float]:
