@@ -211,6 +211,14 @@ def test_u_chart_alone_stops_at_the_branch_point():
     assert s.status == 1 and s.event == "branch_point"
     assert "delta1/delta2" in s.message
     assert np.all(np.isfinite(s.u))
+    # case 1 starts next to the branch point (|Gz^2 - C^2 r^2| is 0.4% of Gz^2 + C^2 r^2): the u chart alone
+    # is refused there (it used to integrate through the branch point with the wrong sign and then fail
+    # inside from_roots)
+    ini1 = L.integrals(TOP, *spun(5)[:5])
+    with pytest.raises(ValueError, match="branch point"):
+        L.averaged(TOP, DRAG, ini1, (0, 6), chart="u")
+    s = L.averaged(TOP, DRAG, ini1, (0, 1), chart="u", switch_tol=1e-3)  # allowed with a smaller threshold
+    assert s.status == 0 and np.all(s.u[2] > 1.0)
 
 
 def test_degenerate_state_ends_with_clear_status():
@@ -248,6 +256,17 @@ def test_averaged_rejects_bad_input():
         L.averaged(TOP, DRAG, ini, (0, 1), chart="xyz")
     with pytest.raises(ValueError, match="distinct roots"):
         L.averaged_rhs(TOP, DRAG, 0.3, 0.3, 2.0)
+
+
+def test_non_finite_user_torque_is_refused_not_a_hang():
+    # a torque that is NaN at the initial state used to hang solve_ivp (its step-size control turns NaN)
+    bad = L.ProportionalTorque(f=lambda Gz, H, r, th: np.nan * th)
+    ini = L.integrals(TOP, *spun(60)[:5])
+    for chart in ("auto", "GHr"):
+        with pytest.raises(ValueError, match="not finite at the initial state"):
+            L.averaged(TOP, bad, ini, (0, 1), chart=chart)
+    with pytest.raises(ValueError, match="not finite at the initial state"):
+        L.simulate(TOP, bad, 0.1, spun(60), (0, 1))
 
 
 def test_printed_F1_of_2_7_lacks_sin_theta():

@@ -188,6 +188,15 @@ def integrate(
     wrapped.append(_nonfinite)
 
     with np.errstate(all="ignore"):
+        # solve_ivp loops forever when the right-hand side is NaN at the initial state (its step-size control
+        # turns NaN): refuse that up front
+        f0 = np.asarray(fun(t0, y0a, *(args or ())), dtype=float)
+    if not np.all(np.isfinite(f0)):
+        raise ValueError(
+            f"the right-hand side is not finite at the initial state (t = {t0!r}, y0 = {y0a!r}): check the "
+            "model's parameters and any user-supplied function (e.g. a torque)"
+        )
+    with np.errstate(all="ignore"):
         res = solve_ivp(
             fun, (t0, t1), y0a, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
             dense_output=dense_output, events=wrapped, args=args or None, max_step=max_step,

@@ -222,6 +222,13 @@ def averaged(
         b1, b2 = _closeness(*u_init, d1)
         if chart == "auto" and min(b1, b2) < switch_tol:
             cur = "GHr"
+        elif min(b1, b2) <= switch_tol:
+            raise ValueError(
+                "chart='u': the initial state is within switch_tol of a branch point of (2.8) "
+                f"(|Gz^2 - C^2 r^2| or C^2 r^2 is {min(b1, b2):.3g} of Gz^2 + C^2 r^2 <= switch_tol = "
+                f"{switch_tol:g}), where a sign delta1/delta2 may change; use chart='auto' or 'GHr', or a smaller "
+                "switch_tol"
+            )
     if cur == "GHr":
         ystate = np.array([Gz0, H0, r0])
     u1i, u2i, u3i = u_init
