@@ -68,7 +68,9 @@ def averaged(
     the branch point. Switching happens at ``|Gz^2-C^2r^2| / (Gz^2+C^2r^2) < switch_tol`` (or the same
     for ``C^2 r^2``) and back at twice that (hysteresis).
 
-    Degenerate states end the integration with ``status = 1`` and a message: ``u2 - u1 <
+    A start at a regular precession (``u1 = u2``, where (2.10) is singular) is integrated in the ``GHr``
+    chart by ``chart='auto'`` (and refused by ``chart='u'``). Degenerate states reached during the
+    integration end it with ``status = 1`` and a message: ``u2 - u1 <
     degenerate_tol (u3 - u1)`` (regular precession; the determinant of (2.10) vanishes, event
     ``'u1_eq_u2'``), ``u3 - u2 < degenerate_tol (u3 - u1)`` (sleeping top / separatrix, infinite
     nutation period, event ``'separatrix'``) and, in the ``GHr`` chart, a triple root ``u1 = u2 = u3 = 1``
@@ -229,13 +231,15 @@ def averaged(
                 f"{switch_tol:g}), where a sign delta1/delta2 may change; use chart='auto' or 'GHr', or a smaller "
                 "switch_tol"
             )
+        if chart == "auto" and (u_init[1] - u_init[0]) <= degenerate_tol * (u_init[2] - u_init[0]):
+            cur = "GHr"  # a regular precession: (2.10) is singular, the (2.7)-averaged chart is not
     if cur == "GHr":
         ystate = np.array([Gz0, H0, r0])
     u1i, u2i, u3i = u_init
     if (u2i - u1i) <= degenerate_tol * (u3i - u1i) and cur == "u":
         raise ValueError(
-            "the initial state is (numerically) a regular precession, u1 = u2: the averaged system in "
-            "(u1, u2, u3) is singular there (determinant of (2.10)); use chart='GHr'"
+            "chart='u': the initial state is (numerically) a regular precession, u1 = u2: the averaged system "
+            "in (u1, u2, u3) is singular there (determinant of (2.10)); use chart='auto' or 'GHr'"
         )
     if (u3i - u2i) <= degenerate_tol * (u3i - u1i):
         raise ValueError("the initial state is a sleeping top on the separatrix (u2 = u3 = 1): "
