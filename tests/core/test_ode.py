@@ -41,3 +41,19 @@ def test_bad_inputs():
         integrate(lambda t, y: y, (0.0,), [1.0])
     with pytest.raises(ValueError, match="y0"):
         integrate(lambda t, y: y, (0.0, 1.0), [math.nan])
+
+
+def test_nonfinite_rhs_at_start_is_refused_not_a_hang():
+    with pytest.raises(ValueError, match="not finite at the initial state"):
+        integrate(lambda t, y: np.array([math.nan]), (0.0, 1.0), [1.0])
+
+
+def test_rhs_turning_nan_mid_run_ends_with_failure_status():
+    # the derivative becomes NaN for t > 0.5: SciPy rejects steps until the step size underflows
+    def f(t, y):
+        return np.array([math.nan if t > 0.5 else -y[0]])
+
+    sol = integrate(f, (0.0, 1.0), [1.0], method="RK45", rtol=1e-6)
+    assert sol.status == -1
+    assert np.all(np.isfinite(sol.y))
+    assert sol.t[-1] <= 0.5 + 1e-9
