@@ -109,7 +109,7 @@ def averaged_slow_rates(
     if near_double:
         s1, s2, _ = vieta(top, Gz, H, r)
         c_lo = (s1 - math.sqrt(max(s1 * s1 - 3.0 * s2, 0.0))) / 3.0
-        u = np.array([min(max(c_lo, -1.0), 1.0)])
+        u = np.array([c_lo])  # not clipped to [-1, 1]: keeps the field smooth across a pole (rounding only)
     elif u2 - u1 <= 0.0:
         # regular precession: the nutation is frozen at u = u1 = u2, the mean is the value there
         u = np.array([0.5 * (u1 + u2)])

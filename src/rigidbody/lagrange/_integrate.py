@@ -39,6 +39,30 @@ def _closeness(u1: float, u2: float, u3: float, d1: float) -> tuple[float, float
     return R / s13, 0.5 * (s13 - d1 * R) / s13
 
 
+def _double_root(top: Top, Gz: float, H: float, r: float) -> tuple[float, float]:
+    """``(c, s1)``: the local maximum ``c = (s1 - (s1^2 - 3 s2)^{1/2})/3`` of the cubic (1.6) (the double root
+    of a regular precession; smooth in (Gz, H, r), not clipped to [-1, 1]); ValueError if there is none."""
+    if not (math.isfinite(Gz) and math.isfinite(H) and math.isfinite(r)):
+        raise ValueError("Gz, H, r must be finite")
+    s1, s2, _ = vieta(top, Gz, H, r)
+    disc = s1 * s1 - 3.0 * s2
+    if disc < 0.0:
+        raise ValueError(f"(Gz, H, r) = ({Gz!r}, {H!r}, {r!r}): the cubic (1.5) has one real root")
+    return (s1 - math.sqrt(disc)) / 3.0, s1
+
+
+def _roots_or_double(top: Top, Gz: float, H: float, r: float) -> tuple[float, float, float]:
+    """Roots of (1.5); a state a hair outside the admissible set next to its regular-precession boundary
+    (Runge-Kutta stages and accepted steps along a solution that runs on that curved boundary: the hanging or
+    the sleeping top) gets the double root at the local maximum of the cubic, ``u1 = u2 = c``."""
+    try:
+        return roots(top, Gz, H, r)
+    except ValueError:
+        c, s1 = _double_root(top, Gz, H, r)
+        c = min(max(c, -1.0), 1.0)
+        return c, c, max(s1 - 2.0 * c, 1.0)
+
+
 def averaged(
     top: Top,
     torque: Torque,
@@ -148,10 +172,20 @@ def averaged(
         return V_matrix(top, u1, u2, u3, Gz, r) @ np.array(Fm)
 
     def rhs_g(tau: float, y: np.ndarray) -> np.ndarray:
+        Gz, H, r = float(y[0]), float(y[1]), float(y[2])
         try:  # roots from the cubic inside: a nearly double pair is handled smoothly there
-            return np.array(averaged_slow_rates(top, torque, float(y[0]), float(y[1]), float(y[2]), n=n))
+            return np.array(averaged_slow_rates(top, torque, Gz, H, r, n=n))
+        except ValueError:
+            pass
+        # Runge-Kutta stages leave the admissible set by O(h^2) when the solution runs along its boundary (a
+        # regular precession, e.g. the hanging or the sleeping top: the boundary is curved in (Gz, H, r));
+        # extend the field continuously by the value at the double root, the local maximum of the cubic
+        try:
+            c, _ = _double_root(top, Gz, H, r)
         except ValueError:
             return np.full(3, np.nan)
+        F = torque.slow_rates(top, Gz, H, r, np.array([c]))
+        return np.array([float(np.mean(F[0])), float(np.mean(F[1])), float(np.mean(F[2]))])
 
     # ---- events ----------------------------------------------------------------------------------
     def ev_deg(tau: float, y: np.ndarray, *a: Any) -> float:
@@ -166,7 +200,7 @@ def averaged(
 
     def ev_sep_g(tau: float, y: np.ndarray) -> float:
         try:
-            u1, u2, u3 = roots(top, float(y[0]), float(y[1]), float(y[2]))
+            u1, u2, u3 = _roots_or_double(top, float(y[0]), float(y[1]), float(y[2]))
         except ValueError:
             return -1.0
         if u3 - u1 <= 0.0:
@@ -178,13 +212,14 @@ def averaged(
         s1, s2, _ = vieta(top, float(y[0]), float(y[1]), float(y[2]))
         return math.sqrt(max(s1 * s1 - 3.0 * s2, 0.0)) - _TRIPLE_TOL
 
-    # sign-change events of Gz^2 - C^2 r^2 and r; a value that is zero to rounding (identically zero for a
-    # non-spinning top, r = 0, or a planar pendulum, Gz = r = 0; rounding noise for a sleeping top, Gz = C r)
-    # counts as positive, so that it does not report a flip at every step
+    # sign-change events of Gz^2 - C^2 r^2 and r; a value that is zero to integration accuracy (identically
+    # zero for a non-spinning top, r = 0, or a planar pendulum, Gz = r = 0; integration noise for a sleeping
+    # or hanging top, Gz = +-C r, where both branches of (2.8) coincide) counts as positive, so that it does
+    # not report flips at every step; a genuine crossing is located to that relative accuracy (1e-10)
     def ev_w(tau: float, y: np.ndarray) -> float:
         g2, c2 = float(y[0] * y[0]), float((top.C * y[2]) ** 2)
         w = g2 - c2
-        return w if abs(w) > 1e-13 * (g2 + c2) else 1e-300
+        return w if abs(w) > 1e-10 * (g2 + c2) else 1e-300
 
     def ev_r(tau: float, y: np.ndarray) -> float:
         return float(y[2]) if y[2] != 0.0 else 1e-300
@@ -297,7 +332,7 @@ def averaged(
         t_events["delta2_flip"].extend(sol.t_events["delta2_flip"].tolist())
         tt, yy = sol.tau, sol.y
         if tt.size:
-            U = np.array([roots(top, *yy[:, j]) for j in range(tt.size)]).T
+            U = np.array([_roots_or_double(top, *yy[:, j]) for j in range(tt.size)]).T
             dd = np.array(deltas(top, yy[0], yy[2])).reshape(2, -1)
             taus.append(tt)
             Us.append(U)
@@ -310,7 +345,7 @@ def averaged(
             te = float(sol.t_events["leave_branch"][-1])
             ye = sol.y_events["leave_branch"][-1]
             tau = te
-            ystate = np.array(roots(top, *ye), dtype=float)
+            ystate = np.array(_roots_or_double(top, *ye), dtype=float)
             d1, d2 = deltas(top, ye[0], ye[2])
             cur = "u"
             t_events["chart_switch"].append(te)

@@ -203,7 +203,7 @@ def _roots_scalar(top: Top, Gz: float, H: float, r: float) -> tuple[float, float
             f"(Gz, H, r) = ({Gz!r}, {H!r}, {r!r}) is not attainable by a real top: Q(u) < 0 on [-1, 1] "
             "(energy H too low for the given Gz and r)"
         )
-    if H - 0.5 * top.C * r * r < -top.mgl * (1.0 + 1e-12) - tol:
+    if H - 0.5 * top.C * r * r < -top.mgl * (1.0 + 1e-9 * scale):  # same slack as the projection above
         raise ValueError(
             f"(Gz, H, r) = ({Gz!r}, {H!r}, {r!r}) is not attainable: H must be >= C r^2/2 - mgl "
             "(kinetic energy of the axial spin plus the lowest potential energy)"
