@@ -269,6 +269,12 @@ def test_averaged_rejects_bad_input():
         L.averaged(TOP, DRAG, ini, (0, 1), chart="xyz")
     with pytest.raises(ValueError, match="distinct roots"):
         L.averaged_rhs(TOP, DRAG, 0.3, 0.3, 2.0)
+    for kw, name in [(dict(degenerate_tol=2.0), "degenerate_tol"), (dict(switch_tol=0.7), "switch_tol"),
+                     (dict(max_segments=0), "max_segments"), (dict(rtol=-1.0), "rtol"), (dict(atol=0.0), "atol")]:
+        with pytest.raises(ValueError, match=name):
+            L.averaged(TOP, DRAG, ini, (0, 1), **kw)
+    with pytest.raises(ValueError, match="rtol"):
+        L.simulate(TOP, DRAG, 0.1, spun(60), (0, 1), rtol=-1.0)
 
 
 def test_non_finite_user_torque_is_refused_not_a_hang():

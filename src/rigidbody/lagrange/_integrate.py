@@ -141,6 +141,13 @@ def averaged(
         raise ValueError(f"chart must be one of {_CHARTS}, got {chart!r}")
     degenerate_tol = positive(degenerate_tol, "degenerate_tol")
     switch_tol = positive(switch_tol, "switch_tol")
+    if degenerate_tol >= 1.0:
+        raise ValueError(f"degenerate_tol must lie in (0, 1) (a ratio of root gaps), got {degenerate_tol!r}")
+    if switch_tol >= 0.5:
+        raise ValueError(f"switch_tol must lie in (0, 0.5) (the chart is left at 2 switch_tol), got {switch_tol!r}")
+    rtol, atol = positive(rtol, "rtol"), positive(atol, "atol")
+    if isinstance(max_segments, bool) or not isinstance(max_segments, (int, np.integer)) or max_segments < 1:
+        raise ValueError(f"max_segments must be an integer >= 1, got {max_segments!r}")
     try:
         Gz0, H0, r0 = (float(x) for x in initial)
     except (TypeError, ValueError):
@@ -444,6 +451,7 @@ def simulate(
     if not math.isfinite(eps) or eps < 0.0:
         raise ValueError(f"eps must be finite and >= 0, got {eps!r}")
     t0, t1 = span(t_span, "t_span")
+    rtol, atol = positive(rtol, "rtol"), positive(atol, "atol")
     try:
         p0, q0, r0, phi0, th0, psi0 = (float(x) for x in state0)
     except (TypeError, ValueError):
