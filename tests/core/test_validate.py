@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from rigidbody.core.validate import positive, real, span
+from rigidbody.core.validate import finite_array, positive, real, span
 
 
 def test_real_accepts_numpy_scalars_and_rejects_bad_input():
@@ -32,3 +32,13 @@ def test_span():
         span((1.0, 0.0), "t_span")
     with pytest.raises(ValueError, match="t_span must be a pair"):
         span(3.0, "t_span")
+
+
+def test_finite_array():
+    np.testing.assert_array_equal(finite_array([1, 2.5], "u"), [1.0, 2.5])
+    with pytest.raises(TypeError, match="Gz must be real numbers"):
+        finite_array("a", "Gz")
+    with pytest.raises(TypeError, match="Gz"):
+        finite_array([1 + 2j], "Gz")
+    with pytest.raises(ValueError, match="H must be finite"):
+        finite_array([0.0, math.inf], "H")

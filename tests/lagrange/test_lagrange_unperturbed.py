@@ -273,3 +273,13 @@ def test_regular_precessions_round_trip(th, r, phi):
     assert abs(u1 - cth) < 1e-6 and abs(u2 - cth) < 1e-6  # double root: sqrt(eps) times the scale
     back = L.from_roots(TOP, u1, u2, u3, *L.deltas(TOP, Gz, rr))
     np.testing.assert_allclose(back, (Gz, H, rr), atol=1e-7 * (1 + abs(H)))  # symmetric functions smooth
+
+
+def test_bad_types_name_the_parameter():
+    top = L.Top(A=1.5, C=1.0, mgl=0.5)
+    with pytest.raises(TypeError, match="Gz"):
+        L.roots(top, "a", 1.0, 1.0)
+    with pytest.raises(ValueError, match="theta must be finite"):
+        L.integrals(top, 0.0, 0.0, 1.0, 0.0, float("nan"))
+    with pytest.raises(ValueError, match="u2 must be finite"):
+        L.from_roots(top, 0.0, np.array([np.nan]), 2.0, 1, 1)

@@ -12,7 +12,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["positive", "real", "span"]
+__all__ = ["finite_array", "positive", "real", "span"]
 
 
 def real(value: Any, name: str) -> float:
@@ -52,3 +52,24 @@ def span(value: Any, name: str) -> tuple[float, float]:
     if not (math.isfinite(a) and math.isfinite(b)) or b < a:
         raise ValueError(f"{name} must be finite with end >= start, got {value!r}")
     return a, b
+
+
+def finite_array(value: Any, name: str) -> np.ndarray:
+    """Return ``value`` as a float array with only finite entries.
+
+    Raises
+    ------
+    TypeError
+        If ``value`` cannot be read as real numbers (strings, objects, complex numbers).
+    ValueError
+        If any entry is NaN or infinite.
+    """
+    if isinstance(value, (str, bytes)) or np.iscomplexobj(value):
+        raise TypeError(f"{name} must be real numbers, got {value!r}")
+    try:
+        a = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be real numbers, got {value!r}") from None
+    if not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return a

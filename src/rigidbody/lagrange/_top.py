@@ -16,6 +16,8 @@ from typing import Any
 
 import numpy as np
 
+from ..core.validate import finite_array
+
 __all__ = [
     "Top",
     "cubic_coefficients",
@@ -104,10 +106,9 @@ def integrals(top: Top, p: Any, q: Any, r: Any, phi: Any, theta: Any) -> tuple[A
         or floats for scalar input).
     """
     top = _check_top(top)
-    p, q, r, phi, theta = (np.asarray(x, dtype=float) for x in (p, q, r, phi, theta))
-    for name, x in zip(("p", "q", "r", "phi", "theta"), (p, q, r, phi, theta)):
-        if not np.all(np.isfinite(x)):
-            raise ValueError(f"{name} must be finite, got {x!r}")
+    p, q, r, phi, theta = (
+        finite_array(x, name) for x, name in zip((p, q, r, phi, theta), ("p", "q", "r", "phi", "theta"))
+    )
     st, ct = np.sin(theta), np.cos(theta)
     Gz = top.A * st * (p * np.sin(phi) + q * np.cos(phi)) + top.C * r * ct
     H = 0.5 * (top.A * (p * p + q * q) + top.C * r * r) + top.mgl * ct
@@ -273,9 +274,7 @@ def roots(top: Top, Gz: Any, H: Any, r: Any) -> tuple[Any, Any, Any]:
         If (Gz, H, r) is not attainable by a real motion (Q(u) < 0 on all of [-1, 1]).
     """
     top = _check_top(top)
-    Gz, H, r = np.broadcast_arrays(*(np.asarray(x, dtype=float) for x in (Gz, H, r)))
-    if not (np.all(np.isfinite(Gz)) and np.all(np.isfinite(H)) and np.all(np.isfinite(r))):
-        raise ValueError("Gz, H, r must be finite")
+    Gz, H, r = np.broadcast_arrays(*(finite_array(x, name) for x, name in zip((Gz, H, r), ("Gz", "H", "r"))))
     if Gz.ndim == 0:
         return _roots_scalar(top, float(Gz), float(H), float(r))
     out = np.empty((3, *Gz.shape))
@@ -327,12 +326,10 @@ def from_roots(
     top = _check_top(top)
     if all(isinstance(x, (float, int)) for x in (u1, u2, u3, delta1, delta2)):
         return _from_roots_scalar(top, float(u1), float(u2), float(u3), float(delta1), float(delta2))
-    u1, u2, u3 = (np.asarray(x, dtype=float) for x in (u1, u2, u3))
+    u1, u2, u3 = (finite_array(x, name) for x, name in zip((u1, u2, u3), ("u1", "u2", "u3")))
     d1 = _check_delta(delta1, "delta1")
     d2 = _check_delta(delta2, "delta2")
     tol = 1e-12
-    if not (np.all(np.isfinite(u1)) and np.all(np.isfinite(u2)) and np.all(np.isfinite(u3))):
-        raise ValueError(f"u1, u2, u3 must be finite, got u1={u1!r}, u2={u2!r}, u3={u3!r}")
     if np.any(u1 < -1.0 - tol) or np.any(u1 > u2 + tol) or np.any(u2 > 1.0 + tol) or np.any(u3 < 1.0 - tol):
         raise ValueError(
             "roots must satisfy -1 <= u1 <= u2 <= 1 <= u3 (1.5); got "
