@@ -364,20 +364,80 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
 
 
 def sn(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    """Jacobi ``sn(u, k)`` in the modulus ``k`` (see :func:`jacobi`)."""
+    """Jacobi ``sn(u, k)`` in the modulus ``k``.
+
+    Parameters
+    ----------
+    u : array_like
+        Argument (any real value; reduced by the period internally).
+    k : array_like, optional
+        Modulus in [0, 1] (SciPy's parameter is ``m = k**2``).
+    mc : array_like, optional
+        Complementary parameter ``1 - k**2``; pass it near the separatrix.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Broadcast over the inputs; see :func:`jacobi` for the accuracy and the conventions.
+    """
     return jacobi(u, k, mc=mc)[0]
 
 
 def cn(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    """Jacobi ``cn(u, k)`` in the modulus ``k`` (see :func:`jacobi`)."""
+    """Jacobi ``cn(u, k)`` in the modulus ``k``.
+
+    Parameters
+    ----------
+    u : array_like
+        Argument (any real value; reduced by the period internally).
+    k : array_like, optional
+        Modulus in [0, 1] (SciPy's parameter is ``m = k**2``).
+    mc : array_like, optional
+        Complementary parameter ``1 - k**2``; pass it near the separatrix.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Broadcast over the inputs; see :func:`jacobi` for the accuracy and the conventions.
+    """
     return jacobi(u, k, mc=mc)[1]
 
 
 def dn(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    """Jacobi ``dn(u, k)`` in the modulus ``k`` (see :func:`jacobi`)."""
+    """Jacobi ``dn(u, k)`` in the modulus ``k``.
+
+    Parameters
+    ----------
+    u : array_like
+        Argument (any real value; reduced by the period internally).
+    k : array_like, optional
+        Modulus in [0, 1] (SciPy's parameter is ``m = k**2``).
+    mc : array_like, optional
+        Complementary parameter ``1 - k**2``; pass it near the separatrix.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Broadcast over the inputs; see :func:`jacobi` for the accuracy and the conventions.
+    """
     return jacobi(u, k, mc=mc)[2]
 
 
 def am(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    """Jacobi amplitude ``am(u, k)``, continuous in ``u`` (see :func:`jacobi`)."""
+    """Jacobi amplitude ``am(u, k)``, continuous and increasing in ``u`` in the modulus ``k``.
+
+    Parameters
+    ----------
+    u : array_like
+        Argument (any real value; reduced by the period internally).
+    k : array_like, optional
+        Modulus in [0, 1] (SciPy's parameter is ``m = k**2``).
+    mc : array_like, optional
+        Complementary parameter ``1 - k**2``; pass it near the separatrix.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Broadcast over the inputs; see :func:`jacobi` for the accuracy and the conventions.
+    """
     return jacobi(u, k, mc=mc)[3]

@@ -166,6 +166,17 @@ def euler_rates(theta: Any, phi: Any, p: Any, q: Any, r: Any) -> tuple[Any, Any,
         \dot\theta = p\cos\varphi - q\sin\varphi,\quad
         \dot\varphi = r - \dot\psi\cos\theta
 
+    Parameters
+    ----------
+    theta, phi : array_like
+        Nutation and proper-rotation angles.
+    p, q, r : array_like
+        Body components of the angular velocity.
+
+    Returns
+    -------
+    dpsi, dtheta, dphi : float or numpy.ndarray
+
     Raises
     ------
     ValueError
@@ -188,7 +199,18 @@ def euler_rates(theta: Any, phi: Any, p: Any, q: Any, r: Any) -> tuple[Any, Any,
 
 
 def quat_multiply(a: Any, b: Any) -> np.ndarray:
-    """Hamilton product ``a ⊗ b`` of scalar-first quaternions, broadcast over leading axes."""
+    """Hamilton product ``a ⊗ b`` of scalar-first quaternions.
+
+    Parameters
+    ----------
+    a, b : array_like
+        Quaternions ``(w, x, y, z)``, shape ``(..., 4)``, broadcast over the leading axes.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(..., 4)``. With rotations, ``a ⊗ b`` applies ``b`` first (in the frame of ``a``).
+    """
     qa, qb = np.broadcast_arrays(_arr(a, "a"), _arr(b, "b"))
     w1, x1, y1, z1 = np.moveaxis(qa, -1, 0)
     w2, x2, y2, z2 = np.moveaxis(qb, -1, 0)
@@ -204,14 +226,39 @@ def quat_multiply(a: Any, b: Any) -> np.ndarray:
 
 
 def quat_rate(q: Any, omega_body: Any) -> np.ndarray:
-    r""":math:`\dot q = \tfrac12\,q\otimes(0, \omega)` for the body angular velocity :math:`\omega`."""
+    r"""Quaternion kinematics :math:`\dot q = \tfrac12\,q\otimes(0, \omega)`.
+
+    Parameters
+    ----------
+    q : array_like
+        Attitude quaternion (body -> reference), shape ``(..., 4)``, scalar first.
+    omega_body : array_like
+        Angular velocity in **body** components ``(p, q, r)``, shape ``(..., 3)``.
+
+    Returns
+    -------
+    numpy.ndarray
+        :math:`\dot q`, shape ``(..., 4)``. Integrate it instead of the Euler angles: it has no
+        singularity at :math:`\theta = 0, \pi`.
+    """
     om = _arr(omega_body, "omega_body")
     zero = np.zeros((*om.shape[:-1], 1))
     return 0.5 * quat_multiply(q, np.concatenate([zero, om], axis=-1))
 
 
 def quat_from_euler(psi: Any, theta: Any, phi: Any) -> np.ndarray:
-    """Scalar-first unit quaternion of the rotation :func:`dcm` (w >= 0 not enforced)."""
+    """Scalar-first unit quaternion of the rotation :func:`dcm`.
+
+    Parameters
+    ----------
+    psi, theta, phi : array_like
+        3-1-3 Euler angles (radians), broadcast together.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(..., 4)``, ``(w, x, y, z)``; the sign is not normalised (``w`` may be negative).
+    """
     ps, th, ph = np.broadcast_arrays(_arr(psi, "psi"), _arr(theta, "theta"), _arr(phi, "phi"))
     ch = np.cos(0.5 * th)
     sh = np.sin(0.5 * th)
@@ -221,7 +268,23 @@ def quat_from_euler(psi: Any, theta: Any, phi: Any) -> np.ndarray:
 
 
 def dcm_from_quat(q: Any) -> np.ndarray:
-    """Rotation matrix (body -> reference) of a quaternion; the quaternion is normalised first."""
+    """Rotation matrix (body -> reference) of a quaternion.
+
+    Parameters
+    ----------
+    q : array_like
+        Shape ``(..., 4)``, scalar first; normalised before use (it must be non-zero).
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(..., 3, 3)``, the same convention as :func:`dcm`.
+
+    Raises
+    ------
+    ValueError
+        If the shape is not ``(..., 4)`` or a quaternion is zero.
+    """
     qa = _arr(q, "q")
     if qa.shape[-1] != 4:
         raise ValueError(f"q must have shape (..., 4), got {qa.shape}")
@@ -243,7 +306,18 @@ def dcm_from_quat(q: Any) -> np.ndarray:
 
 
 def quat_from_dcm(R: Any) -> np.ndarray:
-    """Scalar-first unit quaternion (w >= 0) of a rotation matrix, by Shepperd's stable method."""
+    """Scalar-first unit quaternion of a rotation matrix, by Shepperd's stable method.
+
+    Parameters
+    ----------
+    R : array_like
+        Rotation matrices (body -> reference), shape ``(..., 3, 3)``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(..., 4)``, normalised, with ``w >= 0``.
+    """
     Ra = _arr(R, "R")
     if Ra.shape[-2:] != (3, 3):
         raise ValueError(f"R must have shape (..., 3, 3), got {Ra.shape}")
@@ -276,12 +350,34 @@ def quat_from_dcm(R: Any) -> np.ndarray:
 
 
 def euler_from_quat(q: Any) -> tuple[Any, Any, Any]:
-    """Euler angles of a quaternion (through :func:`dcm_from_quat` and :func:`angles`)."""
+    r"""3-1-3 Euler angles of a quaternion (through :func:`dcm_from_quat` and :func:`angles`).
+
+    Parameters
+    ----------
+    q : array_like
+        Shape ``(..., 4)``, scalar first.
+
+    Returns
+    -------
+    psi, theta, phi : float or numpy.ndarray
+        As :func:`angles`, including its degenerate-angle rule at :math:`\sin\theta = 0`.
+    """
     return angles(dcm_from_quat(q))
 
 
 def skew(v: Any) -> np.ndarray:
-    """Cross-product matrix: ``skew(v) @ w == np.cross(v, w)``; shape ``(..., 3, 3)``."""
+    """Cross-product matrix.
+
+    Parameters
+    ----------
+    v : array_like
+        Vectors, shape ``(..., 3)``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(..., 3, 3)`` with ``skew(v) @ w == np.cross(v, w)``.
+    """
     va = _arr(v, "v")
     if va.shape[-1] != 3:
         raise ValueError(f"v must have shape (..., 3), got {va.shape}")

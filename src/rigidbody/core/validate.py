@@ -18,6 +18,17 @@ __all__ = ["finite_array", "positive", "real", "span"]
 def real(value: Any, name: str) -> float:
     """Return ``value`` as a finite float.
 
+    Parameters
+    ----------
+    value : object
+        The user's input.
+    name : str
+        Parameter name used in the error message.
+
+    Returns
+    -------
+    float
+
     Raises
     ------
     TypeError
@@ -34,7 +45,26 @@ def real(value: Any, name: str) -> float:
 
 
 def positive(value: Any, name: str) -> float:
-    """Return ``value`` as a finite float > 0 (``TypeError``/``ValueError`` naming ``name`` otherwise)."""
+    """Return ``value`` as a finite float > 0.
+
+    Parameters
+    ----------
+    value : object
+        The user's input.
+    name : str
+        Parameter name used in the error message.
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    TypeError
+        If ``value`` is not a real number.
+    ValueError
+        If ``value`` is not finite or not > 0.
+    """
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
         raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
     v = float(value)
@@ -44,7 +74,24 @@ def positive(value: Any, name: str) -> float:
 
 
 def span(value: Any, name: str) -> tuple[float, float]:
-    """Return an integration span ``(start, end)`` of finite floats with ``end >= start``."""
+    """Return an integration span ``(start, end)`` of finite floats with ``end >= start``.
+
+    Parameters
+    ----------
+    value : sequence of two numbers
+        The user's span.
+    name : str
+        Parameter name used in the error message (``'t_span'``, ``'tau_span'``).
+
+    Returns
+    -------
+    tuple of float
+
+    Raises
+    ------
+    ValueError
+        If it is not a pair of finite numbers with ``end >= start``.
+    """
     try:
         a, b = (float(x) for x in value)
     except (TypeError, ValueError):
@@ -56,6 +103,17 @@ def span(value: Any, name: str) -> tuple[float, float]:
 
 def finite_array(value: Any, name: str) -> np.ndarray:
     """Return ``value`` as a float array with only finite entries.
+
+    Parameters
+    ----------
+    value : array_like
+        The user's input.
+    name : str
+        Parameter name used in the error message.
+
+    Returns
+    -------
+    numpy.ndarray
 
     Raises
     ------
