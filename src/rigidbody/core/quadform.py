@@ -262,6 +262,20 @@ def gradient_cs(
 
     ``f`` must be analytic and written with functions that accept complex arguments (``numpy``/
     ``cmath``, not ``math``), with real branches chosen explicitly (no ``abs``).
+
+    Parameters
+    ----------
+    f : callable
+        Scalar function of a complex vector of the shape of ``x``.
+    x : array_like
+        Point (real), flattened.
+    h : float
+        Imaginary step; any tiny value works since no difference is taken.
+
+    Returns
+    -------
+    numpy.ndarray
+        The gradient, shape ``(x.size,)``.
     """
     x0 = np.asarray(x, dtype=float)
     g = np.empty(x0.size)
