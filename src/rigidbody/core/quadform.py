@@ -159,6 +159,12 @@ def inertia(
     A = _as_square_stack(H)
     if not np.all(np.isfinite(A)):
         raise ValueError("H contains non-finite entries")
+    At = np.swapaxes(A, -1, -2)
+    dg = np.abs(np.diagonal(A, axis1=-2, axis2=-1))
+    # relative to each entry and to the geometric mean of its diagonal (entries may span 20 decades)
+    scale = np.abs(A) + np.abs(At) + np.sqrt(dg[..., :, None] * dg[..., None, :])
+    if np.any(np.abs(A - At) > 1e-8 * scale):
+        raise ValueError("H must be symmetric (the inertia of a quadratic form is that of its symmetric matrix)")
     n = A.shape[-1]
     S = np.ascontiguousarray(np.moveaxis(A, (-2, -1), (0, 1)))
     diag = np.abs(np.stack([S[i, i] for i in range(n)]))
