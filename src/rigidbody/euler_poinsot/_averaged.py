@@ -136,6 +136,38 @@ def precession_rate(body: Body, G: float, k2: float, delta: float, *, kind: str 
 
     The :math:`\varepsilon\to0` limit of the :math:`\lambda` equation of (6)/(9) (averaged over
     :math:`\nu`); in that limit :math:`\dot\delta = 0`.
+
+    Parameters
+    ----------
+    body : Body
+    G : float
+        Magnitude of the angular momentum (> 0).
+    k2 : float
+        Modulus squared of the Euler--Poinsot motion (5), in :math:`[0, 1]`; enters through :math:`N^*`
+        (:func:`~rigidbody.euler_poinsot.N_star`).
+    delta : float
+        Polar angle of :math:`\mathbf G` from the orbit normal :math:`x_3` (radians).
+    kind : {'max', 'min'}
+        Kind of Euler--Poinsot motion ('max' is the paper's).
+    orbit : Orbit, optional
+        Eccentric orbits give the factor :math:`(1-e^2)^{-3/2}` (default: the paper's circular orbit).
+    omega0 : float
+        Orbital mean motion (> 0). The default 1 gives :math:`d\lambda/d\tau` of the nondimensional form
+        (9) (``G`` and the moments in the section-3 scaling); pass the dimensional :math:`\omega_0` (with
+        dimensional ``G`` and moments) for :math:`d\lambda/dt` of (6).
+
+    Returns
+    -------
+    float
+        :math:`\dot\lambda` in rad per unit :math:`\tau` (``omega0=1``) or per unit :math:`t`.
+
+    Raises
+    ------
+    TypeError
+        If ``body`` is not a :class:`Body`, ``orbit`` is not an :class:`Orbit` or a number is not real.
+    ValueError
+        If ``kind`` is unknown, a number is not finite, ``G <= 0``, ``omega0 <= 0`` or ``k2`` is outside
+        :math:`[0, 1]`.
     """
     _check_body(body)
     _check_kind(kind)

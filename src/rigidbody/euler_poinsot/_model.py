@@ -354,8 +354,27 @@ def T_from(body: Body, G: Any, k2: Any, kind: str = "max") -> Any:
 def kind_of(body: Body, G: float, T: float) -> str:
     """'max', 'min' or 'separatrix' for a state (G, T) (compares :math:`G^2` with :math:`2TA_2`).
 
+    The two kinds of Euler--Poinsot motion of section 2: ``'max'`` (:math:`2TA_1 \\ge G^2 > 2TA_2`, the
+    domain of formula (5)) and ``'min'`` (:math:`2TA_2 > G^2 \\ge 2TA_3`).
+
+    Parameters
+    ----------
+    body : Body
+    G : float
+        Magnitude of the angular momentum (> 0).
+    T : float
+        Kinetic energy (> 0), in units consistent with ``G`` and the moments (dimensional, or the
+        nondimensional :math:`\\tilde G, \\tilde T` of section 3).
+
+    Returns
+    -------
+    {'max', 'min', 'separatrix'}
+        ``'separatrix'`` only when :math:`G^2 = 2TA_2` exactly.
+
     Raises
     ------
+    TypeError
+        If ``body`` is not a :class:`Body` or ``G``, ``T`` is not a real number.
     ValueError
         If ``G`` or ``T`` is not positive, or :math:`G^2/2T` lies outside :math:`[A_3, A_1]` (no rigid-body
         state has it).
@@ -383,11 +402,28 @@ def chi(body: Body, I: Any) -> float:
     Only the diagonal of ``I`` enters. For the paper's two drag cases this gives -4.4743 and 3.8523
     (printed: -4.477 and 3.853; see ``docs/euler_poinsot.md``).
 
+    Parameters
+    ----------
+    body : Body
+    I : array_like or Drag
+        Drag tensor in body axes (3x3, or its 3 diagonal entries); only its diagonal enters.
+
+    Returns
+    -------
+    float
+        :math:`\chi` (dimensionless: a ratio of drag-times-moment products, the same for the dimensional
+        :math:`I, A_i` and the nondimensional :math:`\tilde I, \tilde A_i` of section 3). The slope of (8)
+        at :math:`k^2 = 0` is :math:`(-3-\chi)/(2N)`: for :math:`N > 0` (:func:`N_time`) that equilibrium
+        is stable iff :math:`\chi > -3`.
+
     Raises
     ------
+    TypeError
+        If ``body`` is not a :class:`Body` or ``I`` is not a real matrix.
     ValueError
-        If :math:`I_{33}A_1 = I_{11}A_3` (then :math:`N = \infty` and :math:`\chi` is undefined; the
-        :math:`k^2` equation itself stays finite: use :func:`dk2_dtau`).
+        If ``I`` has the wrong shape, is not finite or its symmetric part is not positive definite (see
+        :class:`Drag`); or if :math:`I_{33}A_1 = I_{11}A_3` (then :math:`N = \infty` and :math:`\chi` is
+        undefined; the :math:`k^2` equation itself stays finite: use :func:`dk2_dtau`).
     """
     _check_body(body)
     I11, I22, I33 = as_drag(I).diag
@@ -399,7 +435,29 @@ def chi(body: Body, I: Any) -> float:
 
 
 def N_time(body: Body, I: Any) -> float:
-    r"""The time scale :math:`N = A_1A_3/(I_{33}A_1 - I_{11}A_3)` of (7) (:math:`\xi = (t-t_*)/N`)."""
+    r"""The time scale :math:`N = A_1A_3/(I_{33}A_1 - I_{11}A_3)` of (7) (:math:`\xi = (t-t_*)/N`).
+
+    Parameters
+    ----------
+    body : Body
+    I : array_like or Drag
+        Drag tensor in body axes (3x3, or its 3 diagonal entries); only :math:`I_{11}, I_{33}` enter.
+
+    Returns
+    -------
+    float
+        :math:`N` in units of time: dimensional :math:`t` for the dimensional :math:`I`, or :math:`\tau`
+        for the nondimensional :math:`\tilde I = I/(G_0\varepsilon^2)` of section 3. Negative when
+        :math:`I_{33}A_1 < I_{11}A_3`.
+
+    Raises
+    ------
+    TypeError
+        If ``body`` is not a :class:`Body` or ``I`` is not a real matrix.
+    ValueError
+        If ``I`` is not a valid drag tensor (see :class:`Drag`), or :math:`I_{33}A_1 = I_{11}A_3` (then
+        :math:`N` is infinite).
+    """
     _check_body(body)
     I11, _, I33 = as_drag(I).diag
     den = I33 * body.A1 - I11 * body.A3
@@ -429,6 +487,31 @@ def dk2_dtau(body: Body, I: Any, k2: float, kind: str = "max") -> float:
     :math:`(1-\chi)/N = 2(I_{33}/A_3 - I_{22}/A_2)`, :math:`(1+\chi)/N = 2(I_{22}/A_2 - I_{11}/A_1)`) but
     stays finite when :math:`I_{33}A_1 = I_{11}A_3` and has no 0/0 at :math:`k \to 0` (both terms are
     :math:`O(k^2)`). For ``kind='min'`` the labels 1 and 3 are exchanged.
+
+    Parameters
+    ----------
+    body : Body
+    I : array_like or Drag
+        Drag tensor in body axes (3x3, or its 3 diagonal entries); only its diagonal enters (8).
+        Dimensional :math:`I` gives :math:`dk^2/dt`; the nondimensional :math:`\tilde I = I/(G_0\varepsilon^2)`
+        (with :math:`\tilde A_i = A_i\Omega_0/G_0`) gives :math:`dk^2/d\tau` of (9).
+    k2 : float
+        Modulus squared of the Euler--Poinsot motion (5), in :math:`[0, 1]`.
+    kind : {'max', 'min'}
+        Kind of Euler--Poinsot motion ('max' is the paper's).
+
+    Returns
+    -------
+    float
+        :math:`dk^2/dt` (or :math:`dk^2/d\tau`); independent of :math:`G`.
+
+    Raises
+    ------
+    TypeError
+        If ``body`` is not a :class:`Body`, ``k2`` is not a real number or ``I`` is not a real matrix.
+    ValueError
+        If ``kind`` is unknown, ``k2`` is outside :math:`[0, 1]` or ``I`` is not a valid drag tensor (see
+        :class:`Drag`).
     """
     _check_body(body)
     _check_kind(kind)
@@ -493,7 +576,29 @@ def N_star(body: Body, k2: Any, kind: str = "max") -> Any:
 
     A function of :math:`k^2` only (:math:`2A_1T/G^2 - 1 = k^2(A_1-A_2)(A_1-A_3)/R`). Physically
     :math:`N^* = A_1+A_2+A_3-3\langle J_{GG}\rangle`, where :math:`J_{GG}` is the moment of inertia
-    about the direction of :math:`\mathbf G` averaged over the Euler--Poinsot motion.
+    about the direction of :math:`\mathbf G` averaged over the Euler--Poinsot motion. It drives the
+    gravity-gradient equations for :math:`\delta, \lambda` in (6) and (9) (:func:`precession_rate`).
+
+    Parameters
+    ----------
+    body : Body
+    k2 : float or array_like
+        Modulus squared of the Euler--Poinsot motion (5), in :math:`[0, 1]`.
+    kind : {'max', 'min'}
+        Kind of Euler--Poinsot motion ('max' is the paper's; labels 1 and 3 exchanged for 'min').
+
+    Returns
+    -------
+    float or numpy.ndarray
+        :math:`N^*`, in the units of the moments :math:`A_i` (dimensional, or :math:`\tilde A_i` of
+        section 3); a float for scalar ``k2``.
+
+    Raises
+    ------
+    TypeError
+        If ``body`` is not a :class:`Body` or ``k2`` is not real.
+    ValueError
+        If ``kind`` is unknown or ``k2`` is not finite and in :math:`[0, 1]`.
     """
     _check_body(body)
     _check_kind(kind)
@@ -566,6 +671,35 @@ def spin_ratio(body: Body, eps: float, G: float, k2: float, kind: str = "max") -
     grows without bound at the separatrix) and :math:`\omega_0 = \varepsilon` in the section-3 scaling
     (dimensional use: pass :math:`\omega_0` as ``eps``). The averaging needs this ratio to be large; the
     integrators stop when it falls to ``min_spin_ratio``.
+
+    The period follows from the closed-form Euler--Poinsot motion of section 2 with the modulus (5),
+    :math:`\dot u = G\sqrt{(A_1-A_2)(A_1-A_3)(A_2-A_3)/(A_1A_2A_3R)}` (labels 1 and 3 exchanged for
+    ``kind='min'``).
+
+    Parameters
+    ----------
+    body : Body
+    eps : float
+        Orbital rate in the section-3 scaling, :math:`\tilde\omega_0 = \varepsilon` (> 0); or the
+        dimensional mean motion :math:`\omega_0` with dimensional ``G`` and moments.
+    G : float
+        Magnitude of the angular momentum (> 0; :math:`\tilde G` in the section-3 scaling).
+    k2 : float
+        Modulus squared of the Euler--Poinsot motion (5), in :math:`[0, 1]`.
+    kind : {'max', 'min'}
+        Kind of Euler--Poinsot motion ('max' is the paper's).
+
+    Returns
+    -------
+    float
+        The dimensionless ratio :math:`(2\pi/P)/\omega_0` (0 at the separatrix :math:`k^2 = 1`).
+
+    Raises
+    ------
+    TypeError
+        If ``body`` is not a :class:`Body` or ``eps``, ``G``, ``k2`` is not a real number.
+    ValueError
+        If ``kind`` is unknown, ``eps <= 0``, ``G <= 0`` or ``k2`` is outside :math:`[0, 1]`.
     """
     _check_body(body)
     _check_kind(kind)

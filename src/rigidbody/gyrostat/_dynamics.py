@@ -86,6 +86,25 @@ def initial_state(sat: Satellite, motion: StationaryMotion | SymmetricMotion, *,
     ``x1 = y1``, ``x2 = cos th y2 - sin th y3``, ``x3 = sin th y2 + cos th y3`` (so that beta, gamma are
     those of (2.3)); body angular velocity ``omega0 beta`` (plus, for (3.2), the spin about x3 fixed by
     ``c = A3 omega3 + k3``).
+
+    The point (2.3) of the family (2.3)-(2.4), or the motion (3.2)-(3.3), as an initial state of the
+    full Newton-Euler equations of :func:`simulate`.
+
+    Parameters
+    ----------
+    sat : Satellite
+        Supplies ``k3`` and ``A3`` for the spin of a :class:`SymmetricMotion` (unused otherwise).
+    motion : StationaryMotion or SymmetricMotion
+        The stationary motion (``R0, theta0, kappa0, omega0``, and ``c`` for (3.2)).
+    sigma0 : float
+        Orbital angle sigma of the centre of mass at the start (radians).
+
+    Returns
+    -------
+    ndarray, shape (13,)
+        ``(r, v, q, omega)``: position of G from the attracting centre and its velocity in the inertial
+        axes zeta1, zeta2, zeta3 (3 + 3), the unit quaternion body -> inertial, scalar first (4), and the
+        body components of the angular velocity (3); in the units of ``sat`` and ``motion``.
     """
     R0, kap, th, om = motion.R0, motion.kappa0, motion.theta0, motion.omega0
     ck, sk, cs, ss = math.cos(kap), math.sin(kap), math.cos(sigma0), math.sin(sigma0)

@@ -87,7 +87,35 @@ def amended_potential_W(
 
 
 def chi(x: Any, *, branch: tuple[int, int] = (1, 1), lib: ModuleType = np) -> Any:
-    """The constraint (2.1): ``chi = beta1 gamma1 + beta2 gamma2 + beta3 gamma3 - sin(kappa)``."""
+    """The constraint (2.1): ``chi = beta1 gamma1 + beta2 gamma2 + beta3 gamma3 - sin(kappa)``.
+
+    ``beta . gamma = cos(angle between zeta2 and OG) = sin(kappa)``: the geometric tie between the
+    attitude coordinates and the latitude of the centre of mass (section 2).
+
+    Parameters
+    ----------
+    x : sequence of 6
+        ``(R, kappa, beta1, beta3, gamma1, gamma2)``; scalars or broadcastable arrays (``kappa`` in radians,
+        direction cosines dimensionless; ``R`` does not enter).
+    branch : (int, int)
+        Signs of ``beta2`` and ``gamma3`` (each +1 or -1).
+    lib : module
+        Provides ``sqrt``, ``sin``: ``numpy`` (default; complex input gives the complex-step route),
+        ``math`` or ``mpmath`` (extended precision).
+
+    Returns
+    -------
+    scalar or ndarray
+        The dimensionless value of chi (0 on the constraint), of the type ``lib`` produces.
+
+    Raises
+    ------
+    TypeError
+        If ``branch`` is not a pair.
+    ValueError
+        If a ``branch`` entry is not +1 or -1, or a real point has ``beta1^2 + beta3^2 > 1`` or
+        ``gamma1^2 + gamma2^2 > 1`` (no real ``beta2`` or ``gamma3``).
+    """
     _, kap, b1, b3, g1, g2 = x
     b2, g3 = _dependent(x, branch, lib)
     return b1 * g1 + b2 * g2 + b3 * g3 - lib.sin(kap)
@@ -105,6 +133,39 @@ def amended_potential(
     """``W1 = W + lambda chi`` (section 2), the function whose stationary points are the motions.
 
     See :func:`amended_potential_W` for the parameters; ``lam`` is the Lagrange multiplier.
+    ``chi`` is the constraint (2.1); the first derivatives of W1 are (2.2) (:func:`gradient_W1`) and its
+    stationary points with ``chi = 0`` include the family (2.3)-(2.4), where ``lam = lambda0``.
+
+    Parameters
+    ----------
+    sat : Satellite
+        Mass properties, ``mu`` and gyrostatic momentum ``k1, k2, k3`` (any consistent units, e.g. SI or
+        nondimensional ``M = mu = R0 = 1``).
+    x : sequence of 6
+        ``(R, kappa, beta1, beta3, gamma1, gamma2)``; scalars or broadcastable arrays (``R`` a length,
+        ``kappa`` in radians, the direction cosines dimensionless).
+    k : float
+        Area constant (the integral of the cyclic coordinate sigma), an angular momentum.
+    lam : float
+        Lagrange multiplier of the constraint (2.1), an energy (``lambda0 = M R0^2 omega0^2 sin kappa0`` at
+        (2.3)).
+    branch : (int, int)
+        Signs of ``beta2`` and ``gamma3``.
+    lib : module
+        ``numpy`` (default; complex input gives the complex-step route), ``math`` or ``mpmath``.
+
+    Returns
+    -------
+    scalar or ndarray
+        ``W1`` in units of energy, of the type ``lib`` produces.
+
+    Raises
+    ------
+    TypeError
+        If ``branch`` is not a pair.
+    ValueError
+        If a ``branch`` entry is not +1 or -1, or a real point has ``beta1^2 + beta3^2 > 1`` or
+        ``gamma1^2 + gamma2^2 > 1``.
     """
     return amended_potential_W(sat, x, k=k, branch=branch, lib=lib) + lam * chi(x, branch=branch, lib=lib)
 

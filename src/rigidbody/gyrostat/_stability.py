@@ -199,7 +199,33 @@ def stability_arrays(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any
 def hessian_W1(sat: Satellite, m: StationaryMotion, *, form: str = "stable") -> np.ndarray:
     """The 6x6 Hessian of W1 at the motion ``m`` from the closed forms (order :data:`COORDS`).
 
-    ``form``: "stable" (default) or "printed", see :func:`hessian_entries`.
+    ``form``: "stable" (default) or "printed", see :func:`hessian_entries`. The twelve nonzero entries are
+    those printed in section 2 after (2.4), evaluated at the motion (2.3); they feed the second variation
+    (2.5) (:func:`constrained_second_variation`).
+
+    Parameters
+    ----------
+    sat : Satellite
+        Must have the mass properties (``M, A1, A2, A3, mu``) the motion was computed for.
+    m : StationaryMotion
+        A member of the family (2.3)-(2.4), from :func:`~rigidbody.gyrostat.stationary_motion`.
+    form : {"stable", "printed"}
+        ``"printed"``: the paper's expressions literally; ``"stable"``: without the O(l^2/R^2)
+        cancellation of ``W_g2g2`` (third relation (2.4)); equal values in exact arithmetic.
+
+    Returns
+    -------
+    ndarray, shape (6, 6)
+        Symmetric matrix of ``d^2 W1 / dx_i dx_j`` in the order :data:`COORDS`
+        ``(R, kappa, beta1, beta3, gamma1, gamma2)``, in the units of ``sat``: W1 is an energy, so ``W_RR``
+        is energy/length^2, the other entries of the R row energy/length, all the rest energy.
+
+    Raises
+    ------
+    TypeError
+        If ``sat`` is not a :class:`Satellite` or ``m`` not a :class:`StationaryMotion`.
+    ValueError
+        If ``form`` is unknown or ``sat`` differs from ``m.satellite`` in ``M, A1, A2, A3, mu``.
     """
     _check_same_body(sat, m)
     e = hessian_entries(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, m.R0, m.theta0, m.kappa0, m.omega0, m.k2, m.S0,
@@ -214,6 +240,32 @@ def hessian_W1_numerical(sat: Satellite, m: StationaryMotion, *, h: float | None
     its round-off is ~ eps |W1| / h^2, so in SI units (|W1| ~ 1e11 next to entries ~ 1e-3) it is useless
     -- evaluate W1 with ``lib=mpmath`` there (as the tests do).  ``h`` defaults to 1e-3 times the
     natural scale of each coordinate (R0 for R, 1 for the angles and direction cosines).
+
+    The finite-difference counterpart of :func:`hessian_W1` (the second derivatives printed after (2.4),
+    at the motion (2.3)).
+
+    Parameters
+    ----------
+    sat : Satellite
+        Must have the mass properties the motion was computed for (W1 itself is evaluated with
+        ``m.satellite``, which carries the motion's ``k2, k3``).
+    m : StationaryMotion
+        A member of the family (2.3)-(2.4).
+    h : float, optional
+        Relative step: the step of each coordinate is ``h`` times its natural scale (default 1e-3).
+
+    Returns
+    -------
+    ndarray, shape (6, 6)
+        Hessian of W1 in the order :data:`COORDS` ``(R, kappa, beta1, beta3, gamma1, gamma2)``, in the
+        units of ``sat``.
+
+    Raises
+    ------
+    TypeError
+        If ``sat`` is not a :class:`Satellite` or ``m`` not a :class:`StationaryMotion`.
+    ValueError
+        If ``sat`` differs from ``m.satellite`` in ``M, A1, A2, A3, mu``.
     """
     from ..core.quadform import hessian_fd
     from ._potential import amended_potential
@@ -227,7 +279,23 @@ def hessian_W1_numerical(sat: Satellite, m: StationaryMotion, *, h: float | None
 
 def constraint_gradient(m: StationaryMotion) -> np.ndarray:
     """Gradient of chi (2.1) at (2.3) w.r.t. :data:`COORDS`: cos kappa0 (0, -1, 0, 1/cos(theta0+kappa0), 0,
-    1/cos theta0)."""
+    1/cos theta0).
+
+    Its null space is the tangent space of the constraint used in the second variation (2.5):
+    ``delta gamma2 = cos theta0 delta kappa - cos theta0 / cos(theta0 + kappa0) delta beta3``.
+
+    Parameters
+    ----------
+    m : StationaryMotion
+        A member of the family (2.3)-(2.4) (only ``theta0`` and ``kappa0`` enter).
+
+    Returns
+    -------
+    ndarray, shape (6,)
+        ``d chi / dx`` in the order ``(R, kappa, beta1, beta3, gamma1, gamma2)``; the R entry is 0, the
+        others are dimensionless (per radian for kappa). The beta3 and gamma2 entries are unbounded as
+        ``cos(theta0 + kappa0)`` or ``cos theta0`` tends to 0 (the chart is singular there).
+    """
     ck = np.cos(m.kappa0)
     return ck * np.array([0.0, -1.0, 0.0, 1.0 / np.cos(m.theta0 + m.kappa0), 0.0, 1.0 / np.cos(m.theta0)])
 
@@ -236,6 +304,30 @@ def constrained_second_variation(sat: Satellite, m: StationaryMotion) -> np.ndar
     """delta^2 W1 after substituting delta gamma2 from (2.1), 5x5 in the order :data:`CONSTRAINED_COORDS`.
 
     Block diagonal: ``[[W_g1g1, W_b1g1], [W_b1g1, W_b1b1]]`` and the a_ij of (2.5).
+    The Sylvester quantities of (2.5) are ``s1 = Hc[0, 0]``, ``s2 = det Hc[:2, :2]`` and
+    ``s3 = det Hc[2:, 2:]``. Entries from the stable form of :func:`hessian_W1`.
+
+    Parameters
+    ----------
+    sat : Satellite
+        Must have the mass properties the motion was computed for.
+    m : StationaryMotion
+        A member of the family (2.3)-(2.4).
+
+    Returns
+    -------
+    ndarray, shape (5, 5)
+        The constrained second variation ``Hc`` in the order :data:`CONSTRAINED_COORDS`
+        ``(gamma1, beta1, R, kappa, beta3)``, in the units of ``sat``. Not checked for the singular chart
+        ``cos theta0 = 0`` or ``cos(theta0 + kappa0) = 0``, where entries blow up (:func:`stability`
+        refuses such motions).
+
+    Raises
+    ------
+    TypeError
+        If ``sat`` is not a :class:`Satellite` or ``m`` not a :class:`StationaryMotion`.
+    ValueError
+        If ``sat`` differs from ``m.satellite`` in ``M, A1, A2, A3, mu``.
     """
     _check_same_body(sat, m)
     e = hessian_entries(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, m.R0, m.theta0, m.kappa0, m.omega0, m.k2, m.S0)

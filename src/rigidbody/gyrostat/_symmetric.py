@@ -50,6 +50,30 @@ def symmetric_potential(
     ``beta3 = cos theta sin kappa - sin theta cos psi cos kappa``,
     ``U = mu M / R + mu R^-3 (A1 - A3)(1 - 3/2 sin^2 theta)``.  ``c`` is the constant of the cyclic
     integral of phi (k3 enters it additively).  ``lib``: numpy (default), math or mpmath.
+
+    Its stationary points are given by (3.1); the motion (3.2)-(3.3) is one of them, and its second
+    derivative in psi there is (3.4).
+
+    Parameters
+    ----------
+    sat : Satellite
+        Supplies ``M, A1, A3, mu`` (any consistent units); the section-3 setting is ``A1 = A2``,
+        ``k1 = k2 = 0`` (not checked here).
+    x : sequence of 4
+        ``(R, kappa, theta, psi)``: orbit radius (length), latitude of the centre of mass and the 3-1-3
+        Euler angles theta, psi of the body relative to the orbital frame (radians); scalars or
+        broadcastable arrays.
+    k : float
+        Area constant (the integral of the cyclic coordinate sigma), an angular momentum.
+    c : float
+        Constant of the cyclic integral of phi, an angular momentum (``A3 omega3 + k3``).
+    lib : module
+        Provides ``sin``, ``cos``: ``numpy`` (default), ``math`` or ``mpmath`` (extended precision).
+
+    Returns
+    -------
+    scalar or ndarray
+        ``W`` in units of energy, of the type ``lib`` produces.
     """
     R, kap, th, ps = x
     b = lib.cos(th) * lib.sin(kap) - lib.sin(th) * lib.cos(ps) * lib.cos(kap)
@@ -121,7 +145,27 @@ def _derivs(M: Any, A1: Any, A3: Any, mu: Any, k: Any, c: Any, R: Any, kap: Any,
 
 
 def gradient_W_sym(sat: Satellite, x: Any, *, k: float, c: float) -> np.ndarray:
-    """Gradient (3.1) of the section-3 W at ``x = (R, kappa, theta, psi)`` (shape (..., 4))."""
+    """Gradient (3.1) of the section-3 W at ``x = (R, kappa, theta, psi)`` (shape (..., 4)).
+
+    Closed form by the chain rule through ``beta3``, valid at any point; it vanishes at the motion
+    (3.2)-(3.3).
+
+    Parameters
+    ----------
+    sat : Satellite
+        Supplies ``M, A1, A3, mu`` (any consistent units; ``A1 = A2`` is assumed, not checked).
+    x : sequence of 4
+        ``(R, kappa, theta, psi)``: length and angles in radians; scalars or broadcastable arrays.
+    k : float
+        Area constant, an angular momentum.
+    c : float
+        Constant of the cyclic integral of phi, an angular momentum.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        ``(dW/dR, dW/dkappa, dW/dtheta, dW/dpsi)``: energy per length for R, energy for the angles.
+    """
     R, kap, th, ps = (np.asarray(v, dtype=float) for v in x)
     return _derivs(sat.M, sat.A1, sat.A3, sat.mu, k, c, R, kap, th, ps)[0]
 
@@ -131,7 +175,25 @@ def hessian_W_sym(sat: Satellite, x: Any, *, k: float, c: float) -> np.ndarray:
 
     Valid at any point.  At a motion (3.2) near theta0 = +-pi/2 its theta-theta entry is a difference of
     terms that cancel to O(l^2/R^2) (no correct digit in SI units within ~1e-7 of pi/2): the verdicts
-    (:class:`SymmetricStability`) use :func:`W_thetatheta_stable` for that entry instead.
+    (:class:`SymmetricStability`) use :func:`W_thetatheta_stable` for that entry instead. At (3.2)
+    (``psi = pi``) the psi row decouples and its diagonal entry is (3.4) (:func:`W_psipsi_34`).
+
+    Parameters
+    ----------
+    sat : Satellite
+        Supplies ``M, A1, A3, mu`` (any consistent units; ``A1 = A2`` is assumed, not checked).
+    x : sequence of 4
+        ``(R, kappa, theta, psi)``: length and angles in radians; scalars or broadcastable arrays.
+    k : float
+        Area constant, an angular momentum.
+    c : float
+        Constant of the cyclic integral of phi, an angular momentum.
+
+    Returns
+    -------
+    ndarray, shape (..., 4, 4)
+        Symmetric second derivatives of W in the order :data:`SYM_COORDS` ``(R, kappa, theta, psi)``:
+        energy/length^2 for ``W_RR``, energy/length for the rest of the R row, energy otherwise.
     """
     R, kap, th, ps = (np.asarray(v, dtype=float) for v in x)
     return _derivs(sat.M, sat.A1, sat.A3, sat.mu, k, c, R, kap, th, ps)[1]
@@ -262,6 +324,26 @@ def W_thetatheta_stable(M: Any, A1: Any, A3: Any, mu: Any, R0: Any, theta0: Any,
 
     The chain-rule value adds terms of order ``mu R0^-3 (A1 - A3)`` that cancel near theta0 = +-pi/2, where
     the true value is O(l^2/R^2) of them: in SI units float64 kept no correct digit within ~1e-7 of pi/2.
+
+    Parameters
+    ----------
+    M, A1, A3, mu : array_like
+        Mass, equatorial (``A1 = A2``) and axial moments of inertia, gravitational parameter (any
+        consistent units, as in :class:`Satellite`).
+    R0 : array_like
+        Orbit radius of the motion (3.2).
+    theta0, kappa0 : array_like
+        Nutation angle and latitude of the centre of mass at (3.2) (radians).
+    omega0 : array_like
+        Angular velocity of the orbital frame, (3.3).
+    c : array_like
+        Constant of the cyclic integral of phi, (3.3) (an angular momentum).
+
+    Returns
+    -------
+    ndarray or numpy scalar
+        ``d^2 W / d theta^2`` at (3.2), in units of energy, broadcast over the inputs (``inf``/``nan``
+        where ``cos(theta0 + kappa0) = 0``).
     """
     with np.errstate(divide="ignore", invalid="ignore"):
         M, A1, A3, mu, R0, th, kap, om, c = (
@@ -274,7 +356,25 @@ def W_thetatheta_stable(M: Any, A1: Any, A3: Any, mu: Any, R0: Any, theta0: Any,
 
 
 def W_psipsi_34(sat: Satellite, R0: Any, theta0: Any, kappa0: Any) -> Any:
-    """The paper's (3.4): ``3 mu R0^-3 (A1 - A3) sin^2 theta0 cos theta0 cos kappa0 / cos(theta0 + kappa0)``."""
+    """The paper's (3.4): ``3 mu R0^-3 (A1 - A3) sin^2 theta0 cos theta0 cos kappa0 / cos(theta0 + kappa0)``.
+
+    ``d^2 W / d psi^2`` at the motion (3.2) (``psi = pi``); the paper's sufficient condition is (3.4) > 0.
+
+    Parameters
+    ----------
+    sat : Satellite
+        Supplies ``A1, A3, mu`` (any consistent units).
+    R0 : array_like
+        Orbit radius of the motion (3.2).
+    theta0, kappa0 : array_like
+        Nutation angle and latitude of the centre of mass at (3.2) (radians).
+
+    Returns
+    -------
+    ndarray or numpy scalar
+        ``W_psipsi`` in units of energy, broadcast over the inputs (``inf``/``nan`` where
+        ``cos(theta0 + kappa0) = 0``).
+    """
     with np.errstate(divide="ignore", invalid="ignore"):
         return (3 * sat.mu / np.asarray(R0, dtype=float) ** 3 * (sat.A1 - sat.A3) * np.sin(theta0) ** 2
                 * np.cos(theta0) * np.cos(kappa0) / np.cos(np.asarray(theta0) + kappa0))

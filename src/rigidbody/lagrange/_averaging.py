@@ -41,6 +41,18 @@ def modulus(u1: Any, u2: Any, u3: Any) -> tuple[Any, Any]:
 
     ``mc`` is formed from the root differences, not as ``1 - k^2``, so that it keeps its digits near
     the separatrix (sleeping top, ``u2 -> u3 = 1``).
+
+    Parameters
+    ----------
+    u1, u2, u3 : float or array_like
+        Roots of the cubic (1.5), ``-1 <= u1 <= u2 <= 1 <= u3`` with ``u1 < u3`` (dimensionless,
+        ``u = cos theta``).
+
+    Returns
+    -------
+    k2, mc : float or numpy.ndarray
+        The squared modulus ``k^2`` of the nutation (1.3)-(1.4) and its complement, both in ``[0, 1]``
+        for admissible roots.
     """
     d = u3 - u1
     return (u2 - u1) / d, (u3 - u2) / d

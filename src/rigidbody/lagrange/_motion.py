@@ -16,7 +16,27 @@ __all__ = ["lagrange_motion", "nutation_frequency"]
 
 
 def nutation_frequency(top: Top, u1: float, u3: float) -> float:
-    r"""``alpha = [mgl (u3 - u1) / (2A)]^{1/2}`` of (1.3); the nutation period is ``2K(k)/alpha``."""
+    r"""``alpha = [mgl (u3 - u1) / (2A)]^{1/2}`` of (1.3); the nutation period is ``2K(k)/alpha``.
+
+    ``u = u1 + (u2 - u1) sn^2(alpha t + beta, k)`` (1.3), with ``k^2`` from (1.4) (:func:`modulus`).
+
+    Parameters
+    ----------
+    top : Top
+        Only ``A`` and ``mgl`` enter.
+    u1, u3 : float
+        Smallest and largest roots of the cubic (1.5), ``u1 <= u3`` (dimensionless).
+
+    Returns
+    -------
+    float
+        The frequency ``alpha`` of the elliptic phase, in 1/time (units of ``top``: ``(mgl/A)^{1/2}``).
+
+    Raises
+    ------
+    ValueError
+        If ``u3 < u1`` (negative radicand, from :func:`math.sqrt`).
+    """
     return math.sqrt(top.mgl * (u3 - u1) / (2.0 * top.A))
 
 

@@ -40,14 +40,63 @@ PAPER_TAU_END = {1: 150.0, 2: 150.0, 3: 60.0}
 
 
 def paper_initial_state(case: int) -> tuple[float, float, float, float, float, float]:
-    """Initial ``(p, q, r, phi, theta, psi)`` of the paper's case 1, 2 or 3."""
+    """Initial ``(p, q, r, phi, theta, psi)`` of the paper's case 1, 2 or 3.
+
+    Section 3 (figs 1-3): the top is spun about its symmetry axis, ``p = q = 0``, ``r = r0 = sqrt(3)``,
+    tilted by ``theta0`` = 5, 60 or 170 degrees (:data:`PAPER_CASES`); its roots of (1.5) are those of
+    :data:`PAPER_TABLE`.
+
+    Parameters
+    ----------
+    case : {1, 2, 3}
+        Case number of the paper.
+
+    Returns
+    -------
+    tuple of 6 floats
+        ``(p, q, r, phi, theta, psi)``: body angular velocity in the paper's units of :data:`PAPER_TOP`
+        (``A = 1.5, C = 1, mgl = 0.5``) and 3-1-3 Euler angles in radians, ready for
+        :func:`~rigidbody.lagrange.integrals` and :func:`~rigidbody.lagrange.simulate`.
+
+    Raises
+    ------
+    ValueError
+        If ``case`` is not 1, 2 or 3.
+    """
     if case not in PAPER_CASES:
         raise ValueError(f"case must be 1, 2 or 3, got {case!r}")
     return (0.0, 0.0, PAPER_R0, 0.0, math.radians(PAPER_CASES[case]), 0.0)
 
 
 def paper_solution(case: int, n_out: int = 1501, tau_end: float | None = None) -> Solution:
-    """Averaged solution (3.4) of case 1, 2 or 3 on a uniform grid of ``n_out`` slow times."""
+    """Averaged solution (3.4) of case 1, 2 or 3 on a uniform grid of ``n_out`` slow times.
+
+    The first-approximation system (2.15) for linear drag (3.1), :data:`PAPER_DRAG`, in its closed form
+    (3.4), integrated by :func:`~rigidbody.lagrange.averaged` from the integrals (1.2) of
+    :func:`paper_initial_state`; the data of the paper's figs 1-3.
+
+    Parameters
+    ----------
+    case : {1, 2, 3}
+        Case number of the paper.
+    n_out : int
+        Number of output points, uniform in ``tau`` on ``[0, tau_end]``.
+    tau_end : float, optional
+        End of the slow time ``tau = eps t`` (default :data:`PAPER_TAU_END`: 150 for cases 1, 2 and 60
+        for case 3; the paper does not state its spans).
+
+    Returns
+    -------
+    rigidbody.core.ode.Solution
+        As returned by :func:`~rigidbody.lagrange.averaged` (roots ``u1, u2, u3``, integrals ``Gz, H, r``,
+        signs ``delta1, delta2`` and ``chart`` against ``tau``). A terminal event may end it before
+        ``tau_end``.
+
+    Raises
+    ------
+    ValueError
+        If ``case`` is not 1, 2 or 3.
+    """
     state = paper_initial_state(case)
     T = PAPER_TAU_END[case] if tau_end is None else float(tau_end)
     ini = integrals(PAPER_TOP, *state[:5])

@@ -139,6 +139,20 @@ def cubic_coefficients(top: Top, Gz: float, H: float, r: float) -> tuple[float, 
     r"""Coefficients ``(c3, c2, c1, c0)`` of the cubic Q(u) of (1.5), highest power first.
 
     ``Q(u) = (2 mgl / A) (u - u1)(u - u2)(u - u3)``; ``u'^2 = Q(u)`` along the motion (u = cos theta).
+    The coefficients follow from the symmetric functions (1.6) (:func:`vieta`).
+
+    Parameters
+    ----------
+    top : Top
+    Gz, H, r : float
+        The first integrals (1.2): vertical component of the angular momentum, total energy and axial
+        spin (units of ``A``, ``mgl`` and time consistent with ``top``).
+
+    Returns
+    -------
+    c3, c2, c1, c0 : float
+        ``c3 = 2mgl/A``, ``c2 = -c3 s1``, ``c1 = c3 s2``, ``c0 = -c3 s3``, so that
+        ``Q(u) = c3 u^3 + c2 u^2 + c1 u + c0`` (units of 1/time^2, as ``u'^2``).
     """
     s1, s2, s3 = vieta(top, Gz, H, r)
     f = 2.0 * top.mgl / top.A
@@ -291,7 +305,21 @@ def _check_delta(d: Any, name: str) -> Any:
 
 
 def root_radical(u1: Any, u2: Any, u3: Any) -> Any:
-    r"""``R = [(1 - u1^2)(1 - u2^2)(u3^2 - 1)]^{1/2}`` of (2.8) (negative factors from rounding clipped)."""
+    r"""``R = [(1 - u1^2)(1 - u2^2)(u3^2 - 1)]^{1/2}`` of (2.8) (negative factors from rounding clipped).
+
+    ``R^2 = (s1 + s3)^2 - (1 + s2)^2`` with the symmetric functions (1.6), and ``Gz^2 - C^2 r^2 = 2Amgl delta1 R``.
+
+    Parameters
+    ----------
+    u1, u2, u3 : float or array_like
+        Roots of the cubic (1.5), ``-1 <= u1 <= u2 <= 1 <= u3`` (dimensionless, ``u = cos theta``);
+        broadcast together.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The radical ``R >= 0`` (dimensionless).
+    """
     f = np.maximum(1.0 - u1 * u1, 0.0) * np.maximum(1.0 - u2 * u2, 0.0) * np.maximum(u3 * u3 - 1.0, 0.0)
     return np.sqrt(f)
 
@@ -381,6 +409,20 @@ def deltas(top: Top, Gz: Any, r: Any) -> tuple[Any, Any]:
     r"""The signs ``delta1 = sign(Gz^2 - C^2 r^2)`` and ``delta2 = sign r`` of (2.8).
 
     Zero is mapped to +1 (both branches of (2.8) coincide there).
+
+    Parameters
+    ----------
+    top : Top
+        Only its axial moment ``C`` enters.
+    Gz : float or array_like
+        Vertical component of the angular momentum (1.2).
+    r : float or array_like
+        Axial spin (1.2), the projection of the angular velocity on the symmetry axis.
+
+    Returns
+    -------
+    delta1, delta2 : float or numpy.ndarray
+        Each +1 or -1; floats for scalar input, else arrays broadcast from ``Gz`` and ``r``.
     """
     w = np.asarray(Gz, dtype=float) ** 2 - (top.C * np.asarray(r, dtype=float)) ** 2
     d1 = np.where(w >= 0.0, 1.0, -1.0)
