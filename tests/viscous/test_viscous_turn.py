@@ -75,6 +75,25 @@ def test_circle_solid_angle_is_the_cap_exactly():
     assert np.linalg.norm(tr.n[:, 0] - tr.n[:, -1]) < 1e-10
 
 
+@pytest.mark.parametrize("v0", [1e-4, 1e-6])
+def test_tiny_turns_keep_their_relative_accuracy(v0):
+    """Routh's circle with a slow axis (R = 1/sqrt(1+k²) = 4e-5, 4e-7): the exact χ and the cap
+    2π(1 - sqrt(1 - R²)) = 2πR²/(1 + sqrt(1 - R²)) agree to 1e-9 relative (path integration at rtol 1e-12,
+    the turn's relative error ~ rtol/R: measured 2e-10 at R = 4e-7). The cap used to be evaluated as
+    1 - sqrt(1 - R²), which loses eps/R² relative (1e-3 at R = 4e-7) and is 0 once R² < 1e-16."""
+    tr = vs.turn(BODY, MEDIA["circle"], N0, v0 * ND0 / 0.3, 5.0, 0.0)
+    assert tr.R1 < 1e-4
+    # chi ~ 5e-9 ... 5e-13: abs=0 (pytest.approx's default abs=1e-12 would make these vacuous)
+    assert tr.chi_approx == pytest.approx(tr.chi, rel=1e-9, abs=0)
+    assert tr.chi == pytest.approx(math.pi * tr.R1**2, rel=1e-6, abs=0)  # small cap: area πR² + O(R⁴)
+
+
+def test_turns_too_small_to_resolve_raise():
+    """R = 4e-10: the turn on the unit sphere cannot be resolved (it took minutes and lost 4 digits)."""
+    with pytest.raises(ValueError, match="too small to resolve"):
+        vs.turn(BODY, MEDIA["circle"], N0, 1e-9 * ND0 / 0.3, 5.0, 0.0)
+
+
 @pytest.mark.parametrize("B12", [0.3, 0.22, 0.18, 0.1], ids=["a/b=1.5", "a/b=1.1", "a/b=0.9", "a/b=0.5"])
 def test_error_of_the_cap_approximation(B12):
     """The paper's χ ≈ 2π(1 - sqrt(1 - R²)) for a spiral with k ∝ exp(λt), λ = a - b, a = B12/θ12,

@@ -138,6 +138,9 @@ def axis_path(
     return out[0:3]
 
 
+_R_MIN = 1e-7  # smallest osculating radius (5.2) of a turn that `turn` resolves to ~1e-9 relative
+
+
 @dataclass(frozen=True)
 class Turn:
     """One turn of the spiral and the solid-angle theorem ``Δφ = χ + Δζ`` (section 5).
@@ -227,7 +230,8 @@ def turn(
     ------
     ValueError
         If the path has no complete turn after ``t1`` (``Ω0 = 0``, ``v0 = 0``, or the remaining total
-        turning of the spiral is too small).
+        turning of the spiral is too small), or the turn is too small to resolve (``R(t1) < 1e-7``: its
+        relative accuracy would be ~``rtol/R``; use the cap formula).
     """
     _check(body, medium)
     n, nd, v0, Om0 = initial_state(n0, ndot0, Omega0)
@@ -245,6 +249,13 @@ def turn(
     n1, tau1, g1 = (x[:, 0] for x in axis_path(body, medium, n, nd, Om0, [t1], rtol=rtol, atol=atol, frame=True))
     sg = 1.0 if Om0 > 0 else -1.0
     R1 = float(spiral_radius(body, medium, Om0, v0, t1))
+    if R1 < _R_MIN:
+        # the turn is integrated in absolute coordinates on the unit sphere: its relative accuracy is
+        # ~rtol/R and the cost grows like 1/R (R = 4e-10 took minutes and lost 4 digits)
+        raise ValueError(
+            f"the turn from t1 = {t1} is too small to resolve on the unit sphere: R = {R1:.3g} < {_R_MIN:g}; its "
+            f"solid angle is the cap 2*pi*(1 - sqrt(1 - R^2)) ~ pi R^2 = {math.pi * R1 * R1:.3g} (relative O(lambda T))"
+        )
     # c1 = sgn(k)(k n + g)/sqrt(1+k^2) = cos(rho) n + sgn(k) sin(rho) g, sin(rho) = R (5.2): regular as |k| -> inf
     cosr = math.sqrt(1.0 - R1 * R1) if R1 < 0.5 else abs(float(curvature(body, medium, Om0, v0, t1))) * R1
     if centre is None:
@@ -299,7 +310,8 @@ def turn(
     Rm = float(spiral_radius(body, medium, Om0, v0, 0.5 * (t1 + t2)))
 
     def cap(R: float) -> float:
-        return sg * 2.0 * math.pi * (1.0 - math.sqrt(max(0.0, 1.0 - R * R)))
+        # 1 - sqrt(1 - R^2) written without cancellation (tiny turns: R^2 below the rounding of 1)
+        return sg * 2.0 * math.pi * R * R / (1.0 + math.sqrt(max(0.0, 1.0 - R * R)))
 
     z = quasi_coordinates(body, medium, Om0, v0, np.array([t1, t2]))[2]
     dzeta = float(z[1] - z[0])
