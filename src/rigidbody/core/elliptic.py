@@ -363,9 +363,7 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
     return out  # type: ignore[return-value]
 
 
-def sn(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    """Jacobi ``sn(u, k)`` in the modulus ``k``.
-
+_JACOBI_PARAMS = """
     Parameters
     ----------
     u : array_like
@@ -379,65 +377,42 @@ def sn(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None)
     -------
     float or numpy.ndarray
         Broadcast over the inputs; see :func:`jacobi` for the accuracy and the conventions.
+    """
+
+
+def _jacobi_doc(func: Any) -> Any:
+    """Append the shared Parameters/Returns sections to a single-function Jacobi docstring."""
+    func.__doc__ = (func.__doc__ or "").rstrip() + "\n" + _JACOBI_PARAMS
+    return func
+
+
+@_jacobi_doc
+def sn(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
+    """Jacobi ``sn(u, k)`` in the modulus ``k``.
+
     """
     return jacobi(u, k, mc=mc)[0]
 
 
+@_jacobi_doc
 def cn(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
     """Jacobi ``cn(u, k)`` in the modulus ``k``.
 
-    Parameters
-    ----------
-    u : array_like
-        Argument (any real value; reduced by the period internally).
-    k : array_like, optional
-        Modulus in [0, 1] (SciPy's parameter is ``m = k**2``).
-    mc : array_like, optional
-        Complementary parameter ``1 - k**2``; pass it near the separatrix.
-
-    Returns
-    -------
-    float or numpy.ndarray
-        Broadcast over the inputs; see :func:`jacobi` for the accuracy and the conventions.
     """
     return jacobi(u, k, mc=mc)[1]
 
 
+@_jacobi_doc
 def dn(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
     """Jacobi ``dn(u, k)`` in the modulus ``k``.
 
-    Parameters
-    ----------
-    u : array_like
-        Argument (any real value; reduced by the period internally).
-    k : array_like, optional
-        Modulus in [0, 1] (SciPy's parameter is ``m = k**2``).
-    mc : array_like, optional
-        Complementary parameter ``1 - k**2``; pass it near the separatrix.
-
-    Returns
-    -------
-    float or numpy.ndarray
-        Broadcast over the inputs; see :func:`jacobi` for the accuracy and the conventions.
     """
     return jacobi(u, k, mc=mc)[2]
 
 
+@_jacobi_doc
 def am(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
     """Jacobi amplitude ``am(u, k)``, continuous and increasing in ``u`` in the modulus ``k``.
 
-    Parameters
-    ----------
-    u : array_like
-        Argument (any real value; reduced by the period internally).
-    k : array_like, optional
-        Modulus in [0, 1] (SciPy's parameter is ``m = k**2``).
-    mc : array_like, optional
-        Complementary parameter ``1 - k**2``; pass it near the separatrix.
-
-    Returns
-    -------
-    float or numpy.ndarray
-        Broadcast over the inputs; see :func:`jacobi` for the accuracy and the conventions.
     """
     return jacobi(u, k, mc=mc)[3]

@@ -15,6 +15,12 @@ import numpy as np
 __all__ = ["finite_array", "positive", "real", "span"]
 
 
+def _as_float(value: Any, name: str) -> float:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
+        raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
+    return float(value)
+
+
 def real(value: Any, name: str) -> float:
     """Return ``value`` as a finite float.
 
@@ -36,9 +42,7 @@ def real(value: Any, name: str) -> float:
     ValueError
         If ``value`` is NaN or infinite.
     """
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
-        raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
-    v = float(value)
+    v = _as_float(value, name)
     if not math.isfinite(v):
         raise ValueError(f"{name} must be finite, got {value!r}")
     return v
@@ -65,9 +69,7 @@ def positive(value: Any, name: str) -> float:
     ValueError
         If ``value`` is not finite or not > 0.
     """
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
-        raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
-    v = float(value)
+    v = _as_float(value, name)
     if not (math.isfinite(v) and v > 0.0):
         raise ValueError(f"{name} must be finite and > 0, got {value!r}")
     return v
