@@ -13,6 +13,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from viscous_testlib import initial
 
 from rigidbody import viscous as vs
 from rigidbody.core import euler
@@ -28,12 +29,6 @@ CASES = [
 IDS = [f"{c[2]}-{c[0].theta12}-{c[0].theta3}" for c in CASES]
 
 
-def initial(seed=1, v0=0.4):
-    rng = np.random.default_rng(seed)
-    n0 = rng.normal(size=3)
-    n0 /= np.linalg.norm(n0)
-    d = np.cross(n0, rng.normal(size=3))
-    return n0, v0 * d / np.linalg.norm(d)
 
 
 def gauss_nodes(T, panels, order=20):

@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 import pytest
+from viscous_testlib import initial
 
 from rigidbody import viscous as vs
 
@@ -22,12 +23,6 @@ CASES = [
 ]
 
 
-def initial(seed=1, v0=0.4):
-    rng = np.random.default_rng(seed)
-    n0 = rng.normal(size=3)
-    n0 /= np.linalg.norm(n0)
-    d = np.cross(n0, rng.normal(size=3))
-    return n0, v0 * d / np.linalg.norm(d)
 
 
 def angle(a, b):
