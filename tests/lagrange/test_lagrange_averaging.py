@@ -419,3 +419,19 @@ def test_paper_cases_long_span_against_full(case_theta):
     e2 = _max_slow_error(DRAG, case_theta, 0.005, 30.0)
     assert e2 < 0.05
     assert 1.6 < e1 / e2 < 2.5, (e1, e2)
+
+
+def test_torque_functions_must_be_callable():
+    def f(Gz, H, r, th):
+        return -0.1
+
+    for make in (
+        lambda: L.ProportionalTorque(f, M3=3.0),
+        lambda: L.VerticalPlaneTorque(f, M3="M3"),
+        lambda: L.StarTorque(f, f, M3s=1),
+    ):
+        with pytest.raises(TypeError, match=r"M3s? must be a callable"):
+            make()
+    with pytest.raises(TypeError, match="f must be a callable"):
+        L.ProportionalTorque(0.5)
+    assert L.ProportionalTorque(f).M3(0.0, 0.0, 0.0, 0.3) == 0.0  # default axial part is zero

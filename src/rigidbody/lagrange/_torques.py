@@ -96,6 +96,14 @@ def _zero(Gz: float, H: float, r: float, theta: Any) -> Any:
     return 0.0 * np.asarray(theta, dtype=float)
 
 
+def _axial(M3: Any, name: str) -> Any:
+    """The optional axial function of a torque class: validated, or identically zero when None."""
+    if M3 is None:
+        return _zero
+    _check_callable(M3, name)
+    return M3
+
+
 class ProportionalTorque(Torque):
     r"""Torque of class (2.4): ``M1 = p f, M2 = q f, M3 = M3*`` with ``f, M3*`` functions of (Gz, H, r, theta).
 
@@ -111,10 +119,8 @@ class ProportionalTorque(Torque):
 
     def __init__(self, f: SlowFunction, M3: SlowFunction | None = None) -> None:
         _check_callable(f, "f")
-        if M3 is not None:
-            _check_callable(M3, "M3")
         self.f = f
-        self.M3 = M3 if M3 is not None else _zero
+        self.M3 = _axial(M3, "M3")
 
     def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
         u = np.asarray(u, dtype=float)
@@ -152,10 +158,8 @@ class VerticalPlaneTorque(Torque):
 
     def __init__(self, F: SlowFunction, M3: SlowFunction | None = None) -> None:
         _check_callable(F, "F")
-        if M3 is not None:
-            _check_callable(M3, "M3")
         self.F = F
-        self.M3 = M3 if M3 is not None else _zero
+        self.M3 = _axial(M3, "M3")
 
     def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
         u = np.asarray(u, dtype=float)
@@ -192,10 +196,8 @@ class StarTorque(Torque):
     def __init__(self, M1s: SlowFunction, M2s: SlowFunction, M3s: SlowFunction | None = None) -> None:
         _check_callable(M1s, "M1s")
         _check_callable(M2s, "M2s")
-        if M3s is not None:
-            _check_callable(M3s, "M3s")
         self.M1s, self.M2s = M1s, M2s
-        self.M3s = M3s if M3s is not None else _zero
+        self.M3s = _axial(M3s, "M3s")
 
     def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
         u = np.asarray(u, dtype=float)
