@@ -75,15 +75,22 @@ def test_nutation_mean_is_time_average():
     assert L.nutation_mean(lambda u: 1 / (1 + u) ** 2, u1, u2, u3) == pytest.approx(g, rel=1e-11, abs=0)
 
 
-def test_engine_rates_are_time_averages_of_2_1():
-    # <F> of the corrected (2.7) vs the time average of (2.1) evaluated on the unperturbed full motion
+def _one_nutation_period(torque):
+    """The unperturbed motion (eps = 0) from a fixed generic state over one nutation period 2K/alpha, sampled
+    at 2001 points, for time averages of (2.1) (the torque enters only through the recorded state)."""
     state = (0.2, -0.3, 1.4, 0.3, 1.0, 0.0)
     Gz, H, r = L.integrals(TOP, *state[:5])
     u1, u2, u3 = L.roots(TOP, Gz, H, r)
     k2, mc = L.modulus(u1, u2, u3)
     T = 2 * ell.K(mc=mc) / L.nutation_frequency(TOP, u1, u3)
     t = np.linspace(0, T, 2001)
-    f = L.simulate(TOP, MOTOR, 0.0, state, (0, T), t_eval=t, rtol=1e-12, atol=1e-13)
+    f = L.simulate(TOP, torque, 0.0, state, (0, T), t_eval=t, rtol=1e-12, atol=1e-13)
+    return Gz, H, r, u1, u2, u3, k2, mc, T, t, f
+
+
+def test_engine_rates_are_time_averages_of_2_1():
+    # <F> of the corrected (2.7) vs the time average of (2.1) evaluated on the unperturbed full motion
+    Gz, H, r, u1, u2, u3, k2, mc, T, t, f = _one_nutation_period(MOTOR)
     g1, g2 = np.sin(f.theta) * np.sin(f.phi), np.sin(f.theta) * np.cos(f.phi)
     fac = -DRAG.a * (1 + KAPPA * np.cos(f.theta))
     M1, M2, M3 = f.p * fac, f.q * fac, M0 - DRAG.b * f.r
@@ -292,13 +299,7 @@ def test_printed_F1_of_2_7_lacks_sin_theta():
     # (2.7) prints F1 = M1* + M3* cos(theta); (2.1) gives Gz' = eps[(M1 sin phi + M2 cos phi) sin theta
     # + M3 cos theta], i.e. F1 = M1* sin(theta) + M3* cos(theta). Decide with the time average of the
     # vertical torque component on a real (unperturbed) motion, for the class (2.5) torque VPLANE.
-    state = (0.2, -0.3, 1.4, 0.3, 1.0, 0.0)
-    Gz, H, r = L.integrals(TOP, *state[:5])
-    u1, u2, u3 = L.roots(TOP, Gz, H, r)
-    _, mc = L.modulus(u1, u2, u3)
-    T = 2 * ell.K(mc=mc) / L.nutation_frequency(TOP, u1, u3)
-    t = np.linspace(0, T, 2001)
-    f = L.simulate(TOP, VPLANE, 0.0, state, (0, T), t_eval=t, rtol=1e-12, atol=1e-13)
+    Gz, H, r, u1, u2, u3, _, mc, T, t, f = _one_nutation_period(VPLANE)
     Fv = -0.1 * np.sin(f.theta)
     M1, M2 = Fv * np.sin(f.phi), Fv * np.cos(f.phi)
     gam1, gam2 = np.sin(f.theta) * np.sin(f.phi), np.sin(f.theta) * np.cos(f.phi)
