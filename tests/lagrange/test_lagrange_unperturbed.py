@@ -283,3 +283,10 @@ def test_bad_types_name_the_parameter():
         L.integrals(top, 0.0, 0.0, 1.0, 0.0, float("nan"))
     with pytest.raises(ValueError, match="u2 must be finite"):
         L.from_roots(top, 0.0, np.array([np.nan]), 2.0, 1, 1)
+
+
+def test_integrals_names_mismatched_shapes():
+    with pytest.raises(ValueError, match=r"p \(2,\), q \(3,\)"):
+        L.integrals(TOP, [0.1, 0.2], [0.1, 0.2, 0.3], 1.0, 0.0, 1.0)
+    Gz, H, r = L.integrals(TOP, [0.1, 0.2], [[0.1], [0.3]], 1.0, 0.0, 1.0)  # broadcasting shapes are fine
+    assert np.shape(Gz) == (2, 2)

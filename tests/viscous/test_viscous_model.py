@@ -46,17 +46,19 @@ def test_ball_model_torque_is_the_direct_sum_over_the_balls(N, a, b, beta, seed)
     a=st.floats(0.1, 3.0),
     b=st.floats(0.0, 3.0),
     m=st.floats(0.1, 5.0),
-    rb=st.floats(0.0, 0.5),
+    rb_frac=st.floats(0.0, 1.0),
     m_rod=st.floats(0.0, 3.0),
     m_spoke=st.floats(0.0, 3.0),
     seed=st.integers(0, 2**31 - 1),
 )
-def test_ball_model_inertia_is_the_direct_sum(N, a, b, m, rb, m_rod, m_spoke, seed):
+def test_ball_model_inertia_is_the_direct_sum(N, a, b, m, rb_frac, m_rod, m_spoke, seed):
     """θ = Σ m (r²E - rr) + own inertia of the balls + thin rod and spokes integrated by Gauss-Legendre
     (exact for the quadratic integrands), at a random orientation."""
     rng = np.random.default_rng(seed)
     R = Rotation.random(random_state=rng).as_matrix()
     r, n = structure(N, a, b, R)
+    # balls up to touching: half the smallest distance between two ball centres of the structure
+    rb = rb_frac * 0.5 * min(np.linalg.norm(x - y) for i, x in enumerate(r) for y in r[:i])
     E = np.eye(3)
     J = sum(m * (x @ x * E - np.outer(x, x)) for x in r) + (N + 2) * 0.4 * m * rb**2 * E
     x, w = np.polynomial.legendre.leggauss(4)
@@ -243,3 +245,26 @@ def test_rotational_drag_of_finite_balls_reverses_the_verdict(b):
     rot = (N + 2) * 4.0 / 3.0 * beta * r * r
     stokes = vs.regime(body, vs.Medium(medium.B12 + rot, medium.B3 + rot))
     assert stokes == ("unwinding" if paper == "contracting" else "contracting")
+
+
+@pytest.mark.parametrize(("N", "a", "b"), [(3, 1.0, 2.0), (6, 1.0, 2.0), (4, 1.0, 0.2), (4, 0.3, 0.05), (4, 1.0, 0.0)])
+def test_ball_and_rod_refuses_overlapping_balls(N, a, b):
+    """Solid balls cannot overlap: the radius is bounded by half the smallest distance between two ball
+    centres, measured here on the explicit ball positions (independent of the model's formula)."""
+    r, _ = structure(N, a, b, np.eye(3))
+    half = 0.5 * min(np.linalg.norm(x - y) for i, x in enumerate(r) for y in r[:i])
+    if half > 0:
+        vs.ball_and_rod(N=N, a=a, b=b, beta=0.1, mass=1.0, ball_radius=half * (1 - 1e-9))  # just apart: fine
+    with pytest.raises(ValueError, match=r"ball_radius .* overlap"):
+        vs.ball_and_rod(N=N, a=a, b=b, beta=0.1, mass=1.0, ball_radius=half * (1 + 1e-9) + 1e-300)
+
+
+@pytest.mark.parametrize("func", ["axis_path", "simulate"])
+@pytest.mark.parametrize(
+    ("n0", "ndot0", "name"), [(["x", 0, 1], [0.3, 0, 0], "n0"), ([0, 0, 1], [0.3, "y", 0], "ndot0")]
+)
+def test_non_numeric_initial_axis_is_named(func, n0, ndot0, name):
+    body, medium = vs.Body(theta12=2.0, theta3=1.0), vs.Medium(B12=0.3, B3=0.1)
+    args = (5.0, [0.0, 1.0]) if func == "axis_path" else (5.0, (0.0, 1.0))
+    with pytest.raises(TypeError, match=f"{name} must be real numbers"):
+        getattr(vs, func)(body, medium, n0, ndot0, *args)

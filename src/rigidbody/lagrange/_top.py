@@ -106,9 +106,13 @@ def integrals(top: Top, p: Any, q: Any, r: Any, phi: Any, theta: Any) -> tuple[A
         or floats for scalar input).
     """
     top = _check_top(top)
-    p, q, r, phi, theta = (
-        finite_array(x, name) for x, name in zip((p, q, r, phi, theta), ("p", "q", "r", "phi", "theta"))
-    )
+    names = ("p", "q", "r", "phi", "theta")
+    p, q, r, phi, theta = (finite_array(x, name) for x, name in zip((p, q, r, phi, theta), names))
+    try:
+        np.broadcast_shapes(*(x.shape for x in (p, q, r, phi, theta)))
+    except ValueError:
+        shapes = ", ".join(f"{n} {x.shape}" for n, x in zip(names, (p, q, r, phi, theta)))
+        raise ValueError(f"p, q, r, phi, theta must broadcast to one shape, got {shapes}") from None
     st, ct = np.sin(theta), np.cos(theta)
     Gz = top.A * st * (p * np.sin(phi) + q * np.cos(phi)) + top.C * r * ct
     H = 0.5 * (top.A * (p * p + q * q) + top.C * r * r) + top.mgl * ct

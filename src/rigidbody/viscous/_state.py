@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core.validate import real
+from ..core.validate import finite_array, real
 
 __all__ = ["initial_state"]
 
@@ -23,14 +23,12 @@ def initial_state(n0: Any, ndot0: Any, Omega0: Any) -> tuple[np.ndarray, np.ndar
     it). Within the tolerance the component along ``n0`` is removed; beyond it ``ValueError`` — the input
     is never silently projected.
     """
-    n = np.asarray(n0, dtype=float)
-    nd = np.asarray(ndot0, dtype=float)
+    n = finite_array(n0, "n0")
+    nd = finite_array(ndot0, "ndot0")
     if n.shape != (3,):
         raise ValueError(f"n0 must be a 3-vector, got shape {n.shape}")
     if nd.shape != (3,):
         raise ValueError(f"ndot0 must be a 3-vector, got shape {nd.shape}")
-    if not (np.all(np.isfinite(n)) and np.all(np.isfinite(nd))):
-        raise ValueError("n0 and ndot0 must be finite")
     if isinstance(Omega0, np.ndarray) and Omega0.ndim == 0:
         Omega0 = Omega0.item()
     Om = real(Omega0, "Omega0")

@@ -130,7 +130,8 @@ def ball_and_rod(
         Mass of one ball, > 0.
     ball_radius : float, optional
         Radius of a (solid, homogeneous) ball; its own inertia ``(2/5) m r²`` is added. Drag is
-        still ``-βv`` (no viscous torque on a spinning ball), as in the paper.
+        still ``-βv`` (no viscous torque on a spinning ball), as in the paper. Balls may touch but not
+        overlap: ``ball_radius <= min(a sin(π/N), b, sqrt(a² + b²)/2)``, else ``ValueError``.
     rod_mass : float, optional
         Mass of the thin axial rod AB (length ``2b``): adds ``rod_mass b²/3`` to ``θ12``.
     spoke_mass : float, optional
@@ -166,6 +167,22 @@ def ball_and_rod(
         if not (math.isfinite(val) and val >= 0):
             raise ValueError(f"{name} must be finite and >= 0, got {val!r}")
     b = float(b)
+    rb = float(ball_radius)
+    if rb > 0.0:
+        # the balls are solid: centres at least 2 r apart (touching allowed; a relative 1e-12 of slack for
+        # rounding). Neighbours on the circle: chord 2 a sin(pi/N); the two axial balls: 2 b; an axial and a
+        # circle ball: sqrt(a^2 + b^2).
+        gaps = (
+            ("neighbouring balls on the circle (2 a sin(pi/N))", 2.0 * a * math.sin(math.pi / N)),
+            ("the two balls on the rod (2 b)", 2.0 * b),
+            ("a ball on the rod and one on the circle (sqrt(a^2 + b^2))", math.hypot(a, b)),
+        )
+        for what, dist in gaps:
+            if dist < 2.0 * rb * (1.0 - 1e-12):
+                raise ValueError(
+                    f"ball_radius = {rb!r} makes the balls overlap: the distance between {what} is {dist!r} "
+                    f"< 2 ball_radius; need ball_radius <= {0.5 * dist!r} for a = {a!r}, b = {b!r}, N = {N}"
+                )
     medium = Medium(B12=beta * (N * a * a / 2.0 + 2.0 * b * b), B3=beta * N * a * a)
     iso = (N + 2) * 0.4 * m * ball_radius**2
     theta12 = m * (N * a * a / 2.0 + 2.0 * b * b) + iso + rod_mass * b * b / 3.0 + N * spoke_mass * a * a / 6.0
