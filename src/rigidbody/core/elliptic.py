@@ -360,7 +360,7 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
         par = np.where(np.mod(j, 2.0) == 0.0, 1.0, -1.0)
         amv[per] = j * np.pi + np.arctan2(par * snp, np.abs(par * cnp) * 1.0)
     out = tuple(_out(v.reshape(shape)) for v in (snv, cnv, dnv, amv))
-    return out  # type: ignore[return-value]
+    return out
 
 
 _JACOBI_PARAMS = """

@@ -176,14 +176,15 @@ def integrate(
     def _nonfinite(t: float, y: np.ndarray, *a: Any) -> float:
         return 1.0 if np.all(np.isfinite(y)) else -1.0
 
-    _nonfinite.terminal = True  # type: ignore[attr-defined]
-    wrapped = []
+    # solve_ivp reads events' options from function attributes, which mypy does not model on a def
+    _nonfinite.terminal = True  # type: ignore[attr-defined]  # solve_ivp's event attribute
+    wrapped: list[Callable[..., float]] = []
     for ev in evs:
         def _f(t: float, y: np.ndarray, *a: Any, _ev: Event = ev) -> float:
             return _ev.fun(t, y, *a)
 
-        _f.terminal = ev.terminal  # type: ignore[attr-defined]
-        _f.direction = ev.direction  # type: ignore[attr-defined]
+        _f.terminal = ev.terminal  # type: ignore[attr-defined]  # solve_ivp's event attribute
+        _f.direction = ev.direction  # type: ignore[attr-defined]  # solve_ivp's event attribute
         wrapped.append(_f)
     wrapped.append(_nonfinite)
 

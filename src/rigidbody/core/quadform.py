@@ -257,7 +257,10 @@ def hessian_fd(
     H = np.empty((n, n))
     for i in range(n):
         for j in range(i, n):
-            H[i, j] = H[j, i] = d1(lambda y, j=j: d1(f, y, j), x0, i)
+            def dfj(y: np.ndarray, j: int = j) -> float:
+                return d1(f, y, j)
+
+            H[i, j] = H[j, i] = d1(dfj, x0, i)
     return H
 
 

@@ -251,7 +251,7 @@ def _ratios(k2: float) -> tuple[float, float]:
     return 1.0 - k2 * sn2, sn2
 
 
-def _labels(body: Body, kind: str, I: tuple[float, float, float] | None = None):
+def _labels(body: Body, kind: str, I: tuple[float, float, float] | None = None) -> Any:
     """Moments (and diagonal drag) in the order in which the 'max'-kind formulas apply."""
     if kind == "max":
         A = (body.A1, body.A2, body.A3)
@@ -522,7 +522,9 @@ def dk2_dtau(body: Body, I: Any, k2: float, kind: str = "max") -> float:
     return _dk2(A, Id, k2f)
 
 
-def _drag_rates(A: tuple[float, float, float], I: tuple[float, float, float], G: float, k2: float):
+def _drag_rates(
+    A: tuple[float, float, float], I: tuple[float, float, float], G: float, k2: float
+) -> tuple[float, float]:
     """(dG/dt, dT/dt) of (6) in 'max' labelling."""
     A1, A2, A3 = A
     I11, I22, I33 = I

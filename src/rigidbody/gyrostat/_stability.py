@@ -419,5 +419,5 @@ def stability_triaxial(sat: Satellite, m: StationaryMotion, *, rtol: float = 1e-
     return Stability(
         s1=float(d["s1"]), s2=float(d["s2"]), s3=float(d["s3"]), a=d["a"].copy(), minors=d["minors"].copy(),
         degree=int(d["n_neg"]), nullity=int(d["n_zero"]), verdict=VERDICTS[code], jacobian=jac,
-        unconditionally_stable=(code == 0 and jac != 0.0), restricted=tuple(float(x) for x in r),
+        unconditionally_stable=(code == 0 and jac != 0.0), restricted=(float(r[0]), float(r[1]), float(r[2])),
     )

@@ -84,7 +84,9 @@ def symmetric_potential(
     return K * K / (2 * S1) - U
 
 
-def _derivs(M: Any, A1: Any, A3: Any, mu: Any, k: Any, c: Any, R: Any, kap: Any, th: Any, ps: Any):
+def _derivs(
+    M: Any, A1: Any, A3: Any, mu: Any, k: Any, c: Any, R: Any, kap: Any, th: Any, ps: Any
+) -> tuple[Any, Any]:
     """Gradient (4,) and Hessian (4, 4) of W by the chain rule W = f(R, kappa, b(kappa, theta, psi)) - U."""
     ck, sk, ct, st, cps, sps = np.cos(kap), np.sin(kap), np.cos(th), np.sin(th), np.cos(ps), np.sin(ps)
     b = ct * sk - st * cps * ck

@@ -156,6 +156,7 @@ def averaged(
         closed_form = isinstance(torque, LinearDrag)
     if closed_form and not isinstance(torque, LinearDrag):
         raise TypeError("closed_form=True is available for LinearDrag only (3.4)")
+    drag = torque if isinstance(torque, LinearDrag) else None
     te_all = None if tau_eval is None else np.asarray(tau_eval, dtype=float)
     if te_all is not None and te_all.size and (te_all.min() < t0 or te_all.max() > t1):
         raise ValueError("tau_eval must lie within tau_span")
@@ -172,8 +173,8 @@ def averaged(
         u3 = max(float(y[2]), 1.0)
         if not (u1 < u2 < u3):
             return np.full(3, np.nan)
-        if closed_form:
-            return drag_rhs(top, torque, u1, u2, u3, d1, d2)
+        if drag is not None and closed_form:
+            return drag_rhs(top, drag, u1, u2, u3, d1, d2)
         Gz, H, r = from_roots(top, u1, u2, u3, d1, d2)
         Fm = averaged_slow_rates(top, torque, Gz, H, r, (u1, u2, u3), n=n)
         return V_matrix(top, u1, u2, u3, Gz, r) @ np.array(Fm)

@@ -119,7 +119,7 @@ def integrals(top: Top, p: Any, q: Any, r: Any, phi: Any, theta: Any) -> tuple[A
     out = np.broadcast_arrays(Gz, H, r)
     if all(np.ndim(x) == 0 for x in out):
         return float(Gz), float(H), float(r)
-    return tuple(np.array(x) for x in out)  # type: ignore[return-value]
+    return np.array(out[0]), np.array(out[1]), np.array(out[2])
 
 
 def vieta(top: Top, Gz: Any, H: Any, r: Any) -> tuple[Any, Any, Any]:
@@ -295,10 +295,10 @@ def roots(top: Top, Gz: Any, H: Any, r: Any) -> tuple[Any, Any, Any]:
     Gz, H, r = np.broadcast_arrays(*(finite_array(x, name) for x, name in zip((Gz, H, r), ("Gz", "H", "r"))))
     if Gz.ndim == 0:
         return _roots_scalar(top, float(Gz), float(H), float(r))
-    out = np.empty((3, *Gz.shape))
-    for idx in np.ndindex(Gz.shape):
-        out[(slice(None), *idx)] = _roots_scalar(top, float(Gz[idx]), float(H[idx]), float(r[idx]))
-    return out[0], out[1], out[2]
+    out = np.empty((3, Gz.size))
+    for i in range(Gz.size):
+        out[:, i] = _roots_scalar(top, float(Gz.flat[i]), float(H.flat[i]), float(r.flat[i]))
+    return out[0].reshape(Gz.shape), out[1].reshape(Gz.shape), out[2].reshape(Gz.shape)
 
 
 def _check_delta(d: Any, name: str) -> Any:

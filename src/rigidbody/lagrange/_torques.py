@@ -64,7 +64,7 @@ def _theta(u: np.ndarray) -> np.ndarray:
     return np.arccos(np.clip(u, -1.0, 1.0))
 
 
-def _body_slow(top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float):
+def _body_slow(top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float) -> tuple[float, float, float]:
     """(Gz, H, theta) of a full state: Gz = K . gamma, H by (1.2)."""
     Gz = top.A * (p * g1 + q * g2) + top.C * r * g3
     H = 0.5 * (top.A * (p * p + q * q) + top.C * r * r) + top.mgl * g3
@@ -75,11 +75,13 @@ def _body_slow(top: Top, p: float, q: float, r: float, g1: float, g2: float, g3:
 class Torque:
     """Base class of admissible perturbing torques (see the module docstring for the protocol)."""
 
-    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
+    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray) -> tuple[np.ndarray, ...]:
         """The (corrected) right-hand sides F1, F2, F3 of (2.7) at ``cos(theta) = u``."""
         raise NotImplementedError
 
-    def body_moments(self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float):
+    def body_moments(
+        self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float
+    ) -> tuple[float, float, float]:
         """Body components (M1, M2, M3) of the torque at a full state (for :func:`simulate`)."""
         raise TypeError(
             f"{type(self).__name__} defines only the averaged combinations (2.2); "
@@ -122,7 +124,7 @@ class ProportionalTorque(Torque):
         self.f = f
         self.M3 = _axial(M3, "M3")
 
-    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
+    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray) -> tuple[np.ndarray, ...]:
         u = np.asarray(u, dtype=float)
         th = _theta(u)
         f = np.asarray(self.f(Gz, H, r, th), dtype=float)
@@ -132,7 +134,9 @@ class ProportionalTorque(Torque):
         F3 = m3 / top.C
         return np.broadcast_arrays(F1, F2, F3 * np.ones_like(u))
 
-    def body_moments(self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float):
+    def body_moments(
+        self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float
+    ) -> tuple[float, float, float]:
         Gz, H, th = _body_slow(top, p, q, r, g1, g2, g3)
         f = float(self.f(Gz, H, r, th))
         return p * f, q * f, float(self.M3(Gz, H, r, th))
@@ -161,7 +165,7 @@ class VerticalPlaneTorque(Torque):
         self.F = F
         self.M3 = _axial(M3, "M3")
 
-    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
+    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray) -> tuple[np.ndarray, ...]:
         u = np.asarray(u, dtype=float)
         th = _theta(u)
         st = _sin_theta(u)
@@ -174,7 +178,9 @@ class VerticalPlaneTorque(Torque):
         F3 = m3 / top.C
         return np.broadcast_arrays(F1, F2, F3 * np.ones_like(u))
 
-    def body_moments(self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float):
+    def body_moments(
+        self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float
+    ) -> tuple[float, float, float]:
         Gz, H, th = _body_slow(top, p, q, r, g1, g2, g3)
         st = math.hypot(g1, g2)
         m3 = float(self.M3(Gz, H, r, th))
@@ -199,7 +205,7 @@ class StarTorque(Torque):
         self.M1s, self.M2s = M1s, M2s
         self.M3s = _axial(M3s, "M3s")
 
-    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
+    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray) -> tuple[np.ndarray, ...]:
         u = np.asarray(u, dtype=float)
         th = _theta(u)
         m1 = np.asarray(self.M1s(Gz, H, r, th), dtype=float)
@@ -238,7 +244,7 @@ class LinearDrag(Torque):
                 raise ValueError(f"LinearDrag.{name} must be finite and >= 0, got {val!r}")
             object.__setattr__(self, name, float(val))
 
-    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray):
+    def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray) -> tuple[np.ndarray, ...]:
         u = np.asarray(u, dtype=float)
         a, b = self.a, self.b
         F1 = -a * (Gz - top.C * r * u) / top.A - b * r * u
@@ -246,7 +252,9 @@ class LinearDrag(Torque):
         F3 = -b * r / top.C
         return np.broadcast_arrays(F1, F2, F3 * np.ones_like(u))
 
-    def body_moments(self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float):
+    def body_moments(
+        self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float
+    ) -> tuple[float, float, float]:
         return -self.a * p, -self.a * q, -self.b * r
 
 

@@ -14,21 +14,23 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from rigidbody import euler_poinsot as ep
+from rigidbody.core.ode import Solution
 from rigidbody.paperfigs import register
 
 BODY = ep.Body(3.2, 2.6, 1.67)
 CASES = {"case 1 (chi<0)": np.diag([2.322, 1.31, 1.425]), "case 2 (chi>0)": np.diag([0.919, 5.228, 1.666])}
-SETUP = dict(G0=1.0, k2_0=0.99, delta0=math.pi / 4, lam0=math.pi / 4, nu0=0.0)
+SETUP: dict[str, Any] = dict(G0=1.0, k2_0=0.99, delta0=math.pi / 4, lam0=math.pi / 4, nu0=0.0)
 TAU = (0.0, 6.0)
 EPS_MAIN = (0.0, 0.005)
 EPS_SCAN = (0.0, 0.01, 0.1, 0.3)
 
 
-def figure_data(I: np.ndarray, eps: float, num: int = 3001) -> ep.averaged:
+def figure_data(I: np.ndarray, eps: float, num: int = 3001) -> Solution:
     """The averaged solution behind a figure (validity check off for eps above the theory's range)."""
     tau_eval = np.linspace(*TAU, num)
     big = eps > 0 and ep.spin_ratio(BODY, eps, SETUP["G0"], SETUP["k2_0"]) <= 1.0

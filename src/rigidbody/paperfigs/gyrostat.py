@@ -40,7 +40,7 @@ def body(l_over_R: float, ratios: tuple[float, float, float] = BASE) -> gyrostat
 
 def orderings() -> list[tuple[float, float, float]]:
     """The six orderings of BASE, A1 > A2 > A3 first."""
-    return sorted(set(itertools.permutations(BASE)), reverse=True)
+    return sorted({(a, b, c) for a, b, c in itertools.permutations(BASE)}, reverse=True)
 
 
 def map_data(l_over_R: float, ratios: tuple[float, float, float]) -> dict:
@@ -64,7 +64,7 @@ SYM_RATIO = np.linspace(0.05, 2.0, 196)
 SYM_L_OVER_R = 0.1
 
 
-def symmetric_map_data():
+def symmetric_map_data() -> gyrostat.SymmetricStabilityMap:
     """Verdicts of (3.2) on SYM_THETA x SYM_RATIO (A3/A1), l/R = SYM_L_OVER_R (A1 fixed, A3 varied)."""
     A1 = SYM_L_OVER_R**2
     sat = gyrostat.Satellite(M=1.0, A1=A1, A2=A1, A3=A1)
