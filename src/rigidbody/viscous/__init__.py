@@ -17,10 +17,10 @@ Simulation
 See ``docs/viscous.md`` for the equations, conventions (sign of k) and errata.
 """
 
-from .closed import F4, Omega, curvature, f3, limits, omega2, quasi_coordinates, spiral_radius, v
-from .model import Body, Medium, ball_and_rod, decay_rates, regime
-from .path import Turn, axis_path, turn
-from .simulate import axial_rotation, simulate
+from ._closed import F4, Omega, curvature, f3, limits, omega2, quasi_coordinates, spiral_radius, v
+from ._model import Body, Medium, ball_and_rod, decay_rates, regime
+from ._path import Turn, axis_path, turn
+from ._simulate import axial_rotation, simulate
 
 __all__ = [
     "F4",

@@ -9,8 +9,8 @@ import numpy as np
 
 from ..core import euler
 from ..core.ode import Solution, integrate
+from ._model import Body, Medium, _check
 from ._state import initial_state, perpendicular
-from .model import Body, Medium, _check
 
 __all__ = ["axial_rotation", "simulate"]
 

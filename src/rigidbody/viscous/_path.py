@@ -11,9 +11,9 @@ from typing import Any
 import numpy as np
 
 from ..core.ode import Event, integrate
+from ._closed import _scalar, curvature, quasi_coordinates, spiral_radius
+from ._model import Body, Medium, _check
 from ._state import initial_state
-from .closed import _scalar, curvature, quasi_coordinates, spiral_radius
-from .model import Body, Medium, _check
 
 __all__ = ["Turn", "axis_path", "turn"]
 

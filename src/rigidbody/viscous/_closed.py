@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from ..core.validate import real
-from .model import Body, Medium, _check
+from ._model import Body, Medium, _check
 
 __all__ = [
     "F4",
