@@ -47,7 +47,7 @@ def _as_square_stack(H: ArrayLike, name: str = "H") -> NDArray[np.float64]:
 def equilibrate(H: ArrayLike, *, iterations: int = 12) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Symmetric Ruiz equilibration ``Hs = diag(d) H diag(d)`` with ``d > 0``.
 
-    Each pass divides row and column ``i`` by ``sqrt(max_j |H_ij|)``; after a few passes every row of
+    Each pass divides row and column ``i`` by ``sqrt(max_j abs(H_ij))``; after a few passes every row of
     ``Hs`` has max-norm close to one.  The congruence preserves the inertia and the signs of all
     leading principal minors (``det Hs_k = det H_k * prod(d[:k])**2``).  Zero rows are left alone.
 
@@ -140,7 +140,7 @@ def inertia(
 ) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
     """Inertia (numbers of positive, negative and zero eigenvalues) of symmetric matrices.
 
-    Fast path: scale by the diagonal (``H_ij / sqrt(|H_ii H_jj|)``, an inertia-preserving congruence)
+    Fast path: scale by the diagonal (``H_ij / sqrt(abs(H_ii H_jj))``, an inertia-preserving congruence)
     and apply Jacobi's rule (the number of negative eigenvalues equals the number of sign changes in
     ``1, D1, ..., Dn``) wherever every leading minor exceeds ``sqrt(rtol)`` times its Hadamard bound
     (so its computed sign is certain).  Elsewhere the matrix is Ruiz-equilibrated and its eigenvalues
@@ -230,7 +230,7 @@ def hessian_fd(
 ) -> NDArray[np.float64]:
     """Hessian of a scalar function by nested 8th-order central differences (float64).
 
-    Truncation error O(h^8), round-off ~ eps |f| / h^2: useful when the function's value is not many
+    Truncation error O(h^8), round-off ~ eps abs(f) / h^2: useful when the function's value is not many
     orders of magnitude larger than its second variation (nondimensional problems).  For SI-scale
     problems evaluate ``f`` in extended precision instead (e.g. mpmath in tests).
 

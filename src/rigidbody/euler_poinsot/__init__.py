@@ -8,35 +8,47 @@ on a circular orbit under the gravity-gradient torque and a weak linear drag tor
 
 Model
 -----
-Body(A1, A2, A3)             principal moments, validated (A1 > A2 > A3, triangle inequality)
-Drag(I)                      drag tensor (3x3, any; symmetric part positive definite); torque -I omega
-Orbit(e=0.0)                 circular (paper) or eccentric orbit (factor of (3), Kepler's law)
+``Body(A1, A2, A3)``
+    principal moments, validated (A1 > A2 > A3, triangle inequality).
+``Drag(I)``
+    drag tensor (3x3, any; symmetric part positive definite); torque :math:`-I\boldsymbol\omega`.
+``Orbit(e=0.0)``
+    circular (paper) or eccentric orbit (factor of (3), Kepler's law).
 
 Euler--Poinsot motion (unperturbed)
 -----------------------------------
-EulerPoinsot(body, G, k2, kind='max'|'min', sigma=1)   closed form in Jacobi functions: .omega(t),
-                             .g(t), .angles(t) (psi, theta, phi), .period, .T, .nodes(n),
-                             .average(f): mean over psi and the period (the averaging of sec. 2)
-k2_from(body, G, T, kind)    formula (5) and its counterpart for rotation about the A3 axis
-T_from(body, G, k2, kind)    the inverse of (5);   kind_of(body, G, T)
+``EulerPoinsot(body, G, k2, kind='max'|'min', sigma=1)``
+    closed form in Jacobi functions: ``.omega(t)``, ``.g(t)``, ``.angles(t)`` (psi, theta, phi),
+    ``.period``, ``.T``, ``.nodes(n)``, ``.average(f)``: mean over psi and the period (the averaging of
+    sec. 2).
+``k2_from(body, G, T, kind)``, ``T_from(body, G, k2, kind)``, ``kind_of(body, G, T)``
+    formula (5), its counterpart for rotation about the A3 axis, and their inverses.
 
 Averaged system (6)-(9)
 -----------------------
-chi(body, I), N_time(body, I)           chi and N of (7)
-dk2_dtau(body, I, k2)                   the k^2 equation (8);  k2_equilibria(body, I): roots, stability
-drag_rates(body, I, G, k2)              dG/dt, dT/dt of (6);   N_star(body, k2): N* of (6)
-averaged_rates(body, I, G, k2, delta, lam, nu)   all right-hand sides of (6)/(9)
-precession_rate(body, G, k2, delta)     orbit-averaged (eps -> 0) d lambda / d tau
-spin_ratio(body, eps, G, k2)            Euler--Poinsot frequency / orbital rate (validity of the averaging)
-averaged(body, I, eps, G0=1, k2_0=0.99, delta0=pi/4, lam0=pi/4, tau_span=(0, 3), tau_eval=None, nu0=0)
-                             integrate (9) in tau = eps^2 t; eps = 0: orbit-averaged limit.
-                             sol.tau, .G, .T, .k2, .delta, .lam (unwrapped), .nu, .n, .status, .message
+``chi(body, I)``, ``N_time(body, I)``
+    chi and N of (7).
+``dk2_dtau(body, I, k2)``, ``k2_equilibria(body, I)``
+    the k^2 equation (8); its roots and their stability.
+``drag_rates(body, I, G, k2)``, ``N_star(body, k2)``
+    dG/dt, dT/dt and N* of (6).
+``averaged_rates(body, I, G, k2, delta, lam, nu)``
+    all right-hand sides of (6)/(9).
+``precession_rate(body, G, k2, delta)``
+    orbit-averaged (eps -> 0) d lambda / d tau.
+``spin_ratio(body, eps, G, k2)``
+    Euler--Poinsot frequency / orbital rate (validity of the averaging).
+``averaged(body, I, eps, G0=1, k2_0=0.99, delta0=pi/4, lam0=pi/4, tau_span=(0, 3), tau_eval=None, nu0=0)``
+    integrate (9) in tau = eps^2 t; eps = 0 is the orbit-averaged limit. The result has ``.tau``,
+    ``.G``, ``.T``, ``.k2``, ``.delta``, ``.lam`` (unwrapped), ``.nu``, ``.n``, ``.status``,
+    ``.message``.
 
 Full equations
 --------------
-simulate(body, I, eps, ...same arguments..., formulation='body'|'angles', u0=0, psi0=0, sigma=1)
-                             the unaveraged motion: Euler's equations + quaternion, or the paper's (1),(3),(4)
-initial_state(body, G0, k2_0, delta0, lam0)   the attitude that starts a full run on given slow variables
+``simulate(body, I, eps, ..., formulation='body'|'angles', u0=0, psi0=0, sigma=1)``
+    the unaveraged motion: Euler's equations and a quaternion, or the paper's (1), (3), (4).
+``initial_state(body, G0, k2_0, delta0, lam0)``
+    the attitude that starts a full run on given slow variables.
 
 All quantities are nondimensional in the paper's section-3 scaling (G0 = 1, A~ = A Omega0/G0,
 I~ = I/(G0 eps^2), orbital rate eps, tau = eps^2 t~); see docs/euler_poinsot.md.

@@ -7,20 +7,33 @@ attracting centre (kappa0 != 0, of order l^2/R^2).
 
 Public API
 ----------
-Satellite                       frozen dataclass (M, A1, A2, A3, mu, k1, k2, k3), validated
-stationary_motion(sat, R0, theta0, k2=.. | k3=.., omega_sign=+1)    the family (2.3)-(2.4)
-symmetric_stationary_motion(sat, R0, theta0)                        section 3, (3.2)-(3.3)
-symmetric_stability_map(sat, R0, theta0, A3=...)                    section 3 verdicts over grids
-stability(sat, motion)          Sylvester quantities s1, s2, s3 of (2.5), degree of instability and a
-                                verdict 'stable' / 'unstable' / 'undecided'; section-4 Jacobian
-stability_map(sat, R0, theta0, k2=.. | k3=..)    vectorised verdicts over parameter grids
-exact_boundaries(sat, R0, theta0)                s2 = 0, s3 = 0 and the restricted boundaries as k2(theta0)
-normalized_stability_map(sat, R0, theta0, u)     the same in the plane (theta0, u = k2 / (omega0 Abar))
-amended_potential, amended_potential_W, chi, gradient_W1    W, (2.1), W1 = W + lambda chi, (2.2)
-hessian_W1 (closed forms), hessian_W1_numerical (finite differences), constrained_second_variation,
-restricted_conditions
-symmetric_potential, gradient_W_sym, hessian_W_sym, W_psipsi_34, W_thetatheta_stable
-simulate(sat, motion, t_span), initial_state    full Newton-Euler equations (validation route)
+``Satellite``
+    frozen dataclass (M, A1, A2, A3, mu, k1, k2, k3), validated.
+``stationary_motion(sat, R0, theta0, k2=.. | k3=.., omega_sign=+1)``
+    the family (2.3)-(2.4).
+``symmetric_stationary_motion(sat, R0, theta0)``
+    section 3, (3.2)-(3.3).
+``symmetric_stability_map(sat, R0, theta0, A3=...)``
+    section 3 verdicts over grids.
+``stability(sat, motion)``
+    Sylvester quantities s1, s2, s3 of (2.5), degree of instability and a verdict 'stable' /
+    'unstable' / 'undecided'; section-4 Jacobian.
+``stability_map(sat, R0, theta0, k2=.. | k3=..)``
+    vectorised verdicts over parameter grids.
+``exact_boundaries(sat, R0, theta0)``
+    s2 = 0, s3 = 0 and the restricted boundaries as k2(theta0).
+``normalized_stability_map(sat, R0, theta0, u)``
+    the same in the plane (theta0, u = k2 / (omega0 Abar)).
+``amended_potential``, ``amended_potential_W``, ``chi``, ``gradient_W1``
+    W, (2.1), W1 = W + lambda chi, (2.2).
+``hessian_W1``, ``hessian_W1_numerical``
+    the second variation of W1 in closed form and by finite differences.
+``constrained_second_variation``, ``restricted_conditions``
+    the second variation on the constraint, and the conditions of the restricted problem.
+``symmetric_potential``, ``gradient_W_sym``, ``hessian_W_sym``, ``W_psipsi_34``, ``W_thetatheta_stable``
+    the axisymmetric case of section 3.
+``simulate(sat, motion, t_span)``, ``initial_state``
+    full Newton-Euler equations (validation route).
 """
 
 from __future__ import annotations

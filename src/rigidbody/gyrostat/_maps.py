@@ -30,7 +30,7 @@ class StabilityMap:
     may be read-only broadcast views (copy before writing).
 
     ``code``: 0 stable, 1 unstable (odd degree), 2 undecided, -1 invalid (no motion of the family,
-    singular chart, k2 ill-conditioned (|sin(theta0 + kappa0)| <= 1e-6 with k3 given), a non-physical
+    singular chart, k2 ill-conditioned (abs(sin(theta0 + kappa0)) <= 1e-6 with k3 given), a non-physical
     body, or one that does not fit inside its orbit, ``R0^2 <= (A1 + A2 + A3) / (2 M)``);
     :attr:`verdict` gives the strings.  ``r1, r2, r3`` are the restricted-problem quantities and
     ``restricted_stable`` their conjunction.

@@ -155,7 +155,7 @@ def stability_arrays(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any
                      rtol: float = 1e-12) -> dict[str, np.ndarray]:
     """Vectorised stability data for stationary motions given by :func:`family_arrays` output ``f``.
 
-    Invalid points (no motion, or the chart singular: |cos theta0| or |cos(theta0 + kappa0)| <= 1e-6)
+    Invalid points (no motion, or the chart singular: abs(cos theta0) or abs(cos(theta0 + kappa0)) <= 1e-6)
     get code -1 and NaN quantities.
     """
     e = hessian_entries(M, A1, A2, A3, mu, R0, f["theta0"], f["kappa0"], f["omega0"], f["k2"], f["S0"])
@@ -237,7 +237,7 @@ def hessian_W1_numerical(sat: Satellite, m: StationaryMotion, *, h: float | None
     """The 6x6 Hessian of W1 at ``m`` by 8th-order central differences of :func:`amended_potential`.
 
     An independent float64 route for nondimensional problems (M = mu = R0 = 1 and l/R not too small):
-    its round-off is ~ eps |W1| / h^2, so in SI units (|W1| ~ 1e11 next to entries ~ 1e-3) it is useless
+    its round-off is ~ eps abs(W1) / h^2, so in SI units (abs(W1) ~ 1e11 next to entries ~ 1e-3) it is useless
     -- evaluate W1 with ``lib=mpmath`` there (as the tests do).  ``h`` defaults to 1e-3 times the
     natural scale of each coordinate (R0 for R, 1 for the angles and direction cosines).
 

@@ -232,7 +232,7 @@ def stationary_motion(
     Warns
     -----
     GyrostatWarning
-        Near those places (|cos| or |sin| < 1e-6): the computed component is ill-conditioned.
+        Near those places (abs(cos) or abs(sin) < 1e-6): the computed component is ill-conditioned.
     """
     if not isinstance(sat, Satellite):
         raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")

@@ -1,0 +1,72 @@
+"""Sphinx configuration of the rigidbody documentation.
+
+Build (no network needed): ``python -m pip install ".[docs]" && python -m sphinx -W --keep-going -b html docs
+docs/_build/html``. MyST-NB reads the Markdown pages and executes the tutorial notebooks, numpydoc renders
+the docstrings, autosummary writes one page per public name, sphinx-gallery runs ``examples/``.
+"""
+
+from __future__ import annotations
+
+from importlib.metadata import version as _version
+
+project = "rigidbody"
+author = "rigidbody developers"
+copyright = "the rigidbody developers"
+release = _version("rigidbody")
+version = release
+
+extensions = [
+    "myst_nb",
+    "numpydoc",
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.mathjax",
+    "sphinx_gallery.gen_gallery",
+]
+
+source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
+root_doc = "index"
+exclude_patterns = ["_build", "auto_examples/*.ipynb", "auto_examples/*.py", "auto_examples/*.zip",
+                    "**.md5", "**.codeobj.json", "sg_execution_times.rst"]
+
+# MyST: $...$ and $$...$$ math as in the theory pages, definition lists, heading anchors for cross links
+myst_enable_extensions = ["dollarmath", "amsmath", "deflist", "colon_fence"]
+myst_heading_anchors = 3
+myst_dmath_double_inline = True
+
+# MyST-NB: the tutorials are stored without outputs and executed on every build; an error fails the build
+nb_execution_mode = "force"
+nb_execution_raise_on_error = True
+nb_execution_timeout = 300
+nb_merge_streams = True
+
+# autosummary / autodoc / numpydoc
+autosummary_generate = True
+autosummary_imported_members = True
+autodoc_typehints = "none"  # numpydoc's Parameters sections carry the types
+autodoc_default_options = {"members": False}
+numpydoc_show_class_members = False
+numpydoc_class_members_toctree = False
+numpydoc_xref_param_type = False
+numpydoc_validation_checks: set[str] = set()
+
+# sphinx-gallery: every script in examples/ is run and gets a page with its figures
+sphinx_gallery_conf = {
+    "examples_dirs": ["../examples"],
+    "gallery_dirs": ["auto_examples"],
+    "filename_pattern": r".*\.py$",
+    "ignore_pattern": r"__init__\.py",
+    "download_all_examples": False,
+    "remove_config_comments": True,
+    "within_subsection_order": "FileNameSortKey",
+    "matplotlib_animations": False,
+    "image_scrapers": ("matplotlib",),
+    "reference_url": {},
+    "show_memory": False,
+    "abort_on_example_error": True,
+    "only_warn_on_example_error": False,
+}
+
+html_theme = "furo"
+html_title = f"rigidbody {release}"
+html_static_path: list[str] = []
