@@ -43,10 +43,23 @@ Averaged system (6)-(9)
     ``.G``, ``.T``, ``.k2``, ``.delta``, ``.lam`` (unwrapped), ``.nu``, ``.n``, ``.status``,
     ``.message``.
 
+Torques as objects
+------------------
+``torque(omega, C, nu) -> M``
+    the protocol: body components of the angular velocity ``(..., 3)``, direction cosines body -> orbital
+    axes ``(..., 3, 3)``, true anomaly ``(...)``; returns the body components of the torque in the
+    section-3 scaling divided by eps^2. A plain function with this signature is a torque.
+``Torque``, ``TorqueSum``, ``FunctionTorque``
+    the base class (``a + b`` adds torques), the sum, a wrapped plain function.
+``LinearDrag(I)``, ``GravityGradient(body, orbit=None)``
+    the paper's two torques: ``-I omega`` and ``3 f(nu) rho x (A rho)``.
+
 Full equations
 --------------
-``simulate(body, I, eps, ..., formulation='body'|'angles', u0=0, psi0=0, sigma=1)``
-    the unaveraged motion: Euler's equations and a quaternion, or the paper's (1), (3), (4).
+``simulate(body, torque, eps, ..., formulation='body'|'angles', u0=0, psi0=0, sigma=1)``
+    the unaveraged motion: Euler's equations and a quaternion, or the paper's (1), (3), (4). ``torque`` is
+    a drag tensor (drag plus gravity gradient, the paper's case) or a torque object / callable (the whole
+    perturbation).
 ``initial_state(body, G0, k2_0, delta0, lam0)``
     the attitude that starts a full run on given slow variables.
 
@@ -92,6 +105,7 @@ from ._separatrix import (
     separatrix_crossing,
     separatrix_limits,
 )
+from ._torques import FunctionTorque, GravityGradient, LinearDrag, Torque, TorqueSum
 
 __all__ = [
     "ARCS",
@@ -100,6 +114,9 @@ __all__ = [
     "Body",
     "Drag",
     "EulerPoinsot",
+    "FunctionTorque",
+    "GravityGradient",
+    "LinearDrag",
     "N_star",
     "N_time",
     "Orbit",
@@ -107,6 +124,8 @@ __all__ = [
     "SeparatrixCrossing",
     "SeparatrixLimits",
     "T_from",
+    "Torque",
+    "TorqueSum",
     "averaged",
     "averaged_rates",
     "chi",

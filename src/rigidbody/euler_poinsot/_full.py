@@ -33,8 +33,9 @@ from ..core import euler
 from ..core.ode import Event, Solution, integrate
 from ..core.validate import real
 from ._averaged import _check_spin, _check_tau_eval, _check_tol, _finish, _slow_msg, _validate_common
-from ._model import Body, Orbit, _as_orbit, _check_kind, _nut_freq, as_drag
+from ._model import Body, Orbit, _as_orbit, _check_kind, _nut_freq
 from ._motion import EulerPoinsot
+from ._torques import probe, resolve
 
 __all__ = ["initial_state", "simulate"]
 
@@ -80,7 +81,7 @@ def _k2_osc(A: tuple[float, float, float], D: float) -> float:
 
 def simulate(
     body: Body,
-    I: Any,
+    torque: Any,
     eps: float,
     G0: float = 1.0,
     k2_0: float = 0.99,
@@ -109,7 +110,15 @@ def simulate(
 
     Parameters
     ----------
-    body, I, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, kind, orbit, rtol, atol, method
+    body : Body
+    torque : array_like, Drag, torque object or callable
+        A drag tensor :math:`\tilde I` (3x3, its diagonal, or a :class:`Drag`): Rachinskaya's drag *plus*
+        the gravity-gradient torque (3), as in :func:`averaged`. A torque object
+        (:class:`LinearDrag`, :class:`GravityGradient`, their sums, ...) or a plain callable
+        ``torque(omega, C, nu) -> M`` is the whole perturbation (body components, the section-3 scaling
+        divided by :math:`\varepsilon^2`; see :class:`Torque`): :math:`d\mathbf g/d\tau =
+        \varepsilon^{-2}\mathbf g\times\boldsymbol\omega + \mathbf M`.
+    eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, kind, orbit, rtol, atol, method
         As in :func:`averaged`; ``eps`` must be positive (the cost grows like :math:`\varepsilon^{-2}`:
         :math:`\tau` spans :math:`\tau/\varepsilon^2` units of :math:`\tilde t`).
     u0, psi0, sigma
@@ -136,7 +145,13 @@ def simulate(
     if formulation not in ("body", "angles"):
         raise ValueError(f"formulation must be 'body' or 'angles', got {formulation!r}")
     orb = _as_orbit(orbit)
-    Im = as_drag(I).I
+    what, tq = resolve(torque)
+    generic = what == "torque"
+    if generic:
+        tq._check_setup(body, orb)
+        Im = np.zeros((3, 3))
+    else:
+        Im = tq.I
     k2_max = real(k2_max, "k2_max")
     if not (k2_0 < k2_max <= 1.0):
         raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {k2_max}: "
@@ -155,12 +170,8 @@ def simulate(
 
     if formulation == "body":
 
-        def rhs(tau: float, y: np.ndarray) -> list[float]:
-            g1, g2, g3, w, x, yq, z = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
-            nrm = math.sqrt(w * w + x * x + yq * yq + z * z)
-            w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
-            o1, o2, o3 = g1 / A1, g2 / A2, g3 / A3
-            nu = nu_of(tau, y, 7)
+        def body_torque_drag(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
+                             nu: float) -> tuple[float, float, float]:
             cn, sn = math.cos(nu), math.sin(nu)
             # r_b = R^T e_r, R rows 0 and 1 from the quaternion
             r1 = (1 - 2 * (yq * yq + z * z)) * cn + 2 * (x * yq + w * z) * sn
@@ -170,6 +181,28 @@ def simulate(
             L1 = f3 * (A3 - A2) * r2 * r3 - (I11 * o1 + I12 * o2 + I13 * o3)
             L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
             L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
+            return L1, L2, L3
+
+        def body_torque_object(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
+                               nu: float) -> tuple[float, float, float]:
+            # the whole perturbation from the torque object: M = torque(omega, C, nu) in body axes
+            C = np.array([  # body -> Ox_i, the convention of core.euler.dcm_from_quat
+                [1 - 2 * (yq * yq + z * z), 2 * (x * yq - w * z), 2 * (x * z + w * yq)],
+                [2 * (x * yq + w * z), 1 - 2 * (x * x + z * z), 2 * (yq * z - w * x)],
+                [2 * (x * z - w * yq), 2 * (yq * z + w * x), 1 - 2 * (x * x + yq * yq)],
+            ])
+            M = tq(np.array([o1, o2, o3]), C, nu)
+            return float(M[0]), float(M[1]), float(M[2])
+
+        body_torque = body_torque_object if generic else body_torque_drag
+
+        def rhs(tau: float, y: np.ndarray) -> list[float]:
+            g1, g2, g3, w, x, yq, z = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
+            nrm = math.sqrt(w * w + x * x + yq * yq + z * z)
+            w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
+            o1, o2, o3 = g1 / A1, g2 / A2, g3 / A3
+            nu = nu_of(tau, y, 7)
+            L1, L2, L3 = body_torque(o1, o2, o3, w, x, yq, z, nu)
             dg1 = (g2 * o3 - g3 * o2) * ie2 + L1
             dg2 = (g3 * o1 - g1 * o3) * ie2 + L2
             dg3 = (g1 * o2 - g2 * o1) * ie2 + L3
@@ -183,6 +216,8 @@ def simulate(
                 out.append(ie * orb.nu_rate(nu))
             return out
 
+        if generic:
+            probe(tq, st["g"] / body.A, st["R"], nu0)
         y0 = [*st["g"], *st["q"]]
 
         def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -210,7 +245,7 @@ def simulate(
         inu = 7
     else:
 
-        def torques(y: np.ndarray, nu: float) -> tuple[float, ...]:
+        def torques_drag(y: np.ndarray, nu: float) -> tuple[float, ...]:
             G, de, la, th, ph, ps = y[0], y[1], y[2], y[3], y[4], y[5]
             c1, s1 = math.cos(ps), math.sin(ps)
             c2, s2 = math.cos(th), math.sin(th)
@@ -242,6 +277,17 @@ def simulate(
             L3 = Lg3 - (a31 * d1 + a32 * d2 + a33 * d3)
             return L1, L2, L3
 
+        def torques_generic(y: np.ndarray, nu: float) -> tuple[float, ...]:
+            # the torque object in body axes, projected on Oy: L = alpha M, C = Y alpha
+            G, de, la = y[0], y[1], y[2]
+            alpha = euler.dcm(y[5], y[3], y[4])  # alpha_ij = y_i . z_j (body -> Oy)
+            omega = G * alpha[2] / body.A
+            M = tq(omega, _frame_y(de, la) @ alpha, nu)
+            L = alpha @ M
+            return float(L[0]), float(L[1]), float(L[2])
+
+        torques = torques_generic if generic else torques_drag
+
         def rhs(tau: float, y: np.ndarray) -> list[float]:
             G, de, th, ph, ps, T = y[0], y[1], y[3], y[4], y[5], y[6]
             nu = nu_of(tau, y, 7)
@@ -267,6 +313,8 @@ def simulate(
             return out
 
         y0 = [G0, delta0, lam0, st["theta"], st["phi"], st["psi"], st["T"]]
+        if generic:
+            probe(tq, st["g"] / body.A, st["R"], nu0)
         if abs(math.sin(delta0)) <= 1e-6 or abs(math.sin(st["theta"])) <= 1e-6:
             raise ValueError(
                 "formulation='angles' is singular at sin(delta) = 0 or sin(theta) = 0 (the initial state is "
