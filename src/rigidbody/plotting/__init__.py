@@ -8,7 +8,14 @@ modules only; ``import rigidbody`` does not import them.
 
 from . import common, euler_poinsot, gyrostat, lagrange, viscous
 from .common import get_ax, time_series, unit_sphere
-from .euler_poinsot import hodograph, hodograph_3d, hodograph_projection, slow_variables, spiral_axis
+from .euler_poinsot import (
+    hodograph,
+    hodograph_3d,
+    hodograph_projection,
+    separatrix_passage,
+    slow_variables,
+    spiral_axis,
+)
 from .gyrostat import VERDICT_COLORS, dumbbell_side_view, normalized_map_plot, stability_map_plot
 from .lagrange import plot_integrals, plot_roots, slow_time_axis
 from .viscous import look_from, quasi_coordinate_histories, sphere_path, turn_solid_angle
@@ -29,6 +36,7 @@ __all__ = [
     "plot_integrals",
     "plot_roots",
     "quasi_coordinate_histories",
+    "separatrix_passage",
     "slow_time_axis",
     "slow_variables",
     "sphere_path",
