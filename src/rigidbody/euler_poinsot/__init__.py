@@ -67,7 +67,8 @@ All quantities are nondimensional in the paper's section-3 scaling (G0 = 1, A~ =
 I~ = I/(G0 eps^2), orbital rate eps, tau = eps^2 t~); see docs/euler_poinsot.md.
 """
 
-from ._averaged import averaged, averaged_rates, precession_rate
+from ._averaged import average_torque, averaged, averaged_rates, precession_rate
+from ._engine import TorqueAverage
 from ._full import initial_state, simulate
 from ._model import (
     KINDS,
@@ -101,7 +102,9 @@ __all__ = [
     "Orbit",
     "T_from",
     "Torque",
+    "TorqueAverage",
     "TorqueSum",
+    "average_torque",
     "averaged",
     "averaged_rates",
     "chi",

@@ -251,6 +251,12 @@ def _ratios(k2: float) -> tuple[float, float]:
     return 1.0 - k2 * sn2, sn2
 
 
+def _frame_y(delta: float, lam: float) -> np.ndarray:
+    """Columns y1, y2, y3 (the frame attached to G) in the orbital axes Ox_i."""
+    sd, cd, sl, cl = math.sin(delta), math.cos(delta), math.sin(lam), math.cos(lam)
+    return np.array([[cd * cl, -sl, sd * cl], [cd * sl, cl, sd * sl], [-sd, 0.0, cd]])
+
+
 def _labels(body: Body, kind: str, I: tuple[float, float, float] | None = None) -> Any:
     """Moments (and diagonal drag) in the order in which the 'max'-kind formulas apply."""
     if kind == "max":
