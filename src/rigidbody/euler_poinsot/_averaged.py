@@ -579,7 +579,12 @@ def averaged(
         unwrapped), ``sol.nu`` (the true anomaly; constant ``nu0`` when ``eps = 0``, where it is averaged
         out), ``sol.n`` (unit vector of G in :math:`Ox_i`, shape (3, n)), ``sol.status`` (0 end reached,
         1 an event ended the run, -1 failure), ``sol.message``, ``sol.event`` (``'separatrix'``,
-        ``'slow_rotation'`` or None).
+        ``'slow_rotation'`` or None; with a torque object also ``'fast_drift'`` and ``'resonance'``).
+        With a torque object the result also has ``sol.quad_error`` (the largest estimated quadrature error
+        of the engine along the run, relative to the size of the averaged torque; 0 when only closed forms
+        are used), ``sol.resonances`` (the resonance crossings with their predicted jumps: dicts with
+        ``tau``, ``j``, ``m``, ``rho``, ``jump``, ``jump_G``, ``jump_T``, ``jump_n``), ``sol.kind`` and
+        ``sol.sigma``.
 
     Examples
     --------
@@ -758,7 +763,14 @@ def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: flo
     if eps > 0.0 and orb.e != 0.0:
         y0.append(nu0)
     av = setup.averager
-    av.calibrate(_state_of(setup, kind, sigma, tau0, np.asarray(y0), tau0, nu0))
+    st0 = _state_of(setup, kind, sigma, tau0, np.asarray(y0), tau0, nu0)
+    av.calibrate(st0)
+    if eps > 0.0 and setup.drift_tol is not None and (d0 := _slow_drift(setup, st0, av.mean(st0))) > setup.drift_tol:
+        raise ValueError(
+            f"the torque is too strong for eps = {eps:g} at this state: the slow variables change by {d0:.3g} of "
+            f"themselves in one Euler-Poinsot period (> drift_tol = {setup.drift_tol:g}); the averaging needs a "
+            "separation of time scales. Lower eps or the torque, or pass drift_tol=None to integrate anyway"
+        )
 
     def rhs(tau: float, y: np.ndarray) -> list[float]:
         st = _state_of(setup, kind, sigma, tau, y, tau0, nu0)

@@ -27,11 +27,14 @@ in the orbit-averaged limit :math:`\varepsilon = 0`, over the orbit (uniform in 
 
 Error estimate: the grid of :math:`n` nodes per axis contains the grids of :math:`n/2` and :math:`n/4`
 (every second and fourth node), so the means on them cost nothing more. With :math:`d_2 = |Q_{n/2} - Q_n|`,
-:math:`d_1 = |Q_{n/4} - Q_{n/2}|` and :math:`r = d_2/d_1` the error of :math:`Q_n` is estimated as
-:math:`d_2\,r/(1-r)` (the tail of a geometric series of differences: exact for algebraic convergence of any
-order, an over-estimate for spectral convergence) when :math:`r < 0.9`, and as :math:`10\max(d_1, d_2)`
-when the differences do not decrease (a torque with kinks or jumps on a coarse grid). The node counts are
-doubled along each axis whose estimate exceeds the tolerance, up to a budget.
+:math:`d_1 = |Q_{n/4} - Q_{n/2}|` and :math:`r = d_2/d_1`, the error of :math:`Q_n` is estimated by
+:math:`d_2` when :math:`r < 1/2` (it bounds :math:`|Q_n - Q|` whenever the errors at least halve per doubling,
+or alternate in sign -- the erratic convergence of torques with kinks), by the geometric tail
+:math:`d_2 r/(1-r)` for :math:`1/2 \le r < 0.9`, and by :math:`10\max(d_1, d_2)` when the differences do
+not decrease; differences at the rounding level of the mean count as converged. For a smooth torque this
+is pessimistic (the error of :math:`Q_n` is about :math:`d_2 r`), which costs one doubling at the start of
+a run and buys an honest figure for torques that are not smooth. The node counts are doubled along each
+axis whose estimate exceeds the tolerance, up to a budget.
 """
 
 from __future__ import annotations
@@ -259,10 +262,13 @@ def _axis_error(n: int, means: tuple[np.ndarray, ...], noise: np.ndarray) -> tup
     d1 = np.abs(means[2] - m2)
     with np.errstate(divide="ignore", invalid="ignore"):
         r = d2 / d1
-        geometric = d2 * r / (1.0 - r)
+        tail = d2 * r / (1.0 - r)
     est = np.where(
         d2 <= 2.0 * noise, noise,  # the half grid already agrees to rounding
-        np.where((d1 > 2.0 * noise) & (r < 0.9), geometric, 10.0 * np.maximum(d1, d2)),
+        np.where(
+            d1 <= 2.0 * noise, 10.0 * d2,  # the quarter grid agreed but the full one does not: do not trust
+            np.where(r < 0.5, d2, np.where(r < 0.9, tail, 10.0 * np.maximum(d1, d2))),
+        ),
     )
     est = np.maximum(est, noise)
     return est, d2 + est
