@@ -1,6 +1,7 @@
 """Stepanov (1968): the paper's figure (the dumbbell), and stability maps and kappa0(theta0) beyond it.
 
 Choices the paper leaves open (stated here and in docs/gyrostat.md):
+
 - nondimensional units M = mu = R0 = 1; bodies with principal moments proportional to the six orderings
   of (1.2, 1.0, 0.8), scaled so that l = sqrt(Abar/M) = l/R;
 - maps in the plane (theta0, u = k2 / (omega0 Abar)) on a 301 x 301 grid, theta0 in (-1.5, 1.5),

@@ -77,7 +77,7 @@ def unit_sphere(
                         antialiased=False, alpha=alpha, shade=False)
     else:
         ax.plot_surface(x, y, z, color=color, linewidth=0, alpha=alpha)
-    ax.set_box_aspect((1, 1, 1))
+    ax.set_box_aspect((1, 1, 1), zoom=1.25)  # the sphere fills the axes' box
     lim = (-1.05, 1.05)
     ax.set_xlim(lim)
     ax.set_ylim(lim)

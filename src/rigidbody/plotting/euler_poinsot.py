@@ -142,7 +142,8 @@ def hodograph_side_view(sol: Any, ax: Any = None, axis: Any = (0.0, 0.0, 1.0), *
 
 def slow_variables(sol: Any, axes: Any = None, label: str | None = None, **kw: Any) -> Any:
     """Plot G, T, k², δ, λ against τ on five axes (created when ``axes`` is None); returns the axes."""
-    if axes is None:
+    new = axes is None
+    if new:
         import matplotlib.pyplot as plt
 
         _, axes = plt.subplots(5, 1, figsize=(6.0, 9.0), sharex=True)
@@ -153,6 +154,8 @@ def slow_variables(sol: Any, axes: Any = None, label: str | None = None, **kw: A
     axes[-1].set_xlabel("$\\tau$")
     if label is not None:
         axes[0].legend(fontsize=8)
+    if new:
+        axes[0].figure.tight_layout()
     return axes
 
 

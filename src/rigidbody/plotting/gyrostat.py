@@ -159,7 +159,8 @@ def plot_satellite_motion(sol: Any, ax: Any = None, **kw: Any) -> Any:
     """
     import matplotlib.pyplot as plt
 
-    if ax is None:
+    new = ax is None
+    if new:
         _, ax = plt.subplots(3, 1, figsize=(6.5, 6.5), sharex=True)
     axes = np.asarray(ax, dtype=object).ravel()
     if axes.size != 3:
@@ -172,4 +173,6 @@ def plot_satellite_motion(sol: Any, ax: Any = None, **kw: Any) -> Any:
     axes[2].legend(loc="best", fontsize=8)
     axes[2].grid(alpha=0.3)
     axes[2].set_xlabel("t")
+    if new:
+        axes[0].figure.tight_layout()
     return axes

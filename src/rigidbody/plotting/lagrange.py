@@ -75,6 +75,8 @@ def plot_averaged(sol: Any, ax: Any = None, x: str = "tau") -> np.ndarray:
     axes = _panels(ax, 2, (11.0, 4.0))
     plot_roots(sol, axes[0], x=x)
     plot_integrals(sol, axes[1], x=x)
+    if ax is None:
+        axes[0].figure.tight_layout()
     return axes
 
 
@@ -99,4 +101,6 @@ def plot_top_motion(sol: Any, ax: Any = None, **kw: Any) -> np.ndarray:
     for a in axes:
         a.set_xlabel(f"${sol.time_name}$")
         a.grid(alpha=0.3)
+    if ax is None:
+        axes[0].figure.tight_layout()
     return axes
