@@ -25,6 +25,7 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
     "sphinx.ext.mathjax",
+    "sphinx.ext.viewcode",  # [source] links: a gallery figure's function leads to the code that draws it
     "sphinx_gallery.gen_gallery",
 ]
 

@@ -165,7 +165,7 @@ def plot_satellite_motion(sol: Any, ax: Any = None, **kw: Any) -> Any:
     axes = np.asarray(ax, dtype=object).ravel()
     if axes.size != 3:
         raise ValueError(f"ax must hold 3 Axes, got {axes.size}")
-    time_series(sol.t, {"R": sol.R, "κ": sol.kappa}, axes=axes[:2], xlabel="t")
+    time_series(sol.t, {"R": sol.R, "κ": sol.kappa}, axes=axes[:2], xlabel="")
     gamma = np.asarray(sol.gamma)
     for i in range(3):
         axes[2].plot(sol.t, gamma[i], lw=1.0, label=f"$\\gamma_{i + 1}$", **kw)
