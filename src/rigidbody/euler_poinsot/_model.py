@@ -179,6 +179,11 @@ class Drag:
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Drag) and bool(np.array_equal(self.I, other.I))
 
+    def __repr__(self) -> str:
+        # one line, and valid input: the 3 diagonal entries when I is diagonal, else the nested rows
+        diagonal = not np.any(self.I - np.diag(np.diag(self.I)))
+        return f"Drag(I={(np.diag(self.I) if diagonal else self.I).tolist()})"
+
 
 def as_drag(I: Any) -> Drag:
     """Return ``I`` as a validated :class:`Drag` (accepts a Drag, a 3x3 matrix or 3 diagonal entries)."""
