@@ -7,7 +7,11 @@ the docstrings, autosummary writes one page per public name, sphinx-gallery runs
 
 from __future__ import annotations
 
+import sys
 from importlib.metadata import version as _version
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # gallery_order.py, named in sphinx_gallery_conf
 
 project = "rigidbody"
 author = "rigidbody developers"
@@ -21,13 +25,16 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
     "sphinx.ext.mathjax",
+    "sphinx.ext.viewcode",  # [source] links: a gallery figure's function leads to the code that draws it
     "sphinx_gallery.gen_gallery",
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}
 root_doc = "index"
-exclude_patterns = ["_build", "auto_examples/*.ipynb", "auto_examples/*.py", "auto_examples/*.zip",
-                    "**.md5", "**.codeobj.json", "sg_execution_times.rst"]
+# sphinx-gallery writes a notebook, a copy of the script and a zip beside each page (in every section):
+# only its .rst pages are sources
+exclude_patterns = ["_build", "auto_examples/**.ipynb", "auto_examples/**.py", "auto_examples/**.zip",
+                    "**.md5", "**.codeobj.json", "**.cost.json", "**sg_execution_times.rst"]
 
 # MyST: $...$ and $$...$$ math as in the theory pages, definition lists, heading anchors for cross links
 myst_enable_extensions = ["dollarmath", "amsmath", "deflist", "colon_fence"]
@@ -50,7 +57,8 @@ numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False
 numpydoc_validation_checks: set[str] = set()
 
-# sphinx-gallery: every script in examples/ is run and gets a page with its figures
+# sphinx-gallery: every script in examples/ is run and gets a page with its figures; one section per paper
+# (in the order of the theory pages), the paper's figures first in each
 sphinx_gallery_conf = {
     "examples_dirs": ["../examples"],
     "gallery_dirs": ["auto_examples"],
@@ -58,7 +66,9 @@ sphinx_gallery_conf = {
     "ignore_pattern": r"__init__\.py",
     "download_all_examples": False,
     "remove_config_comments": True,
-    "within_subsection_order": "FileNameSortKey",
+    "subsection_order": ["../examples/gyrostat", "../examples/lagrange", "../examples/euler_poinsot",
+                         "../examples/viscous", "*", "../examples/core"],
+    "within_subsection_order": "gallery_order.PaperFiguresFirst",
     "matplotlib_animations": False,
     "image_scrapers": ("matplotlib",),
     "reference_url": {},

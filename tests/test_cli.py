@@ -3,8 +3,16 @@
 import subprocess
 import sys
 
+import pytest
+
 import rigidbody
-from rigidbody.paperfigs import registry
+from rigidbody import paperfigs
+from rigidbody.paperfigs import PAPER_FIGURE, registry
+
+
+def _run(args, cwd):
+    return subprocess.run([sys.executable, "-m", "rigidbody", "figures", *args], cwd=cwd, capture_output=True,
+                          text=True, timeout=300)
 
 
 def test_version():
@@ -12,15 +20,66 @@ def test_version():
 
 
 def test_figures_list_runs_from_any_directory(tmp_path):
-    out = subprocess.run([sys.executable, "-m", "rigidbody", "figures", "--list"], cwd=tmp_path,
-                         capture_output=True, text=True, timeout=120)
+    out = _run(["--list"], tmp_path)
     assert out.returncode == 0, out.stderr
-    for name in registry():
+    for name, fs in registry().items():
         assert name in out.stdout
+        for fig in fs.figures:
+            assert f"{name}/{fig}" in out.stdout
+
+
+def test_paper_figures_of_every_set_are_numbered_once_from_1():
+    # the four papers: Stepanov's one figure, Lagrange figs 1-3, Rachinskaya figs 1-6, Krivtsov figs 1-5
+    expected = {"gyrostat": 1, "lagrange": 3, "euler_poinsot": 6, "viscous": 5}
+    reg = registry()
+    for name, count in expected.items():
+        numbers = [int(PAPER_FIGURE.match(f)["number"]) for f in reg[name].paper_figures]
+        assert numbers == list(range(1, count + 1)), name
+
+
+def test_only_one_figure_writes_exactly_that_file(tmp_path):
+    out = _run(["--only", "lagrange/fig3_case3_theta170", "--out", str(tmp_path)], tmp_path)
+    assert out.returncode == 0, out.stderr
+    written = sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*.png"))
+    assert written == ["lagrange/fig3_case3_theta170.png"]
 
 
 def test_unknown_figure_set_is_an_error(tmp_path):
-    out = subprocess.run([sys.executable, "-m", "rigidbody", "figures", "--only", "nope", "--out", str(tmp_path)],
-                         cwd=tmp_path, capture_output=True, text=True, timeout=120)
+    out = _run(["--only", "nope", "--out", str(tmp_path)], tmp_path)
     assert out.returncode == 2
     assert "unknown figure set" in out.stderr
+
+
+def test_unknown_figure_is_an_error_naming_the_set_s_figures(tmp_path):
+    out = _run(["--only", "lagrange/fig9_nope", "--out", str(tmp_path)], tmp_path)
+    assert out.returncode == 2
+    assert "unknown figure lagrange/fig9_nope" in out.stderr and "fig1_case1_theta5" in out.stderr
+
+
+def test_register_figures_refuses_bad_names_and_a_figure_number_twice():
+    def draw():  # never called
+        raise AssertionError
+
+    with pytest.raises(ValueError, match="lower case"):
+        paperfigs.register_figures("test_only", "x", {"Fig1_bad": draw})
+    with pytest.raises(ValueError, match="figure 2 of 'test_only' is registered twice"):
+        paperfigs.register_figures("test_only", "x", {"fig2_a": draw, "fig2_b": draw})
+    assert "test_only" not in registry()
+
+
+def test_a_builder_registered_by_decorator_still_works(tmp_path):
+    calls = []
+
+    @paperfigs.register("test_decorated", "x")
+    def build(outdir):
+        calls.append(outdir)
+        return []
+
+    try:
+        fs = registry()["test_decorated"]
+        assert fs.figures == {} and fs.paper_figures == ()
+        assert fs.build(tmp_path) == [] and calls == [tmp_path]
+        with pytest.raises(ValueError, match="no individually named figures"):
+            fs.build(tmp_path, only=["a"])
+    finally:
+        paperfigs._REGISTRY.pop("test_decorated")

@@ -15,7 +15,8 @@ import pytest
 
 API = Path(__file__).resolve().parents[2] / "docs" / "api"
 
-# the public modules: each analysis, the plotting helpers, the figure registry, and every core submodule
+# the public modules: each analysis, the plotting helpers, the figure registry and the paper-figure functions,
+# and every core submodule
 MODULES = [
     "rigidbody.gyrostat",
     "rigidbody.lagrange",
@@ -23,6 +24,10 @@ MODULES = [
     "rigidbody.viscous",
     "rigidbody.plotting",
     "rigidbody.paperfigs",
+    "rigidbody.paperfigs.lagrange",
+    "rigidbody.paperfigs.euler_poinsot",
+    "rigidbody.paperfigs.gyrostat",
+    "rigidbody.paperfigs.viscous",
 ] + [f"rigidbody.core.{name}" for name in importlib.import_module("rigidbody.core").__all__]
 
 

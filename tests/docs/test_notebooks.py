@@ -29,3 +29,7 @@ def test_notebook_executes(path: Path, tmp_path: Path) -> None:
     images = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
               if "image/png" in o.get("data", {})]
     assert images, "a tutorial draws at least one figure inline"
+    # the workflow of the tutorials: a result object is inspected through its HTML display
+    html = [o["data"]["text/html"] for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])
+            if "text/html" in o.get("data", {})]
+    assert any("rigidbody-solution" in h for h in html), "a tutorial shows a result's HTML display"

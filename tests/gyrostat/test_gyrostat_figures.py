@@ -54,8 +54,13 @@ def test_dumbbell_figure_data():
     assert gyrostat.stability(sat, ms).verdict == "stable"  # (3.4) with A1 > A3
 
 
-def test_builder_writes_pngs(tmp_path):
-    paths = fg.build(tmp_path)
+def test_builder_writes_the_paper_figure_and_the_extras(tmp_path):
+    from rigidbody.paperfigs import registry
+
+    fs = registry()["gyrostat"]
+    assert fs.paper_figures == ("fig1_dumbbell",)
+    paths = fs.build(tmp_path)
+    assert [p.name for p in paths] == [f"{n}.png" for n in fs.figures]
     assert len(paths) == 5
     assert all(p.exists() and p.stat().st_size > 10_000 for p in paths)
 

@@ -32,21 +32,38 @@ def test_spiral_figure_data(name):
 def test_builder_writes_the_figures(tmp_path):
     import matplotlib.pyplot as plt
 
-    paths = figs.build(tmp_path)
-    assert len(paths) == 5
+    from rigidbody.paperfigs import registry
+
+    fs = registry()["viscous"]
+    assert fs.paper_figures == ("fig1_ball_and_rod", "fig2_contracting_spiral", "fig3_unwinding_spiral",
+                                "fig4_turn_contracting", "fig5_turn_unwinding")
+    paths = fs.build(tmp_path)
+    assert [p.name for p in paths] == [f"{n}.png" for n in fs.figures]
     assert all(p.exists() and p.stat().st_size > 10_000 for p in paths)
     plt.close("all")
 
 
-def test_plot_helpers_validate_and_return_axes():
-    from rigidbody.plotting import viscous as pv
-
-    with pytest.raises(ValueError, match="shape"):
-        pv.sphere_path(np.zeros((2, 5)))
-    n = vs.axis_path(figs.BODY, figs.CONTRACTING, figs.N0, figs.NDOT0["contracting"], figs.OMEGA0,
-                     np.linspace(0, 10, 50))
-    ax = pv.sphere_path(n)
-    assert len(ax.lines) >= 1
+def test_ball_and_rod_sketch_places_the_balls_of_the_model():
     import matplotlib.pyplot as plt
 
-    plt.close("all")
+    from rigidbody.plotting import viscous as pv
+
+    N, a, b, r = 5, 1.0, 1.2, 0.2
+    ax = pv.ball_and_rod_sketch(N, a, b, r)
+    try:
+        assert len(ax.collections) == N + 2  # one surface per ball: N on the circle, A and B on the rod
+        ends = []
+        for ln in ax.lines:
+            x, y, z = (np.asarray(c, dtype=float) for c in ln.get_data_3d())
+            if x.size == 2 and x[0] == y[0] == z[0] == 0 and z[1] == 0:  # a spoke from C in the plane z = 0
+                ends.append((x[1], y[1]))
+        # the spokes end where ball_and_rod puts the masses: radius a, equal angles
+        ang = np.sort(np.mod(np.arctan2([e[1] for e in ends], [e[0] for e in ends]), 2 * np.pi))
+        np.testing.assert_allclose(np.hypot(*np.array(ends).T), a, rtol=1e-12, atol=0)
+        np.testing.assert_allclose(ang, 2 * np.pi * np.arange(N) / N, rtol=0, atol=1e-12)
+        rod = [ln for ln in ax.lines if np.allclose(ln.get_data_3d()[0], 0) and np.allclose(ln.get_data_3d()[1], 0)]
+        assert any(np.allclose(sorted(ln.get_data_3d()[2]), [-b, b]) for ln in rod)  # the rod AB
+    finally:
+        plt.close("all")
+    with pytest.raises(ValueError, match="N must be >= 3"):
+        pv.ball_and_rod_sketch(2, a, b, r)

@@ -23,6 +23,8 @@ from typing import Any
 import numpy as np
 from scipy.integrate import solve_ivp
 
+from . import _display
+
 __all__ = ["Event", "Solution", "integrate"]
 
 
@@ -120,6 +122,13 @@ class Solution:
 
     def __dir__(self) -> list[str]:
         return sorted(set(super().__dir__()) | set(self._data) | {self.time_name})
+
+    def _repr_html_(self) -> str:
+        return _display.solution_html(self)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Draw the module's standard figure (:func:`rigidbody.plotting.plot_solution`); returns the Axes."""
+        return _display.plot_solution(self, ax, **kwargs)
 
     def __repr__(self) -> str:
         n = self.time.size

@@ -32,27 +32,19 @@ Averaged system (6)-(9)
     the k^2 equation (8); its roots and their stability.
 ``drag_rates(body, I, G, k2)``, ``N_star(body, k2)``
     dG/dt, dT/dt and N* of (6).
-``averaged_rates(body, I, G, k2, delta, lam, nu)``
-    all right-hand sides of (6)/(9).
+``averaged_rates(body, torque, G, k2, delta, lam, nu, sigma=1, method='auto')``
+    all right-hand sides of (6)/(9); for a torque object, from its parts' closed forms or the engine.
+``average_torque(body, torque, G, k2, delta, lam, nu, ...) -> TorqueAverage``
+    the averaging engine: the mean of any torque over psi, the elliptic phase (and the orbit for
+    ``nu=None``), with its estimated quadrature error.
 ``precession_rate(body, G, k2, delta)``
     orbit-averaged (eps -> 0) d lambda / d tau.
 ``spin_ratio(body, eps, G, k2)``
     Euler--Poinsot frequency / orbital rate (validity of the averaging).
-``averaged(body, I, eps, G0=1, k2_0=0.99, delta0=pi/4, lam0=pi/4, tau_span=(0, 3), tau_eval=None, nu0=0)``
+``averaged(body, torque, eps, G0=1, k2_0=0.99, delta0=pi/4, lam0=pi/4, tau_span=(0, 3), tau_eval=None, nu0=0)``
     integrate (9) in tau = eps^2 t; eps = 0 is the orbit-averaged limit. The result has ``.tau``,
     ``.G``, ``.T``, ``.k2``, ``.delta``, ``.lam`` (unwrapped), ``.nu``, ``.n``, ``.status``,
-    ``.message``.
-
-Torques as objects
-------------------
-``torque(omega, C, nu) -> M``
-    the protocol: body components of the angular velocity ``(..., 3)``, direction cosines body -> orbital
-    axes ``(..., 3, 3)``, true anomaly ``(...)``; returns the body components of the torque in the
-    section-3 scaling divided by eps^2. A plain function with this signature is a torque.
-``Torque``, ``TorqueSum``, ``FunctionTorque``
-    the base class (``a + b`` adds torques), the sum, a wrapped plain function.
-``LinearDrag(I)``, ``GravityGradient(body, orbit=None)``
-    the paper's two torques: ``-I omega`` and ``3 f(nu) rho x (A rho)``.
+    ``.message``; with a torque object also ``.quad_error``, ``.resonances``, ``.kind``, ``.sigma``.
 
 Full equations
 --------------
@@ -77,7 +69,8 @@ All quantities are nondimensional in the paper's section-3 scaling (G0 = 1, A~ =
 I~ = I/(G0 eps^2), orbital rate eps, tau = eps^2 t~); see docs/euler_poinsot.md.
 """
 
-from ._averaged import averaged, averaged_rates, precession_rate
+from ._averaged import average_torque, averaged, averaged_rates, precession_rate
+from ._engine import TorqueAverage
 from ._full import initial_state, simulate
 from ._model import (
     KINDS,
@@ -125,7 +118,9 @@ __all__ = [
     "SeparatrixLimits",
     "T_from",
     "Torque",
+    "TorqueAverage",
     "TorqueSum",
+    "average_torque",
     "averaged",
     "averaged_rates",
     "chi",

@@ -34,12 +34,14 @@ evolves :math:`(G, k^2, \Lambda)` with :math:`\dot\Lambda = \tfrac34(1-e^2)^{-3/
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..core.ode import Event, Solution, integrate
 from ..core.validate import positive, real, span
+from ._engine import Averager, TorqueAverage, _Mean, _State, error_of, harmonic, mean_of
 from ._model import (
     Body,
     Orbit,
@@ -48,19 +50,21 @@ from ._model import (
     _check_kind,
     _dk2,
     _drag_rates,
+    _frame_y,
     _labels,
     _nstar,
     _nut_freq,
     _S_over_R,
-    as_drag,
 )
+from ._motion import EulerPoinsot
+from ._torques import drag_as_torque, resolve
 
-__all__ = ["averaged", "averaged_rates", "precession_rate"]
+__all__ = ["average_torque", "averaged", "averaged_rates", "precession_rate"]
 
 
 def averaged_rates(
     body: Body,
-    I: Any,
+    torque: Any,
     G: float,
     k2: float,
     delta: float,
@@ -70,14 +74,20 @@ def averaged_rates(
     kind: str = "max",
     orbit: Orbit | None = None,
     omega0: float = 1.0,
+    sigma: int = 1,
+    method: str = "auto",
 ) -> dict[str, float]:
     r"""Right-hand sides of the averaged system (6) (dimensional) or (9) (per :math:`\tau`, ``omega0=1``).
 
     Parameters
     ----------
     body : Body
-    I : array_like or Drag
-        Drag tensor (only its diagonal enters (6)).
+    torque : array_like, Drag, torque object or callable
+        A drag tensor (3x3, its diagonal, or a :class:`Drag`; only its diagonal enters (6)): Rachinskaya's
+        drag *plus* the gravity-gradient torque, the closed forms (6). A torque object or a plain callable
+        ``torque(omega, C, nu) -> M`` (see :class:`Torque`) is the whole perturbation: its averages come from
+        the closed forms of its parts where they have them, from the averaging engine otherwise
+        (:func:`average_torque`).
     G, k2, delta, lam : float
         Slow variables.
     nu : float or None
@@ -87,40 +97,127 @@ def averaged_rates(
     orbit : Orbit, optional
         Eccentric orbits multiply the gravity terms by :math:`(1+e\cos\nu)^3/(1-e^2)^3`.
     omega0 : float
-        Orbital mean motion (1 in the nondimensional form (9)).
+        Orbital mean motion (1 in the nondimensional form (9)). Only for a drag tensor: a torque object
+        carries its own scale (e.g. ``GravityGradient(..., omega0=...)``).
+    sigma : {+1, -1}
+        Sense of rotation of the Euler--Poinsot motion (sign of :math:`g_1` for 'max', :math:`g_3` for 'min').
+        The averages of torques that are not odd in :math:`\boldsymbol\omega` depend on it (a constant
+        body-fixed torque, a magnet); those of the paper's two torques do not.
+    method : {'auto', 'numerical'}
+        ``'numerical'`` uses the engine for every part, also where a closed form exists (for checks).
 
     Returns
     -------
     dict
-        ``dG``, ``dT``, ``dk2``, ``ddelta``, ``dlam``. The :math:`\lambda` equation is evaluated as
-        :math:`\beta_1\beta_3/\sin\delta = \cos^2(\nu-\lambda)\cos\delta`, which is finite at
+        ``dG``, ``dT``, ``dk2``, ``ddelta``, ``dlam``. For a drag tensor the :math:`\lambda` equation is
+        evaluated as :math:`\beta_1\beta_3/\sin\delta = \cos^2(\nu-\lambda)\cos\delta`, which is finite at
         :math:`\sin\delta = 0` (where :math:`\lambda` itself is undefined: the integrator evolves the unit
-        vector of :math:`\mathbf G` instead).
+        vector of :math:`\mathbf G` instead). For a torque object ``dlam`` is :math:`L_2/(G\sin\delta)`; at
+        :math:`\sin\delta = 0` its limit along the meridian :math:`\lambda` when :math:`L_2 = 0` there,
+        :math:`\pm\infty` otherwise (use :func:`average_torque` for the regular :math:`d\mathbf n/d\tau`).
+
+    Raises
+    ------
+    TypeError
+        If ``body`` is not a :class:`Body`, a number is not real or ``torque`` is neither a drag tensor nor
+        a callable.
+    ValueError
+        If ``G <= 0``, ``k2`` is outside [0, 1], ``nu`` is not finite, ``omega0 <= 0`` (or not 1 with a
+        torque object), ``sigma`` is not +1 or -1, ``method`` or ``kind`` is unknown, or a torque object
+        was built for another body or orbit.
     """
     _check_body(body)
     _check_kind(kind)
     orb = _as_orbit(orbit)
-    A, Id = _labels(body, kind, as_drag(I).diag)
+    _check_method(method, "method")
+    sigma = _check_sigma(sigma)
+    what, tq = resolve(torque)
     G = real(G, "G")
     if G <= 0:
         raise ValueError(f"G must be positive, got {G}")
     k2 = real(k2, "k2")
     if not (0.0 <= k2 <= 1.0):
         raise ValueError(f"k2 must lie in [0, 1], got {k2}")
-    dG, dT = _drag_rates(A, Id, G, k2)
-    dk2 = _dk2(A, Id, k2)
-    Ns = _nstar(A, k2)
-    sd, cd = math.sin(real(delta, "delta")), math.cos(delta)
-    lam = real(lam, "lam")
+    delta, lam = real(delta, "delta"), real(lam, "lam")
     omega0 = real(omega0, "omega0")
     if omega0 <= 0:
         raise ValueError(f"omega0 (orbital mean motion) must be positive, got {omega0}")
+    if nu is not None:
+        nu = real(nu, "nu")
+    if what == "drag" and method == "auto":
+        return _rates_drag(body, tq, G, k2, delta, lam, nu, kind, orb, omega0)
+    if what == "drag":
+        tq = drag_as_torque(tq, body, orb, omega0)
+    elif omega0 != 1.0:
+        raise ValueError("omega0 applies to a drag tensor only: a torque object carries its own scale "
+                         "(e.g. GravityGradient(body, orbit, omega0=...))")
+    tq._check_setup(body, orb)
+    if k2 >= 1.0:
+        raise ValueError("k2 = 1 is the separatrix: the Euler-Poinsot period is infinite and a torque object "
+                         "has no average there (the drag tensor's closed forms have a limit)")
+
+    def L_y(d: float) -> np.ndarray:
+        Y = _frame_y(d, lam)
+        st = _State(body, kind, sigma, G, k2, Y[:, 2], nu, orb)
+        return Y.T @ _once(tq, st, method)[0].L
+
+    st = _State(body, kind, sigma, G, k2, _frame_y(delta, lam)[:, 2], nu, orb)
+    mean, _, _ = _once(tq, st, method)
+    L = _frame_y(delta, lam).T @ mean.L
+    sd = math.sin(delta)
+    if sd != 0.0:
+        dlam = L[1] / (G * sd)
+    elif abs(L[1]) > 1e-12 * max(1.0, float(np.abs(mean.L).max())):
+        dlam = math.copysign(math.inf, L[1])
+    else:  # the limit L2(delta)/sin(delta) along the meridian: a central difference, error O(h^2)
+        h = 1e-5
+        dlam = (L_y(h)[1] - L_y(-h)[1]) / (2.0 * math.sin(h) * G)
+    return {"dG": float(L[2]), "dT": mean.dT, "dk2": mean.dk2, "ddelta": float(L[0] / G), "dlam": float(dlam)}
+
+
+#: quadrature tolerance of the engine (relative to the size of the torque on the grid)
+_TOL = 1e-13
+
+
+def _once(tq: Any, st: _State, method: str, tol: float = _TOL) -> tuple[_Mean, _Mean, Any]:
+    """Averages at one state with their error bound: closed forms where allowed, adaptive engine otherwise."""
+    av = Averager(tq, method, tol)
+    av.calibrate(st)
+    total = _Mean(np.zeros(3), 0.0, 0.0)
+    for p in av.closed:
+        total = total + p._closed(st)
+    err = _Mean(np.zeros(3), 0.0, 0.0)
+    if av.first is not None:
+        total = total + mean_of(av.first.mean, st)
+        err = error_of(av.first.error, st)
+    return total, err, av.first
+
+
+def _check_method(method: Any, name: str) -> None:
+    if method not in ("auto", "numerical"):
+        raise ValueError(f"{name} must be 'auto' (closed forms where a torque has them) or 'numerical' (the "
+                         f"averaging engine for every part), got {method!r}")
+
+
+def _check_sigma(sigma: Any) -> int:
+    if isinstance(sigma, bool) or sigma not in (1, -1):
+        raise ValueError(f"sigma (sense of rotation) must be +1 or -1, got {sigma!r}")
+    return int(sigma)
+
+
+def _rates_drag(body: Body, drag: Any, G: float, k2: float, delta: float, lam: float, nu: float | None,
+                kind: str, orb: Orbit, omega0: float) -> dict[str, float]:
+    """The closed forms (6) for a drag tensor (drag plus gravity gradient)."""
+    A, Id = _labels(body, kind, drag.diag)
+    dG, dT = _drag_rates(A, Id, G, k2)
+    dk2 = _dk2(A, Id, k2)
+    Ns = _nstar(A, k2)
+    sd, cd = math.sin(delta), math.cos(delta)
     w2 = omega0 * omega0
     if nu is None:
         ddelta = 0.0
         dlam = 0.75 * w2 * orb.mean_factor * Ns * cd / G
     else:
-        nu = real(nu, "nu")
         f = orb.factor(nu)
         b2 = math.sin(nu - lam)
         b3 = math.cos(nu - lam) * sd
@@ -128,6 +225,95 @@ def averaged_rates(
         # beta1*beta3/sin(delta) = cos^2(nu - lam) cos(delta): regular at sin(delta) = 0
         dlam = 1.5 * w2 * f * math.cos(nu - lam) ** 2 * cd * Ns / G
     return {"dG": dG, "dT": dT, "dk2": dk2, "ddelta": ddelta, "dlam": dlam}
+
+
+def average_torque(
+    body: Body,
+    torque: Any,
+    G: float,
+    k2: float,
+    delta: float,
+    lam: float,
+    nu: float | None,
+    *,
+    kind: str = "max",
+    sigma: int = 1,
+    orbit: Orbit | None = None,
+    tol: float = _TOL,
+) -> TorqueAverage:
+    r"""The averaging engine: the mean effect of any torque over the Euler--Poinsot motion, with its error.
+
+    Averages the torque over the precession angle :math:`\psi` about :math:`\mathbf G` (uniformly: no
+    resonance between :math:`\dot\psi` and the Euler--Poinsot frequency is assumed), over one period of the
+    elliptic phase and, for ``nu=None`` (the orbit-averaged limit :math:`\varepsilon = 0`), over the orbit;
+    then forms the averaged rates as in (6): :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle`,
+    :math:`dT/d\tau = \langle\boldsymbol\omega\cdot\mathbf M\rangle` and :math:`dk^2/d\tau` from the
+    derivative of (5). Every mean is the trapezoid rule on a uniform grid (spectrally convergent for smooth
+    torques; the node count of the elliptic phase comes from :math:`k`); node counts are doubled until the
+    estimated error (from the grids of half and a quarter of the nodes, which the grid contains) is below
+    ``tol`` times the size of the torque, or a node budget is spent. For torques with kinks or jumps
+    (a shadow, ``max(0, cos)``) the convergence is algebraic and the estimate says so. The closed forms of
+    the catalogue are *not* used here (:func:`averaged_rates` uses them).
+
+    Parameters
+    ----------
+    body : Body
+    torque : array_like, Drag, torque object or callable
+        As in :func:`averaged_rates` (a drag tensor means :class:`LinearDrag` plus :class:`GravityGradient`).
+    G, k2, delta, lam, nu
+        Slow state, as in :func:`averaged_rates` (``k2`` in [0, 1)).
+    kind : {'max', 'min'}
+    sigma : {+1, -1}
+        Sense of rotation of the Euler--Poinsot motion.
+    orbit : Orbit, optional
+    tol : float
+        Relative tolerance of the quadrature (> 0; default 1e-13).
+
+    Returns
+    -------
+    TorqueAverage
+        ``rates`` (as :func:`averaged_rates`), ``error`` (estimated absolute errors of the rates), ``L``,
+        ``dn``, ``nodes``, ``converged``, ``convergence``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> tq = ep.LinearDrag(np.diag([2.322, 1.31, 1.425]))
+    >>> r = ep.average_torque(body, tq, 1.0, 0.9, 0.7, 0.2, None)
+    >>> closed = ep.averaged_rates(body, tq, 1.0, 0.9, 0.7, 0.2, None)
+    >>> bool(abs(r.rates["dk2"] - closed["dk2"]) < 1e-12), r.converged
+    (True, True)
+    """
+    _check_body(body)
+    _check_kind(kind)
+    orb = _as_orbit(orbit)
+    sigma = _check_sigma(sigma)
+    tol = positive(tol, "tol")
+    what, tq = resolve(torque)
+    if what == "drag":
+        tq = drag_as_torque(tq, body, orb)
+    tq._check_setup(body, orb)
+    G, k2 = real(G, "G"), real(k2, "k2")
+    if G <= 0:
+        raise ValueError(f"G must be positive, got {G}")
+    if not (0.0 <= k2 < 1.0):
+        raise ValueError(f"k2 must lie in [0, 1) (k2 = 1 is the separatrix), got {k2}")
+    delta, lam = real(delta, "delta"), real(lam, "lam")
+    if nu is not None:
+        nu = real(nu, "nu")
+    Y = _frame_y(delta, lam)
+    st = _State(body, kind, sigma, G, k2, Y[:, 2], nu, orb)
+    mean, err, q = _once(tq, st, "numerical", tol)
+    L, eL = Y.T @ mean.L, float(np.linalg.norm(err.L))
+    sd = math.sin(delta)
+    rates = {"dG": float(L[2]), "dT": mean.dT, "dk2": mean.dk2, "ddelta": float(L[0] / G),
+             "dlam": float(L[1] / (G * sd)) if sd != 0.0 else math.copysign(math.inf, L[1])}
+    error = {"dG": eL, "dT": err.dT, "dk2": err.dk2, "ddelta": eL / G, "dlam": eL / (G * abs(sd)) if sd else math.inf}
+    dn = (mean.L - L[2] * Y[:, 2]) / G
+    return TorqueAverage(rates, error, mean.L, dn, (q.grid.n_psi, q.grid.n_u(st.mc), q.grid.n_nu),
+                         q.converged, q.convergence)
 
 
 def precession_rate(body: Body, G: float, k2: float, delta: float, *, kind: str = "max",
@@ -300,7 +486,7 @@ def _check_tol(rtol: Any, atol: Any) -> None:
 
 def averaged(
     body: Body,
-    I: Any,
+    torque: Any,
     eps: float,
     G0: float = 1.0,
     k2_0: float = 0.99,
@@ -317,6 +503,11 @@ def averaged(
     method: str = "DOP853",
     k2_max: float = 1.0 - 1e-6,
     min_spin_ratio: float = 1.0,
+    sigma: int = 1,
+    averaging: str = "auto",
+    quad_tol: float = 1e-12,
+    drift_tol: float | None = 0.5,
+    resonance_tol: float | None = 0.05,
 ) -> Solution:
     r"""Integrate the nondimensional averaged system (9) in the slow time :math:`\tau = \varepsilon^2\tilde t`.
 
@@ -324,8 +515,14 @@ def averaged(
     ----------
     body : Body
         Nondimensional moments :math:`\tilde A_i`.
-    I : array_like or Drag
-        Nondimensional drag tensor :math:`\tilde I` (3x3; only the diagonal enters (9)).
+    torque : array_like, Drag, torque object or callable
+        A nondimensional drag tensor :math:`\tilde I` (3x3, its diagonal or a :class:`Drag`; only the
+        diagonal enters (9)): Rachinskaya's drag *plus* the gravity-gradient torque, integrated with the
+        closed forms (9). A torque object (:class:`LinearDrag`, :class:`GravityGradient`, ... and sums) or a
+        plain callable ``torque(omega, C, nu) -> M`` is the whole perturbation: the averaged system is then
+        :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle`, :math:`dT/d\tau = \langle\boldsymbol\omega
+        \cdot\mathbf M\rangle` with the means from the closed forms of the parts that have them and from the
+        averaging engine otherwise (see :func:`average_torque` and ``docs/euler_poinsot.md``, "Any torque").
     eps : float
         :math:`\varepsilon`, the orbital rate in units of :math:`\Omega_0`; the true anomaly is
         :math:`\nu = \tau/\varepsilon + \nu_0` (Kepler's law for an eccentric ``orbit``). ``eps = 0`` gives
@@ -351,6 +548,29 @@ def averaged(
         :func:`spin_ratio` (frequency :math:`2\pi/P` of the Euler--Poinsot motion over the orbital rate
         :math:`\varepsilon`) falls to this value (``eps > 0`` only; a start below it raises ``ValueError``;
         pass 0 to switch the check off, e.g. to show where the theory fails).
+    sigma : {+1, -1}
+        Sense of rotation of the Euler--Poinsot motion (torque objects; the drag tensor's averages do not
+        depend on it).
+    averaging : {'auto', 'numerical'}
+        For a torque object (or, with ``'numerical'``, a drag tensor): ``'numerical'`` uses the averaging
+        engine for every part, also where a closed form exists (for checks and benchmarks).
+    quad_tol : float
+        Relative tolerance of the engine's quadrature, to which its grid is chosen at the start.
+        ``sol.quad_error`` reports the estimated error along the run.
+    drift_tol : float or None
+        Torque objects, ``eps > 0``: the run ends (event ``'fast_drift'``) when the slow variables change
+        by more than this fraction in one Euler--Poinsot period,
+        :math:`\varepsilon^2P(|\dot G|/G + |\dot T|/T + |\dot{\mathbf n}|)`: then there is no separation of
+        time scales and the averaging does not hold. ``None`` switches the check off.
+    resonance_tol : float or None
+        Torque objects, ``eps > 0``: where the rotation number :math:`\rho = \langle\dot\psi\rangle P/2\pi`
+        crosses a resonance :math:`j\rho = -m` (:math:`j = 1, 2`) the averaging over :math:`\psi` and the
+        phase does not hold; the passage changes the slow variables by the jump
+        :math:`2|c_{jm}|\varepsilon\sqrt{P/|j\dot\rho|}` (:math:`c_{jm}` the resonant harmonic of the
+        torque's effect), which is computed and listed in ``sol.resonances``. A jump larger than this
+        (relative to :math:`G`, :math:`T`; radians for the direction) ends the run there (event
+        ``'resonance'``): the passage is too slow (a capture into resonance is possible). ``None`` switches
+        the check off.
 
     Returns
     -------
@@ -359,7 +579,12 @@ def averaged(
         unwrapped), ``sol.nu`` (the true anomaly; constant ``nu0`` when ``eps = 0``, where it is averaged
         out), ``sol.n`` (unit vector of G in :math:`Ox_i`, shape (3, n)), ``sol.status`` (0 end reached,
         1 an event ended the run, -1 failure), ``sol.message``, ``sol.event`` (``'separatrix'``,
-        ``'slow_rotation'`` or None).
+        ``'slow_rotation'`` or None; with a torque object also ``'fast_drift'`` and ``'resonance'``).
+        With a torque object the result also has ``sol.quad_error`` (the largest estimated quadrature error
+        of the engine along the run, relative to the size of the averaged torque; 0 when only closed forms
+        are used), ``sol.resonances`` (the resonance crossings with their predicted jumps: dicts with
+        ``tau``, ``j``, ``m``, ``rho``, ``jump``, ``jump_G``, ``jump_T``, ``jump_n``), ``sol.kind`` and
+        ``sol.sigma``.
 
     Examples
     --------
@@ -375,12 +600,27 @@ def averaged(
     _check_tol(rtol, atol)
     _check_kind(kind)
     orb = _as_orbit(orbit)
-    drag = as_drag(I)
-    A, Id = _labels(body, kind, drag.diag)
+    _check_method(averaging, "averaging")
+    sigma = _check_sigma(sigma)
+    quad_tol = positive(quad_tol, "quad_tol")
+    drift_tol = None if drift_tol is None else positive(drift_tol, "drift_tol")
+    resonance_tol = None if resonance_tol is None else positive(resonance_tol, "resonance_tol")
+    what, tq = resolve(torque)
     k2_max = real(k2_max, "k2_max")
     if not (k2_0 < k2_max <= 1.0):
         raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {k2_max}: "
                          "raise k2_max or start further from the separatrix")
+    if what == "torque" or averaging == "numerical":
+        if what == "drag":
+            tq = drag_as_torque(tq, body, orb)
+        tq._check_setup(body, orb)
+        _check_spin(_labels(body, kind), G0, k2_0, eps, min_spin_ratio)
+        setup = _Setup(body, Averager(tq, averaging, quad_tol), eps, orb, nu0, rtol, atol, method, k2_max,
+                       min_spin_ratio, drift_tol, resonance_tol)
+        return _finish_kind(_integrate_kind(setup, kind, sigma, tau_span, G0, k2_0, _unit(delta0, lam0), nu0,
+                                            tau_eval), tau_eval, lam0)
+    drag = tq
+    A, Id = _labels(body, kind, drag.diag)
     _check_spin(A, G0, k2_0, eps, min_spin_ratio)
     circular = orb.e == 0.0
     mf = orb.mean_factor
@@ -454,3 +694,222 @@ def averaged(
         return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1.0, 1.0)), "n": n, "nu": nu}
 
     return _finish(res, tau_eval, make_fields, lam0, nvec, lam_limit if eps == 0.0 else None)
+
+
+# --------------------------------------------------------------------------------------------------
+# any torque: the averaged evolution of one kind of motion (restartable in the other kind)
+# --------------------------------------------------------------------------------------------------
+@dataclass
+class _Setup:
+    """What a run with a torque object keeps fixed: the body, the averaged torque, eps, the orbit, tolerances."""
+
+    body: Body
+    averager: Averager
+    eps: float
+    orbit: Orbit
+    nu0: float
+    rtol: float
+    atol: float
+    method: str
+    k2_max: float
+    min_spin_ratio: float
+    drift_tol: float | None
+    resonance_tol: float | None
+
+
+@dataclass
+class _Segment:
+    """An averaged run in one kind of motion: the raw solution (state G, k2, n[, nu]) and how it was made."""
+
+    res: Solution
+    setup: _Setup
+    kind: str
+    sigma: int
+    tau0: float
+    nu0: float
+
+
+def _state_of(setup: _Setup, kind: str, sigma: int, tau: float, y: np.ndarray, tau0: float, nu0: float) -> _State:
+    eps = setup.eps
+    k2 = min(max(float(y[1]), 0.0), 1.0 - 1e-15)
+    n = np.asarray(y[2:5], dtype=float)
+    if eps == 0.0:
+        nu = None
+    elif setup.orbit.e == 0.0:
+        nu = (tau - tau0) / eps + nu0
+    else:
+        nu = float(y[5])
+    return _State(setup.body, kind, sigma, float(y[0]), k2, n / math.sqrt(float(n @ n)), nu, setup.orbit)
+
+
+def _slow_drift(setup: _Setup, st: _State, m: _Mean) -> float:
+    r"""Relative change of the slow variables in one Euler--Poinsot period, :math:`\varepsilon^2P(\ldots)`."""
+    freq = _nut_freq(st.a, st.G, st.k2)
+    if freq <= 0.0:
+        return math.inf
+    dG = float(st.n @ m.L)
+    dn = float(np.linalg.norm(m.L - dG * st.n)) / st.G
+    return setup.eps**2 * (2.0 * math.pi / freq) * (abs(dG) / st.G + abs(m.dT) / st.T + dn)
+
+
+def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: float, k2_0: float,
+                    n0: Any, nu0: float, tau_eval: Any = None) -> _Segment:
+    """Integrate the averaged system of a torque object in one kind of motion from (G0, k2_0, n0) at the
+    start of ``tau_span`` (true anomaly ``nu0`` there). A crossing into the other kind restarts here with
+    G, T, n continuous (k2 from (5) of the other kind)."""
+    tau0 = float(tau_span[0])
+    eps, orb = setup.eps, setup.orbit
+    y0 = [G0, k2_0, *n0]
+    if eps > 0.0 and orb.e != 0.0:
+        y0.append(nu0)
+    av = setup.averager
+    st0 = _state_of(setup, kind, sigma, tau0, np.asarray(y0), tau0, nu0)
+    av.calibrate(st0)
+    if eps > 0.0 and setup.drift_tol is not None and (d0 := _slow_drift(setup, st0, av.mean(st0))) > setup.drift_tol:
+        raise ValueError(
+            f"the torque is too strong for eps = {eps:g} at this state: the slow variables change by {d0:.3g} of "
+            f"themselves in one Euler-Poinsot period (> drift_tol = {setup.drift_tol:g}); the averaging needs a "
+            "separation of time scales. Lower eps or the torque, or pass drift_tol=None to integrate anyway"
+        )
+
+    def rhs(tau: float, y: np.ndarray) -> list[float]:
+        st = _state_of(setup, kind, sigma, tau, y, tau0, nu0)
+        m = av.mean(st)
+        n = st.n
+        dG = float(n @ m.L)
+        dn = (m.L - dG * n) / st.G
+        out = [dG, m.dk2, float(dn[0]), float(dn[1]), float(dn[2])]
+        if eps > 0.0 and orb.e != 0.0:
+            out.append(orb.nu_rate(float(y[5])) / eps)
+        return out
+
+    A = _labels(setup.body, kind)
+    events = [
+        Event(lambda t, y: y[1] - setup.k2_max, "separatrix", True, 1.0,
+              f"k2 reached {setup.k2_max:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
+              "where the averaging does not hold"),
+    ]
+    if eps > 0.0:
+        events.append(Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), 1.0)) / eps
+                            - setup.min_spin_ratio, "slow_rotation", True, -1.0, _slow_msg(setup.min_spin_ratio)))
+        if setup.drift_tol is not None:
+            tol = setup.drift_tol
+
+            def drift(t: float, y: np.ndarray) -> float:
+                st = _state_of(setup, kind, sigma, t, y, tau0, nu0)
+                return _slow_drift(setup, st, av.mean(st)) - tol
+
+            events.append(Event(drift, "fast_drift", True, 1.0,
+                                f"the slow variables change by more than {tol:g} of themselves in one "
+                                "Euler-Poinsot period: no separation of time scales, the averaging does not hold"))
+    res = integrate(rhs, tau_span, y0, rtol=setup.rtol, atol=setup.atol, method=setup.method,
+                    dense_output=True, events=events, time_name="tau")
+    return _Segment(res, setup, kind, sigma, tau0, nu0)
+
+
+def _rho(body: Body, kind: str, k2: float) -> float:
+    """Rotation number <dpsi/dt> P / 2 pi of the Euler-Poinsot motion (independent of G and sigma)."""
+    m = EulerPoinsot(body, 1.0, k2, kind)
+    return m.psi_rate_mean() * m.period / (2.0 * math.pi)
+
+
+def _resonances(seg: _Segment) -> list[dict[str, float]]:
+    """Resonance crossings j rho = N (j = 1, 2) along a segment with eps > 0, with their predicted jumps."""
+    from scipy.optimize import brentq
+
+    setup, res = seg.setup, seg.res
+    body, kind = setup.body, seg.kind
+    tau = res.time
+    if tau.size < 2:
+        return []
+    k2s = np.clip(res.y[1], 0.0, 1.0 - 1e-12)
+    rho = np.array([_rho(body, kind, float(x)) for x in k2s])
+    out = []
+
+    def k2_at(t: float) -> float:
+        return float(min(max(res.sol(t)[1], 0.0), 1.0 - 1e-12))
+
+    for j in (1, 2):
+        for i in range(tau.size - 1):
+            a, b = j * rho[i], j * rho[i + 1]
+            lo, hi = min(a, b), max(a, b)
+            for N in range(math.floor(lo) + 1, math.floor(hi) + 1):
+                if not (lo < N <= hi):
+                    continue
+                ts = brentq(lambda t, j=j, N=N: j * _rho(body, kind, k2_at(t)) - N, tau[i], tau[i + 1], xtol=1e-12)
+                y = res.sol(ts)
+                st = _state_of(setup, kind, seg.sigma, ts, y, seg.tau0, seg.nu0)
+                m = setup.averager.mean(st)
+                h = 1e-6 * max(st.k2, 1e-3)
+                drho = (_rho(body, kind, min(st.k2 + h, 1 - 1e-12)) - _rho(body, kind, max(st.k2 - h, 0.0))) / (
+                    min(st.k2 + h, 1 - 1e-12) - max(st.k2 - h, 0.0))
+                rate = abs(j * drho * m.dk2)
+                c = harmonic(setup.averager.torque, st, j, -N)
+                P = 2.0 * math.pi / _nut_freq(st.a, st.G, st.k2)
+                amp = 2.0 * setup.eps * math.sqrt(P / rate) if rate > 0 else math.inf
+                cG = abs(complex(st.n @ c[0:3]))
+                cn = float(np.linalg.norm(c[0:3] - (st.n @ c[0:3]) * st.n)) / st.G
+                jumps = {"G": amp * cG / st.G, "T": amp * abs(c[3]) / st.T, "n": amp * cn}
+                out.append({"tau": float(ts), "j": j, "m": -N, "rho": N / j, "jump": max(jumps.values()),
+                            "jump_G": jumps["G"], "jump_T": jumps["T"], "jump_n": jumps["n"]})
+    out.sort(key=lambda d: d["tau"])
+    return out
+
+
+def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
+    """Output fields of a segment (G, T, k2, delta, lam, nu, n), the quadrature report and the resonance check."""
+    setup, res = seg.setup, seg.res
+    A = _labels(setup.body, seg.kind)
+    eps = setup.eps
+
+    def nvec(y: np.ndarray) -> np.ndarray:
+        n = y[2:5]
+        return n / np.linalg.norm(n, axis=0)
+
+    def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
+        G = y[0]
+        k2 = np.clip(y[1], 0.0, 1.0)
+        n = nvec(y) if y.shape[1] else np.empty((3, 0))
+        T = 0.5 * G**2 * np.array([_S_over_R(A, float(x)) for x in k2])
+        if eps == 0.0:
+            nu = np.full_like(tau, seg.nu0)
+        elif setup.orbit.e == 0.0:
+            nu = (tau - seg.tau0) / eps + seg.nu0
+        else:
+            nu = y[5]
+        return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1.0, 1.0)), "n": n, "nu": nu}
+
+    resonances = _resonances(seg) if eps > 0.0 and setup.resonance_tol is not None else []
+    status, message, event = res.status, res.message, res.event
+    cut = next((r for r in resonances if r["jump"] > setup.resonance_tol), None)  # type: ignore[operator]  # tol set
+    if cut is not None:
+        keep = res.time <= cut["tau"]
+        tcut = np.append(res.time[keep], cut["tau"])
+        ycut = np.column_stack([res.y[:, keep], res.sol(cut["tau"])])
+        status, event = 1, "resonance"
+        message = (f"stopped by event 'resonance' at tau = {cut['tau']:.6g}: the rotation number crosses "
+                   f"{cut['rho']:g} too slowly (predicted jump {cut['jump']:.3g} > resonance_tol = "
+                   f"{setup.resonance_tol:g}); the averaging over psi and the phase does not hold there")
+        res = Solution(res.time_name, tcut, ycut, {}, status, message, event, res.t_events, res.y_events,
+                       res.sol, res.nfev)
+        resonances = [r for r in resonances if r["tau"] <= cut["tau"]]
+    out = _finish(res, tau_eval, make_fields, lam0, nvec)
+    # the quadrature error along the run (relative to the size of the averaged torque), at up to 9 states
+    qerr = 0.0
+    if setup.averager.rest is not None and res.time.size:
+        for t in np.linspace(res.time[0], res.time[-1], min(9, res.time.size)):
+            st = _state_of(setup, seg.kind, seg.sigma, float(t), res.sol(t), seg.tau0, seg.nu0)
+            m, e = setup.averager.report(st)
+            size = float(np.abs(m.L).max()) + abs(m.dT) / max(st.T, 1e-300) * st.G + 1e-300
+            qerr = max(qerr, float(np.abs(e.L).max()) / size)
+    data = {f: getattr(out, f) for f in out.fields}
+    return _with(out, data, {"quad_error": qerr, "resonances": resonances, "kind": seg.kind, "sigma": seg.sigma})
+
+
+def _with(sol: Solution, data: dict[str, Any], extra: dict[str, Any]) -> Solution:
+    """A Solution with extra scalar attributes (kept out of the array fields)."""
+    new = Solution(sol.time_name, sol.time, sol.y, data, sol.status, sol.message, sol.event, sol.t_events,
+                   sol.y_events, sol.sol, sol.nfev)
+    for k, v in extra.items():
+        setattr(new, k, v)
+    return new

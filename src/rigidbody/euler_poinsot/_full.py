@@ -33,17 +33,22 @@ from ..core import euler
 from ..core.ode import Event, Solution, integrate
 from ..core.validate import real
 from ._averaged import _check_spin, _check_tau_eval, _check_tol, _finish, _slow_msg, _validate_common
-from ._model import K2_SPIN_CAP, Body, Orbit, _as_orbit, _check_body, _check_kind, _nut_freq, k2_from, kind_of
+from ._model import (
+    K2_SPIN_CAP,
+    Body,
+    Orbit,
+    _as_orbit,
+    _check_body,
+    _check_kind,
+    _frame_y,
+    _nut_freq,
+    k2_from,
+    kind_of,
+)
 from ._motion import EulerPoinsot
 from ._torques import probe, resolve
 
 __all__ = ["initial_state", "simulate"]
-
-
-def _frame_y(delta: float, lam: float) -> np.ndarray:
-    """Columns y1, y2, y3 (the frame attached to G) in the orbital axes Ox_i."""
-    sd, cd, sl, cl = math.sin(delta), math.cos(delta), math.sin(lam), math.cos(lam)
-    return np.array([[cd * cl, -sl, sd * cl], [cd * sl, cl, sd * sl], [-sd, 0.0, cd]])
 
 
 def initial_state(

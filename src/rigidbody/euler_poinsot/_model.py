@@ -179,6 +179,11 @@ class Drag:
     def __eq__(self, other: object) -> bool:
         return isinstance(other, Drag) and bool(np.array_equal(self.I, other.I))
 
+    def __repr__(self) -> str:
+        # one line, and valid input: the 3 diagonal entries when I is diagonal, else the nested rows
+        diagonal = not np.any(self.I - np.diag(np.diag(self.I)))
+        return f"Drag(I={(np.diag(self.I) if diagonal else self.I).tolist()})"
+
 
 def as_drag(I: Any) -> Drag:
     """Return ``I`` as a validated :class:`Drag` (accepts a Drag, a 3x3 matrix or 3 diagonal entries)."""
@@ -249,6 +254,12 @@ def _ratios(k2: float) -> tuple[float, float]:
     rd = float(special.elliprd(0.0, mc, 1.0))
     sn2 = rd / (3.0 * rf)
     return 1.0 - k2 * sn2, sn2
+
+
+def _frame_y(delta: float, lam: float) -> np.ndarray:
+    """Columns y1, y2, y3 (the frame attached to G) in the orbital axes Ox_i."""
+    sd, cd, sl, cl = math.sin(delta), math.cos(delta), math.sin(lam), math.cos(lam)
+    return np.array([[cd * cl, -sl, sd * cl], [cd * sl, cl, sd * sl], [-sd, 0.0, cd]])
 
 
 def _labels(body: Body, kind: str, I: tuple[float, float, float] | None = None) -> Any:

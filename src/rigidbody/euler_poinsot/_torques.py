@@ -41,7 +41,8 @@ from typing import Any
 
 import numpy as np
 
-from ._model import Body, Orbit, _as_orbit, _check_body, as_drag
+from ._engine import _Mean, _State
+from ._model import Body, Orbit, _as_orbit, _check_body, _dk2, _drag_rates, _nstar, as_drag
 
 __all__ = ["FunctionTorque", "GravityGradient", "LinearDrag", "Torque", "TorqueSum"]
 
@@ -68,6 +69,10 @@ class Torque:
 
     def _check_setup(self, body: Body, orbit: Orbit) -> None:
         """Refuse a run whose body or orbit differs from the one this torque was built for."""
+
+    def _closed(self, st: _State) -> _Mean | None:
+        """The closed-form average at a slow state, or None when the torque has none (the engine is used)."""
+        return None
 
 
 def _parts(t: Torque) -> tuple[Torque, ...]:
@@ -182,6 +187,12 @@ class LinearDrag(_ArrayEq):
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
         return -(np.asarray(omega, dtype=float) @ self.I.T)
 
+    def _closed(self, st: _State) -> _Mean:
+        # (6) and (8): only the diagonal enters; the averaged drag is along G
+        Id = tuple(float(self.I[i, i]) for i in st.lab)
+        dG, dT = _drag_rates(st.a, Id, st.G, st.k2)  # type: ignore[arg-type]  # a 3-tuple
+        return _Mean(dG * st.n, dT, _dk2(st.a, Id, st.k2))  # type: ignore[arg-type]  # a 3-tuple
+
 
 @dataclass(frozen=True, eq=False)
 class GravityGradient(_ArrayEq):
@@ -217,7 +228,6 @@ class GravityGradient(_ArrayEq):
         if w <= 0:
             raise ValueError(f"omega0 (orbital mean motion) must be positive, got {w}")
         object.__setattr__(self, "omega0", float(w))
-        object.__setattr__(self, "_A", _frozen_array(self.body.A))
 
     def factor(self, nu: Any) -> Any:
         """:math:`3\\omega_0^2 f(\\nu)`, vectorised."""
@@ -232,8 +242,26 @@ class GravityGradient(_ArrayEq):
         nu = np.asarray(nu, dtype=float)
         cn, sn = np.cos(nu)[..., None], np.sin(nu)[..., None]
         rho = C[..., 0, :] * cn + C[..., 1, :] * sn  # C^T e_r, e_r = (cos nu, sin nu, 0)
-        f = np.asarray(self.factor(nu), dtype=float)[..., None]
-        return f * np.cross(rho, self._A * rho)  # type: ignore[attr-defined]  # set in __post_init__
+        f = np.asarray(self.factor(nu), dtype=float)
+        A1, A2, A3 = self.body.A1, self.body.A2, self.body.A3
+        r1, r2, r3 = rho[..., 0], rho[..., 1], rho[..., 2]
+        out = np.empty(rho.shape)
+        out[..., 0] = f * (A3 - A2) * r2 * r3  # rho x (A rho)
+        out[..., 1] = f * (A1 - A3) * r3 * r1
+        out[..., 2] = f * (A2 - A1) * r1 * r2
+        return out
+
+    def _closed(self, st: _State) -> _Mean:
+        # (6): d n/dt = (3 w0^2/2G) f N* (e_r . n)(n x e_r); over the orbit <f e_r e_r^T> = mf diag(1/2, 1/2, 0)
+        Ns = _nstar(st.a, st.k2)
+        n1, n2, n3 = (float(x) for x in st.n)
+        w2 = self.omega0**2
+        if st.nu is None:  # n x e3 = (n2, -n1, 0)
+            c = -0.75 * w2 * st.orbit.mean_factor * Ns * n3
+            return _Mean(np.array([c * n2, -c * n1, 0.0]), 0.0, 0.0)
+        cn, sn = math.cos(st.nu), math.sin(st.nu)  # n x e_r = (-n3 sin nu, n3 cos nu, n1 sin nu - n2 cos nu)
+        c = 1.5 * w2 * st.orbit.factor(st.nu) * Ns * (cn * n1 + sn * n2)
+        return _Mean(np.array([-c * n3 * sn, c * n3 * cn, c * (n1 * sn - n2 * cn)]), 0.0, 0.0)
 
     def _check_setup(self, body: Body, orbit: Orbit) -> None:
         if body != self.body:

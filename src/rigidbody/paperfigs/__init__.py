@@ -1,14 +1,26 @@
-"""Registry of the paper-figure builders behind ``python -m rigidbody figures``.
+"""Figure functions and the registry behind ``python -m rigidbody figures``.
 
-Each module adds a file ``rigidbody/paperfigs/<module>.py`` that registers one figure set::
+One function draws one figure. Each module ``rigidbody/paperfigs/<set>.py`` defines, for every figure of
+its paper and for the figures that go beyond it, a public function that computes the data with the public
+API, draws it with :mod:`rigidbody.plotting` and returns the Matplotlib figure; it then registers them::
 
-    from rigidbody.paperfigs import register
+    from rigidbody.paperfigs import register_figures
 
-    @register("lagrange", "Figs 1-3: the heavy top under linear drag (Akulenko et al. 1979)")
-    def build(outdir: pathlib.Path) -> list[pathlib.Path]:
-        ...  # compute with the public API, draw, save PNGs into outdir, return their paths
+    def fig1_case1_theta5(sol=None):          # the paper's figure 1: fig<N>_<slug>
+        ...
+        return fig
 
-The builders live in the package (not in ``examples/``) so that the command works after a plain
+    def averaged_vs_full(...):                # a figure beyond the paper: no fig<N> prefix
+        ...
+
+    register_figures("lagrange", "Figs 1-3: the heavy top under linear drag (Akulenko et al. 1979)",
+                     {"fig1_case1_theta5": fig1_case1_theta5, "averaged_vs_full": averaged_vs_full})
+
+The command saves each as ``<set>/<name>.png``; the gallery script ``examples/<set>/<name>.py`` calls the
+same function, so a figure is drawn by one piece of code. The names of the paper's figures start with
+``fig<N>_``. Older builders that write their own files register with the :func:`register` decorator.
+
+The functions live in the package (not in ``examples/``) so that the command works after a plain
 ``pip install .`` from any directory. Submodules are discovered automatically.
 """
 
@@ -16,33 +28,126 @@ from __future__ import annotations
 
 import importlib
 import pkgutil
-from collections.abc import Callable
-from dataclasses import dataclass
+import re
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
-__all__ = ["FigureSet", "discover", "register", "registry"]
+__all__ = ["PAPER_FIGURE", "FigureSet", "discover", "register", "register_figures", "registry"]
+
+#: the name of a paper's figure: ``fig<N>_<slug>`` (``fig4_hodograph_case2``)
+PAPER_FIGURE = re.compile(r"^fig(?P<number>[1-9][0-9]*)_(?P<slug>[a-z0-9]+(?:_[a-z0-9]+)*)$")
+_NAME = re.compile(r"^[a-z][a-z0-9]*(?:_[a-z0-9]+)*$")
+
+#: resolution of the written PNGs
+_DPI = 110
 
 
 @dataclass(frozen=True)
 class FigureSet:
-    """A registered figure set: its name, a one-line description and the builder."""
+    """A registered figure set.
+
+    Attributes
+    ----------
+    name : str
+        The set's name, the output sub-folder (``lagrange``, ``euler_poinsot``, ...).
+    description : str
+        One line for ``--list``.
+    build : callable
+        ``build(outdir, only=None) -> list of written paths``.
+    figures : dict
+        Figure name -> drawing function (returns a Matplotlib figure); empty for a builder registered
+        with :func:`register`, which writes its files itself.
+    """
 
     name: str
     description: str
-    build: Callable[[Path], list[Path]]
+    build: Callable[..., list[Path]]
+    figures: Mapping[str, Callable[[], Any]] = field(default_factory=dict)
+
+    @property
+    def paper_figures(self) -> tuple[str, ...]:
+        """Names of the paper's figures (``fig<N>_<slug>``), in the order of registration."""
+        return tuple(n for n in self.figures if PAPER_FIGURE.match(n))
+
+    @property
+    def extra_figures(self) -> tuple[str, ...]:
+        """Names of the figures beyond the paper."""
+        return tuple(n for n in self.figures if not PAPER_FIGURE.match(n))
 
 
 _REGISTRY: dict[str, FigureSet] = {}
 
 
 def register(name: str, description: str) -> Callable[[Callable[[Path], list[Path]]], Callable[[Path], list[Path]]]:
-    """Decorator registering ``build(outdir) -> list of written paths`` under ``name``."""
+    """Decorator registering ``build(outdir) -> list of written paths`` under ``name``.
+
+    For a builder that writes its own files; :func:`register_figures` is the form for one function per
+    figure.
+    """
 
     def deco(func: Callable[[Path], list[Path]]) -> Callable[[Path], list[Path]]:
-        _REGISTRY[name] = FigureSet(name, description, func)
+        def build(outdir: Path, only: Iterable[str] | None = None) -> list[Path]:
+            if only is not None:
+                raise ValueError(f"figure set {name!r} has no individually named figures")
+            return func(Path(outdir))
+
+        _REGISTRY[name] = FigureSet(name, description, build)
         return func
 
     return deco
+
+
+def register_figures(name: str, description: str, figures: Mapping[str, Callable[[], Any]]) -> None:
+    """Register a figure set given as ``{figure name: drawing function}``.
+
+    Parameters
+    ----------
+    name : str
+        The set's name (lower case, underscores), also the output sub-folder.
+    description : str
+        One line for ``python -m rigidbody figures --list``.
+    figures : mapping
+        Figure name -> function called without arguments that returns a Matplotlib figure. A name
+        ``fig<N>_<slug>`` is figure N of the paper (:data:`PAPER_FIGURE`); other names are figures beyond it.
+
+    Raises
+    ------
+    ValueError
+        If a name is not lower case with underscores, or a paper figure number is used twice.
+    """
+    numbers: dict[str, str] = {}
+    for fname in figures:
+        if not _NAME.match(fname):
+            raise ValueError(f"figure name must be lower case with underscores, got {fname!r}")
+        m = PAPER_FIGURE.match(fname)
+        if m:
+            if m["number"] in numbers:
+                raise ValueError(f"figure {m['number']} of {name!r} is registered twice: "
+                                 f"{numbers[m['number']]!r} and {fname!r}")
+            numbers[m["number"]] = fname
+    table = dict(figures)
+
+    def build(outdir: Path, only: Iterable[str] | None = None) -> list[Path]:
+        import matplotlib.pyplot as plt
+
+        selected = list(table) if only is None else list(only)
+        unknown = [n for n in selected if n not in table]
+        if unknown:
+            raise ValueError(f"figure set {name!r} has no figure(s) {unknown}; it has {list(table)}")
+        outdir = Path(outdir)
+        outdir.mkdir(parents=True, exist_ok=True)
+        paths = []
+        for fname in selected:
+            fig = table[fname]()
+            path = outdir / f"{fname}.png"
+            fig.savefig(path, dpi=_DPI, bbox_inches="tight")
+            plt.close(fig)
+            paths.append(path)
+        return paths
+
+    _REGISTRY[name] = FigureSet(name, description, build, table)
 
 
 def discover() -> None:

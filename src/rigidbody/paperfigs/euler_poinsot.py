@@ -1,113 +1,321 @@
-"""Figures 1-6 of Rachinskaya: the hodograph of the angular momentum, and G, T, k², δ, λ against τ.
+"""Figures 1-6 of Rachinskaya: the hodograph of the angular momentum; G, T, k², δ, λ against τ.
 
 The paper's setup (sec. 3): A = (3.2, 2.6, 1.67), G(0) = 1, k²(0) = 0.99, δ(0) = λ(0) = π/4, drag
-I = diag(2.322, 1.31, 1.425) (case 1, χ < 0) and diag(0.919, 5.228, 1.666) (case 2, χ > 0).
-The paper states neither ε, ν0 nor the end time. Our choices (also in docs/euler_poinsot.md):
-ν0 = 0, τ ∈ [0, 6]; the hodographs show the orbit-averaged limit ε = 0 and ε = 0.005 (ν kept; in case 1
-the run ends at τ = 4.77 when the decaying rotation is no longer fast, spin ratio = 1; in case 2 it stays
-fast to τ = 6). A separate figure shows how the picture depends on ε,
-including ε = 0.1 and 0.3, integrated with the validity check switched off (``min_spin_ratio=0``) to show
-what the equations do outside the theory (the drift of δ and the bent spiral the paper describes).
+I = diag(2.322, 1.31, 1.425) (case 1, χ < 0: figs 1-3) and diag(0.919, 5.228, 1.666) (case 2, χ > 0:
+figs 4-6). Fig. 1 (4) is the 3-D hodograph in the orbital axes Ox1x2x3, fig. 2 (5) its projection on the
+orbit plane Ox1x2, fig. 3 (6) the view along the spiral axis; figs 2, 3, 5, 6 are "at a larger scale".
+
+The paper states neither ε, ν0 nor the end time. Our choices (also in docs/euler_poinsot.md): ν0 = 0,
+τ ∈ [0, 6]; the hodographs show the orbit-averaged limit ε = 0 and ε = 0.005 (ν kept; in case 1 that run
+ends at τ = 4.77 when the decaying rotation is no longer fast, spin ratio = 1; in case 2 it stays fast to
+τ = 6). "Larger scale" is an inset magnifying the inner turns. "Along the spiral axis" is read both ways:
+looking down the axis (the projection on the plane normal to it) and the spiral laid along it (distance
+from the axis against the height along it, where a straight axis gives a straight line). The axis is
+the one of the best-fitting cone (:func:`rigidbody.plotting.spiral_axis`). A separate figure
+(:func:`eps_dependence`) shows how the picture depends on ε, including ε = 0.1 and 0.3, integrated with the
+validity check switched off (``min_spin_ratio=0``) to show what the equations do outside the theory
+(the drift of δ and the bent spiral the paper describes).
 """
 
 from __future__ import annotations
 
 import math
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 
 from rigidbody import euler_poinsot as ep
 from rigidbody.core.ode import Solution
-from rigidbody.paperfigs import register
+from rigidbody.paperfigs import register_figures
 
+__all__ = [
+    "eps_dependence",
+    "fig1_hodograph_case1",
+    "fig2_projection_case1",
+    "fig3_spiral_axis_case1",
+    "fig4_hodograph_case2",
+    "fig5_projection_case2",
+    "fig6_spiral_axis_case2",
+    "figure_data",
+    "hodograph_data",
+    "hodograph_figure",
+    "projection_figure",
+    "slow_variables_case1",
+    "slow_variables_case2",
+    "slow_variables_figure",
+    "spiral_axis_figure",
+]
+
+#: the paper's body (sec. 3)
 BODY = ep.Body(3.2, 2.6, 1.67)
-CASES = {"case 1 (chi<0)": np.diag([2.322, 1.31, 1.425]), "case 2 (chi>0)": np.diag([0.919, 5.228, 1.666])}
+#: the drag tensors of the two cases (sec. 3): case 1 has chi < 0, case 2 chi > 0
+CASES = {1: np.diag([2.322, 1.31, 1.425]), 2: np.diag([0.919, 5.228, 1.666])}
+#: the paper's initial state; nu0 = 0 is our choice
 SETUP: dict[str, Any] = dict(G0=1.0, k2_0=0.99, delta0=math.pi / 4, lam0=math.pi / 4, nu0=0.0)
+#: slow-time span (our choice)
 TAU = (0.0, 6.0)
+#: eps of the hodograph figures: the orbit-averaged limit and a small eps within the theory
 EPS_MAIN = (0.0, 0.005)
+#: eps of :func:`eps_dependence` (0.1 and 0.3 lie outside the theory)
 EPS_SCAN = (0.0, 0.01, 0.1, 0.3)
 
 
 def figure_data(I: np.ndarray, eps: float, num: int = 3001) -> Solution:
-    """The averaged solution behind a figure (validity check off for eps above the theory's range)."""
+    """The averaged solution (9) behind a figure, on ``num`` points of :data:`TAU`.
+
+    For an ``eps`` above the theory's range at the start (spin ratio <= 1) the validity check is switched
+    off (``min_spin_ratio=0``) so that the figure shows what the equations do there.
+    """
     tau_eval = np.linspace(*TAU, num)
     big = eps > 0 and ep.spin_ratio(BODY, eps, SETUP["G0"], SETUP["k2_0"]) <= 1.0
     return ep.averaged(BODY, I, eps, tau_span=TAU, tau_eval=tau_eval, min_spin_ratio=0.0 if big else 1.0, **SETUP)
 
 
-@register("euler_poinsot", "Figs 1-6: hodograph of G under gravity-gradient and drag torques (Rachinskaya)")
-def build(outdir: Path) -> list[Path]:
-    import matplotlib
+def hodograph_data(case: int) -> dict[float, Solution]:
+    """The runs of figures 1-3 (``case=1``) or 4-6 (``case=2``): ``{eps: Solution}`` for :data:`EPS_MAIN`."""
+    return {eps: figure_data(_drag(case), eps) for eps in EPS_MAIN}
 
-    matplotlib.use("Agg")
+
+def _drag(case: int) -> np.ndarray:
+    if case not in CASES:
+        raise ValueError(f"case must be 1 or 2, got {case!r}")
+    return CASES[case]
+
+
+def _style(eps: float, sol: Solution) -> dict[str, Any]:
+    """Line style and legend label of one run: eps = 0 dashed on top of the eps > 0 run it nearly covers."""
+    lab = f"ε = {eps:g}" + (" (orbit-averaged)" if eps == 0 else "")
+    if sol.status == 1:
+        lab += f", ends at τ = {sol.tau[-1]:.2f}: {sol.event}"
+    if eps == 0:
+        return dict(color="k", lw=0.8, ls="--", label=lab, zorder=3)
+    return dict(color="C1", lw=1.4, label=lab, zorder=2)
+
+
+def _title(case: int, fig_no: int, what: str) -> str:
+    return f"Fig. {fig_no}: {what}, case {case} (χ = {ep.chi(BODY, _drag(case)):.3f})"
+
+
+def _runs(case: int, sols: dict[float, Solution] | None) -> dict[float, Solution]:
+    # draw eps > 0 first so that the dashed eps = 0 line lies on top
+    sols = hodograph_data(case) if sols is None else sols
+    return dict(sorted(sols.items(), key=lambda kv: -kv[0]))
+
+
+def hodograph_figure(case: int, sols: dict[float, Solution] | None = None) -> Any:
+    """Figure 1 (case 1) or 4 (case 2): the hodograph of the angular momentum in the axes Ox1x2x3.
+
+    The orbit normal :math:`x_3` is drawn grey; the axes have equal scales. ``sols`` defaults to
+    :func:`hodograph_data`.
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import euler_poinsot as epp
 
-    out: list[Path] = []
-    outdir = Path(outdir)
-    for i, (name, I) in enumerate(CASES.items()):
-        sols = {eps: figure_data(I, eps) for eps in EPS_MAIN}
-        fig = plt.figure(figsize=(15, 5))
-        ax3 = fig.add_subplot(1, 3, 1, projection="3d")
-        ax12 = fig.add_subplot(1, 3, 2)
-        axa = fig.add_subplot(1, 3, 3)
-        axis = epp.spiral_axis(sols[0.0])
-        for eps, s in sols.items():
-            lab = f"eps = {eps:g}" + (" (orbit-averaged)" if eps == 0 else "")
-            if s.status == 1:
-                lab += f", stopped at tau = {s.tau[-1]:.2f}: {s.event}"
-            kw = dict(lw=0.8, label=lab)
-            epp.hodograph_3d(s, ax3, **kw)
-            epp.hodograph_projection(s, ax12, **kw)
-            epp.hodograph_projection(s, axa, normal=axis, **kw)
-        ax3.set_title(f"{name}: hodograph of G (fig. {1 + 3 * i})")
-        ax12.set_title(f"projection on Ox1x2 (fig. {2 + 3 * i})")
-        axa.set_title(f"view along the spiral axis (fig. {3 + 3 * i})")
-        ax12.legend(fontsize=8)
-        fig.tight_layout()
-        p = outdir / f"euler_poinsot_hodograph_case{i + 1}.png"
-        fig.savefig(p, dpi=110)
-        plt.close(fig)
-        out.append(p)
+    fig = plt.figure(figsize=(6.5, 6.0))
+    ax = fig.add_subplot(111, projection="3d")
+    sols = _runs(case, sols)
+    top = max(float(np.nanmax(epp.hodograph(s)[2])) for s in sols.values())
+    ax.plot([0, 0], [0, 0], [0, top], color="0.6", lw=0.8, label="orbit normal $x_3$")
+    for eps, s in sols.items():
+        epp.hodograph_3d(s, ax, **_style(eps, s))
+    ax.view_init(elev=22, azim=-60)
+    ax.legend(fontsize=7, loc="upper left")
+    ax.set_title(_title(case, 1 + 3 * (case - 1), "hodograph of G"), fontsize=10)
+    return fig
 
-        fig, axes = plt.subplots(5, 1, figsize=(7, 10), sharex=True)
-        for eps, s in sols.items():
-            epp.slow_variables(s, axes, label=f"eps = {eps:g}", lw=1.0)
-        axes[2].axhline(ep.k2_equilibria(BODY, I)[-1][0], color="0.6", ls=":", lw=0.8)
-        axes[0].set_title(f"{name}: slow variables, chi = {ep.chi(BODY, I):.4f}")
-        fig.tight_layout()
-        p = outdir / f"euler_poinsot_slow_case{i + 1}.png"
-        fig.savefig(p, dpi=110)
-        plt.close(fig)
-        out.append(p)
 
-    # dependence on eps
+def _zoom_radius(sol: Solution, normal: Any, turns: float = 1.0) -> float:
+    """Radius (in the projection normal to ``normal``) of the part of the path after its first ``turns``."""
+    from rigidbody.plotting import euler_poinsot as epp
+
+    _, e1, e2 = epp.plane_basis(normal)
+    h = epp.hodograph(sol)
+    x, y = e1 @ h, e2 @ h
+    ang = np.unwrap(np.arctan2(y, x))
+    later = np.abs(ang - ang[0]) >= 2 * np.pi * turns
+    if not np.any(later):
+        later = np.arange(x.size) >= x.size // 2
+    return float(np.max(np.hypot(x[later], y[later])))
+
+
+def _projection(ax: Any, sols: dict[float, Solution], normal: Any, zoom: float | None = None) -> None:
+    """Project the runs on ``ax`` (plane normal to ``normal``); ``zoom``: half-width of a centred window."""
+    from rigidbody.plotting import euler_poinsot as epp
+
+    for eps, s in sols.items():
+        epp.hodograph_projection(s, ax, normal=normal, **_style(eps, s))
+    if zoom is not None:
+        ax.set_aspect("equal", adjustable="box")
+        ax.set_xlim(-zoom, zoom)
+        ax.set_ylim(-zoom, zoom)
+    ax.grid(alpha=0.3)
+
+
+def _zoom(sols: dict[float, Solution], normal: Any) -> float:
+    return 1.1 * max(_zoom_radius(s, normal) for s in sols.values())
+
+
+def projection_figure(case: int, sols: dict[float, Solution] | None = None) -> Any:
+    """Figure 2 (case 1) or 5 (case 2): the hodograph projected on the orbit plane Ox1x2; right, the
+    turns after the first one at a larger scale (the square on the left)."""
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Rectangle
+
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11.5, 5.4))
+    sols = _runs(case, sols)
+    normal = (0.0, 0.0, 1.0)
+    r = _zoom(sols, normal)
+    _projection(ax1, sols, normal)
+    ax1.add_patch(Rectangle((-r, -r), 2 * r, 2 * r, fill=False, ec="0.4", lw=0.8))
+    ax1.legend(fontsize=7, loc="upper left")
+    ax1.set_title("the whole path", fontsize=9)
+    _projection(ax2, sols, normal, zoom=r)
+    ax2.set_title("the square, enlarged", fontsize=9)
+    fig.suptitle(_title(case, 2 + 3 * (case - 1), "projection on the orbit plane $Ox_1x_2$"), fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def spiral_axis_figure(case: int, sols: dict[float, Solution] | None = None) -> Any:
+    """Figure 3 (case 1) or 6 (case 2): the hodograph along the spiral axis.
+
+    Left: looking down the axis (the projection on the plane normal to it), the turns after the first
+    one at a larger scale. Right: the spiral laid along its axis, distance from the axis against the
+    height along it; a spiral on a cone about a straight axis is a straight line through the origin. The
+    axis is that of the ``eps > 0`` run (:func:`rigidbody.plotting.spiral_axis`), printed in the title.
+    """
+    import matplotlib.pyplot as plt
+
+    from rigidbody.plotting import euler_poinsot as epp
+
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11.5, 5.4))
+    sols = _runs(case, sols)
+    axis = epp.spiral_axis(sols[max(sols)])
+    _projection(ax1, sols, axis, zoom=_zoom(sols, axis))
+    ax1.set_xlabel("in-plane coordinate 1 ($x_1$ projected)")
+    ax1.set_ylabel("in-plane coordinate 2")
+    ax1.legend(fontsize=7, loc="upper left")
+    ax1.set_title("looking down the spiral axis (inner turns)", fontsize=9)
+    for eps, s in sols.items():
+        epp.hodograph_side_view(s, ax2, axis=axis, **_style(eps, s))
+    ax2.set_xlim(left=0)
+    ax2.set_ylim(bottom=0)
+    ax2.set_aspect("equal", adjustable="box")
+    ax2.set_title("the spiral laid along its axis (straight axis: a straight line)", fontsize=9)
+    ax2.grid(alpha=0.3)
+    a = ", ".join(f"{round(float(c), 4) + 0.0:.4f}" for c in axis)  # + 0.0: no "-0.0000"
+    fig.suptitle(_title(case, 3 + 3 * (case - 1), f"view along the spiral axis ({a})"), fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def slow_variables_figure(case: int, sols: dict[float, Solution] | None = None) -> Any:
+    """G, T, k², δ, λ against τ for the runs of figures 1-3 (case 1) or 4-6 (case 2); the dotted line is
+    the stable equilibrium of k² of (8)."""
+    import matplotlib.pyplot as plt
+
+    from rigidbody.plotting import euler_poinsot as epp
+
+    fig, axes = plt.subplots(5, 1, figsize=(7, 10), sharex=True)
+    for eps, s in _runs(case, sols).items():
+        st = _style(eps, s)
+        label = st.pop("label")
+        epp.slow_variables(s, axes, label=label, **st)
+    I = _drag(case)
+    stable = [k for k, kind in ep.k2_equilibria(BODY, I) if kind == "stable"]
+    for k in stable:
+        axes[2].axhline(k, color="0.6", ls=":", lw=0.8)
+    axes[0].set_title(f"Case {case}: slow variables of (9), χ = {ep.chi(BODY, I):.4f}")
+    fig.tight_layout()
+    return fig
+
+
+def eps_dependence() -> Any:
+    """δ(τ), the projection on Ox1x2 and the side view along x3 for ε = 0, 0.01, 0.1, 0.3, both cases.
+
+    ε = 0.1 and 0.3 are above the theory's range at the start (spin ratio < 1) and are integrated with
+    the check switched off: only there δ drifts and the spiral bends as the paper describes.
+    """
+    import matplotlib.pyplot as plt
+
+    from rigidbody.plotting import euler_poinsot as epp
+
     fig, axs = plt.subplots(2, 3, figsize=(15, 8))
-    for row, (name, I) in enumerate(CASES.items()):
+    for row, case in enumerate(CASES):
         for eps in EPS_SCAN:
-            s = figure_data(I, eps)
+            s = figure_data(_drag(case), eps)
             valid = eps == 0 or ep.spin_ratio(BODY, eps, SETUP["G0"], SETUP["k2_0"]) > 1
-            lab = f"eps = {eps:g}" + ("" if valid else " (outside the theory)")
+            lab = f"ε = {eps:g}" + ("" if valid else " (outside the theory)")
             if s.status == 1:
-                lab += f", ends at tau = {s.tau[-1]:.2f} ({s.event})"
+                lab += f", ends at τ = {s.tau[-1]:.2f} ({s.event})"
             axs[row, 0].plot(s.tau, s.delta, lw=0.9, label=lab)
             epp.hodograph_projection(s, axs[row, 1], lw=0.7, label=lab)
-            h = epp.hodograph(s)
-            axs[row, 2].plot(np.hypot(h[0], h[1]), h[2], lw=0.7, label=lab)
+            epp.hodograph_side_view(s, axs[row, 2], lw=0.7, label=lab)
         axs[row, 0].set_ylabel("$\\delta$")
         axs[row, 0].set_xlabel("$\\tau$")
-        axs[row, 0].set_title(f"{name}: delta(tau) for several eps")
-        axs[row, 1].set_title("projection on Ox1x2")
-        axs[row, 2].set_xlabel("distance from $x_3$ axis")
+        axs[row, 0].set_title(f"case {case}: δ(τ) for several ε")
+        axs[row, 1].set_title("projection on $Ox_1x_2$")
+        axs[row, 2].set_xlabel("distance from the $x_3$ axis")
         axs[row, 2].set_ylabel("$x_3$")
-        axs[row, 2].set_title("meridian view (delta = const: a straight line)")
+        axs[row, 2].set_title("side view (δ = const: a straight line)")
         axs[row, 0].legend(fontsize=8)
     fig.tight_layout()
-    p = outdir / "euler_poinsot_eps_dependence.png"
-    fig.savefig(p, dpi=110)
-    plt.close(fig)
-    out.append(p)
-    return out
+    return fig
+
+
+def fig1_hodograph_case1(sols: dict[float, Solution] | None = None) -> Any:
+    """Fig. 1: the hodograph of G, case 1 (:func:`hodograph_figure`)."""
+    return hodograph_figure(1, sols)
+
+
+def fig2_projection_case1(sols: dict[float, Solution] | None = None) -> Any:
+    """Fig. 2: its projection on the orbit plane Ox1x2 (:func:`projection_figure`)."""
+    return projection_figure(1, sols)
+
+
+def fig3_spiral_axis_case1(sols: dict[float, Solution] | None = None) -> Any:
+    """Fig. 3: the view along the spiral axis, case 1 (:func:`spiral_axis_figure`)."""
+    return spiral_axis_figure(1, sols)
+
+
+def fig4_hodograph_case2(sols: dict[float, Solution] | None = None) -> Any:
+    """Fig. 4: the hodograph of G, case 2 (:func:`hodograph_figure`)."""
+    return hodograph_figure(2, sols)
+
+
+def fig5_projection_case2(sols: dict[float, Solution] | None = None) -> Any:
+    """Fig. 5: its projection on the orbit plane Ox1x2 (:func:`projection_figure`)."""
+    return projection_figure(2, sols)
+
+
+def fig6_spiral_axis_case2(sols: dict[float, Solution] | None = None) -> Any:
+    """Fig. 6: the view along the spiral axis, case 2 (:func:`spiral_axis_figure`)."""
+    return spiral_axis_figure(2, sols)
+
+
+def slow_variables_case1(sols: dict[float, Solution] | None = None) -> Any:
+    """Beyond the paper: G, T, k², δ, λ against τ, case 1 (:func:`slow_variables_figure`)."""
+    return slow_variables_figure(1, sols)
+
+
+def slow_variables_case2(sols: dict[float, Solution] | None = None) -> Any:
+    """Beyond the paper: G, T, k², δ, λ against τ, case 2 (:func:`slow_variables_figure`)."""
+    return slow_variables_figure(2, sols)
+
+
+register_figures(
+    "euler_poinsot",
+    "Figs 1-6: hodograph of G under gravity-gradient and drag torques (Rachinskaya)",
+    {
+        "fig1_hodograph_case1": fig1_hodograph_case1,
+        "fig2_projection_case1": fig2_projection_case1,
+        "fig3_spiral_axis_case1": fig3_spiral_axis_case1,
+        "fig4_hodograph_case2": fig4_hodograph_case2,
+        "fig5_projection_case2": fig5_projection_case2,
+        "fig6_spiral_axis_case2": fig6_spiral_axis_case2,
+        "slow_variables_case1": slow_variables_case1,
+        "slow_variables_case2": slow_variables_case2,
+        "eps_dependence": eps_dependence,
+    },
+)

@@ -1,6 +1,7 @@
-"""Figures for Stepanov (1968): stability maps, kappa0(theta0), and the paper's dumbbell figure.
+"""Stepanov (1968): the paper's figure (the dumbbell), and stability maps and kappa0(theta0) beyond it.
 
 Choices the paper leaves open (stated here and in docs/gyrostat.md):
+
 - nondimensional units M = mu = R0 = 1; bodies with principal moments proportional to the six orderings
   of (1.2, 1.0, 0.8), scaled so that l = sqrt(Abar/M) = l/R;
 - maps in the plane (theta0, u = k2 / (omega0 Abar)) on a 301 x 301 grid, theta0 in (-1.5, 1.5),
@@ -16,12 +17,27 @@ from __future__ import annotations
 
 import itertools
 import math
-from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from rigidbody import gyrostat
-from rigidbody.paperfigs import register
+from rigidbody.paperfigs import register_figures
+
+__all__ = [
+    "body",
+    "dumbbell_data",
+    "fig1_dumbbell",
+    "kappa0",
+    "kappa_data",
+    "map_data",
+    "orderings",
+    "stability_maps",
+    "stability_maps_lr01",
+    "stability_maps_lr02",
+    "symmetric_map",
+    "symmetric_map_data",
+]
 
 BASE = (1.2, 1.0, 0.8)
 THETA = np.linspace(-1.5, 1.5, 301)
@@ -72,6 +88,7 @@ def symmetric_map_data() -> gyrostat.SymmetricStabilityMap:
 
 
 def dumbbell_data() -> tuple[gyrostat.Satellite, gyrostat.SymmetricMotion]:
+    """The dumbbell of the paper's figure: the satellite and its stationary motion (3.2)-(3.3)."""
     A1 = 1.0 * ARM**2
     sat = gyrostat.Satellite(M=1.0, A1=A1, A2=A1, A3=0.01 * A1)
     return sat, gyrostat.symmetric_stationary_motion(sat, 1.0, THETA_DUMBBELL)
@@ -82,31 +99,41 @@ def _label(r: tuple[float, float, float]) -> str:
     return " > ".join(n for _, n in names)
 
 
-@register("gyrostat", "Stability maps, kappa0(theta0) and the displaced-orbit dumbbell (Stepanov 1968)")
-def build(outdir: Path) -> list[Path]:
-    import matplotlib
+def stability_maps(l_over_R: float) -> Any:
+    """Verdicts of (2.3) in the plane (theta0, k2 / (omega0 Abar)) for the six orderings of the moments.
 
-    matplotlib.use("Agg")
+    Exact boundaries s2 = 0, s3 = 0, s1 = 0 in black, the restricted problem's in blue
+    (:func:`rigidbody.plotting.normalized_map_plot`).
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import gyrostat as pg
 
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
-    paths: list[Path] = []
-    for lR in L_OVER_R_MAPS:
-        fig, axes = plt.subplots(2, 3, figsize=(13, 8), sharex=True, sharey=True)
-        for ax, r in zip(axes.ravel(), orderings()):
-            pg.normalized_map_plot(body(lR, r), 1.0, THETA, U, ax, legend=(ax is axes[0, 0]))
-            ax.set_title(_label(r), fontsize=10)
-        for ax in axes.ravel():
-            ax.label_outer()
-        fig.suptitle(f"Stability of the motions (2.3), l/R = {lR}: exact (black) vs restricted (blue) boundaries")
-        fig.tight_layout()
-        p = outdir / f"gyrostat_maps_lR{lR:g}.png"
-        fig.savefig(p, dpi=100)
-        plt.close(fig)
-        paths.append(p)
+    fig, axes = plt.subplots(2, 3, figsize=(13, 8), sharex=True, sharey=True)
+    for ax, r in zip(axes.ravel(), orderings()):
+        pg.normalized_map_plot(body(l_over_R, r), 1.0, THETA, U, ax, legend=(ax is axes[0, 0]))
+        ax.set_title(_label(r), fontsize=10)
+    for ax in axes.ravel():
+        ax.label_outer()
+    fig.suptitle(f"Stability of the motions (2.3), l/R = {l_over_R}: exact (black) vs restricted (blue) boundaries")
+    fig.tight_layout()
+    return fig
+
+
+def stability_maps_lr01() -> Any:
+    """Beyond the paper: :func:`stability_maps` for l/R = 0.1."""
+    return stability_maps(L_OVER_R_MAPS[0])
+
+
+def stability_maps_lr02() -> Any:
+    """Beyond the paper: :func:`stability_maps` for l/R = 0.2."""
+    return stability_maps(L_OVER_R_MAPS[1])
+
+
+def kappa0() -> Any:
+    """Beyond the paper: the latitude kappa0(theta0) of the orbit (2.4) for several l/R, and scaled by
+    (l/R)^2 (the curves collapse, extremal near theta0 = +-pi/4)."""
+    import matplotlib.pyplot as plt
 
     kd = kappa_data()
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
@@ -125,10 +152,15 @@ def build(outdir: Path) -> list[Path]:
     ax2.set_title("κ0 = O(l²/R²), extremal near θ0 = ±π/4 (dots: maxima)", fontsize=10)
     ax1.set_title(f"latitude of the orbit, A1:A2:A3 = {BASE[0]}:{BASE[1]}:{BASE[2]}", fontsize=10)
     fig.tight_layout()
-    p = outdir / "gyrostat_kappa0.png"
-    fig.savefig(p, dpi=100)
-    plt.close(fig)
-    paths.append(p)
+    return fig
+
+
+def symmetric_map() -> Any:
+    """Beyond the paper: verdicts of the symmetric family (3.2) by the full second variation over
+    (theta0, A3/A1), with the paper's boundary A3 = A1 of (3.4) and the line 3 A3 = 4 A1."""
+    import matplotlib.pyplot as plt
+
+    from rigidbody.plotting import gyrostat as pg
 
     sm = symmetric_map_data()
     fig, ax = plt.subplots(figsize=(7.5, 4.8))
@@ -139,10 +171,15 @@ def build(outdir: Path) -> list[Path]:
     ax.set_ylabel("A3 / A1")
     ax.set_title(f"Symmetric gyrostat (3.2), l/R ≈ {SYM_L_OVER_R}: full second variation", fontsize=10)
     fig.tight_layout()
-    p = outdir / "gyrostat_symmetric_map.png"
-    fig.savefig(p, dpi=100)
-    plt.close(fig)
-    paths.append(p)
+    return fig
+
+
+def fig1_dumbbell() -> Any:
+    """The paper's figure: the spinning dumbbell whose circular orbit plane misses the attracting centre,
+    drawn to scale (:func:`rigidbody.plotting.dumbbell_side_view`), with kappa0 and the stability verdict."""
+    import matplotlib.pyplot as plt
+
+    from rigidbody.plotting import gyrostat as pg
 
     sat, ms = dumbbell_data()
     st = gyrostat.stability(sat, ms)
@@ -151,8 +188,17 @@ def build(outdir: Path) -> list[Path]:
     ax.set_title(f"Spinning dumbbell, arm = {ARM} R0, θ0 = π/4: κ0 = {math.degrees(ms.kappa0):.2f}°, "
                  f"verdict: {st.verdict}", fontsize=10)
     fig.tight_layout()
-    p = outdir / "gyrostat_dumbbell.png"
-    fig.savefig(p, dpi=100, bbox_inches="tight")
-    plt.close(fig)
-    paths.append(p)
-    return paths
+    return fig
+
+
+register_figures(
+    "gyrostat",
+    "The displaced-orbit dumbbell; stability maps and kappa0(theta0) (Stepanov 1968)",
+    {
+        "fig1_dumbbell": fig1_dumbbell,
+        "stability_maps_lr01": stability_maps_lr01,
+        "stability_maps_lr02": stability_maps_lr02,
+        "kappa0": kappa0,
+        "symmetric_map": symmetric_map,
+    },
+)

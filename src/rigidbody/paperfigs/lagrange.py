@@ -1,44 +1,76 @@
 """Figures 1-3 of Akulenko, Leshchenko, Chernousko (1979): the heavy top under linear drag.
 
 Parameters from the paper: ``A = 1.5, C = 1, mgl = 0.5, a = 0.125, b = 0.1``, spun about its axis with
-``r0 = sqrt(3)`` and tilted by ``theta0 = 5, 60, 170`` degrees. Spans (the paper gives none): cases 1, 2
-``tau in [0, 150]``, shown against ``tau`` and against ``xi = ln(1 + tau)`` (as the paper did);
-case 3 ``tau in [0, 60]``. Dotted verticals mark the sign change of ``delta1`` of (2.8).
+``r0 = sqrt(3)`` and tilted by ``theta0 = 5, 60, 170`` degrees (cases 1-3, one figure each). Spans (the
+paper gives none): cases 1, 2 ``tau in [0, 150]``, case 3 ``tau in [0, 60]``
+(:data:`rigidbody.lagrange.PAPER_TAU_END`). Cases 1 and 2 evolve slowly, so the paper also used
+``xi = ln(1 + tau)``; their figures show both abscissas. Dotted verticals mark the sign change of
+``delta1`` of (2.8).
 """
 
 from __future__ import annotations
 
-from pathlib import Path
+from typing import Any
 
 from rigidbody import lagrange as lg
-from rigidbody.paperfigs import register
+from rigidbody.core.ode import Solution
+from rigidbody.paperfigs import register_figures
+
+__all__ = ["case_figure", "fig1_case1_theta5", "fig2_case2_theta60", "fig3_case3_theta170"]
 
 
-@register("lagrange", "Figs 1-3: the heavy top under linear drag, averaged (3.4) (Akulenko et al. 1979)")
-def build(outdir: Path) -> list[Path]:
-    import matplotlib
+def case_figure(case: int, sol: Solution | None = None) -> Any:
+    """Figure ``case`` of the paper: the roots ``u1, u2, u3`` and the integrals ``Gz, H, r`` against ``tau``
+    (and against ``xi = ln(1 + tau)`` for cases 1, 2).
 
-    matplotlib.use("Agg")
+    Parameters
+    ----------
+    case : {1, 2, 3}
+        The paper's case (its figure number).
+    sol : Solution, optional
+        The averaged solution to draw (default :func:`rigidbody.lagrange.paper_solution` of ``case``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting.lagrange import plot_integrals, plot_roots
 
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
-    paths = []
-    for case in (1, 2, 3):
-        sol = lg.paper_solution(case)
-        xs = ("tau", "xi") if case in (1, 2) else ("tau",)
-        fig, axes = plt.subplots(len(xs), 2, figsize=(11, 4.0 * len(xs)), squeeze=False)
-        for row, x in enumerate(xs):
-            plot_roots(sol, axes[row, 0], x=x)
-            plot_integrals(sol, axes[row, 1], x=x, mgl=lg.PAPER_TOP.mgl)
-        th0 = lg.PAPER_CASES[case]
-        fig.suptitle(f"Fig. {case}: theta0 = {th0:g} deg, r0 = sqrt(3), A = 1.5, C = 1, mgl = 0.5, "
-                     "a = 0.125, b = 0.1 (averaged system (3.4))")
-        fig.tight_layout()
-        p = outdir / f"lagrange_fig{case}.png"
-        fig.savefig(p, dpi=110)
-        plt.close(fig)
-        paths.append(p)
-    return paths
+    if case not in lg.PAPER_CASES:
+        raise ValueError(f"case must be 1, 2 or 3, got {case!r}")
+    sol = lg.paper_solution(case) if sol is None else sol
+    xs = ("tau", "xi") if case in (1, 2) else ("tau",)
+    fig, axes = plt.subplots(len(xs), 2, figsize=(11, 4.0 * len(xs)), squeeze=False)
+    for row, x in enumerate(xs):
+        plot_roots(sol, axes[row, 0], x=x)
+        plot_integrals(sol, axes[row, 1], x=x, mgl=lg.PAPER_TOP.mgl)
+    th0 = lg.PAPER_CASES[case]
+    fig.suptitle(f"Fig. {case}: theta0 = {th0:g} deg, r0 = sqrt(3), A = 1.5, C = 1, mgl = 0.5, "
+                 "a = 0.125, b = 0.1 (averaged system (3.4))")
+    fig.tight_layout()
+    return fig
+
+
+def fig1_case1_theta5(sol: Solution | None = None) -> Any:
+    """Fig. 1: case 1, the top tilted by 5 degrees (see :func:`case_figure`)."""
+    return case_figure(1, sol)
+
+
+def fig2_case2_theta60(sol: Solution | None = None) -> Any:
+    """Fig. 2: case 2, the top tilted by 60 degrees (see :func:`case_figure`)."""
+    return case_figure(2, sol)
+
+
+def fig3_case3_theta170(sol: Solution | None = None) -> Any:
+    """Fig. 3: case 3, the top tilted by 170 degrees, nearly hanging (see :func:`case_figure`)."""
+    return case_figure(3, sol)
+
+
+register_figures(
+    "lagrange",
+    "Figs 1-3: the heavy top under linear drag, averaged (3.4) (Akulenko et al. 1979)",
+    {"fig1_case1_theta5": fig1_case1_theta5, "fig2_case2_theta60": fig2_case2_theta60,
+     "fig3_case3_theta170": fig3_case3_theta170},
+)

@@ -1,6 +1,8 @@
-"""Figures 2-5 of Krivtsov (2000) and time histories of k, R, s, ξ, ζ.
+"""Figures 1-5 of Krivtsov (2000) and, beyond the paper, the time histories of k, R, s, ξ, ζ.
 
-The paper prints no parameters for its figures; we choose (stated here and in docs/viscous.md):
+Fig. 1 is the model: the ball-and-rod structure of section 2, drawn for ``N = 4`` balls on a circle of
+radius ``a = 1``, rod half-length ``b = 1.5``, ball radius 0.3 (our choice; the paper draws it without
+numbers). The paper prints no parameters for figs 2-5 either; we choose (stated here and in docs/viscous.md):
 ``θ12 = 2, θ3 = 1``, ``Ω0 = 6`` (``ξ∞ = 30`` rad ≈ 4.8 turns of the tangent);
 fig. 2 contracting ``B12 = 0.4, B3 = 0.1``, ``v0 = 2`` (``k0 = 1.5``, ``R0 = 0.55``);
 fig. 3 unwinding ``B12 = 0.1, B3 = 0.1``, ``v0 = 0.6`` (``k0 = 5``, ``R0 = 0.2``);
@@ -10,12 +12,24 @@ figs 4-5 one turn of each spiral starting at ``t1 = 0``. Paths are drawn from ``
 
 from __future__ import annotations
 
-from pathlib import Path
+from typing import Any
 
 import numpy as np
 
 from rigidbody import viscous as vs
-from rigidbody.paperfigs import register
+from rigidbody.paperfigs import register_figures
+
+__all__ = [
+    "fig1_ball_and_rod",
+    "fig2_contracting_spiral",
+    "fig3_unwinding_spiral",
+    "fig4_turn_contracting",
+    "fig5_turn_unwinding",
+    "figure_data",
+    "histories",
+    "spiral_figure",
+    "turn_figure",
+]
 
 BODY = vs.Body(theta12=2.0, theta3=1.0)
 CONTRACTING = vs.Medium(B12=0.4, B3=0.1)
@@ -24,6 +38,8 @@ OMEGA0 = 6.0
 N0 = np.array([1.0, 0.0, 0.0])
 MEDIA = {"contracting": CONTRACTING, "unwinding": UNWINDING}
 NDOT0 = {"contracting": np.array([0.0, 2.0, 0.0]), "unwinding": np.array([0.0, 0.6, 0.0])}
+#: the structure of fig. 1 as drawn: N balls on a circle of radius a, rod half-length b, ball radius
+SKETCH_N, SKETCH_A, SKETCH_B, SKETCH_BALL = 4, 1.0, 1.5, 0.3
 
 
 def figure_data(name: str, t_max: float = 200.0, num: int = 4000) -> dict[str, np.ndarray]:
@@ -45,42 +61,68 @@ def figure_data(name: str, t_max: float = 200.0, num: int = 4000) -> dict[str, n
     }
 
 
-@register("viscous", "Figs 2-5: spirals of the symmetry axis and the solid angle of a turn (Krivtsov 2000)")
-def build(outdir: Path) -> list[Path]:
-    import matplotlib
-
-    matplotlib.use("Agg")
+def fig1_ball_and_rod() -> Any:
+    """Fig. 1: the ball-and-rod structure whose drag torque is exactly (1.1), with the body and medium
+    :func:`rigidbody.viscous.ball_and_rod` gives for it (one ball: mass 1, drag coefficient 0.1)."""
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import viscous as pv
 
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
-    paths: list[Path] = []
-    datas = {}
-    for fig_no, (name, medium) in ((2, ("contracting", CONTRACTING)), (3, ("unwinding", UNWINDING))):
-        d = figure_data(name)
-        datas[name] = d
-        fig = plt.figure(figsize=(5.5, 5.5))
-        ax = fig.add_subplot(111, projection="3d")
-        # contracting: look at the limit point; unwinding: from the pole of the limiting great circle
-        view = d["n_inf"] if name == "contracting" else d["g_inf"]
-        pv.sphere_path(d["n"], ax, view=view, label=f"{name} spiral", lw=1.0)
-        ax.set_title(f"Fig. {fig_no}: {name} spiral (B12={medium.B12}, B3={medium.B3}, θ12=2, θ3=1)", fontsize=9)
-        p = outdir / f"viscous_fig{fig_no}_{name}.png"
-        fig.savefig(p, dpi=110, bbox_inches="tight")
-        plt.close(fig)
-        paths.append(p)
-    for fig_no, (name, medium) in ((4, ("contracting", CONTRACTING)), (5, ("unwinding", UNWINDING))):
-        tr = vs.turn(BODY, medium, N0, NDOT0[name], OMEGA0, 0.0)
-        fig = plt.figure(figsize=(5.5, 5.5))
-        ax = fig.add_subplot(111, projection="3d")
-        pv.turn_solid_angle(tr, ax)
-        fig.suptitle(f"Fig. {fig_no}: one turn of the {name} spiral, t in [0, {tr.t2:.3f}]", fontsize=10)
-        p = outdir / f"viscous_fig{fig_no}_turn_{name}.png"
-        fig.savefig(p, dpi=110, bbox_inches="tight")
-        plt.close(fig)
-        paths.append(p)
+    body, medium = vs.ball_and_rod(SKETCH_N, SKETCH_A, SKETCH_B, beta=0.1, mass=1.0, ball_radius=SKETCH_BALL)
+    fig = plt.figure(figsize=(6.0, 6.0))
+    ax = fig.add_subplot(111, projection="3d")
+    pv.ball_and_rod_sketch(SKETCH_N, SKETCH_A, SKETCH_B, SKETCH_BALL, ax)
+    fig.suptitle(f"Fig. 1: N = {SKETCH_N} balls on a circle of radius a = {SKETCH_A:g}, rod AB of length "
+                 f"2b = {2 * SKETCH_B:g}\nθ12 = {body.theta12:.4g}, θ3 = {body.theta3:.4g}, B12 = {medium.B12:.4g}, "
+                 f"B3 = {medium.B3:.4g}: {vs.regime(body, medium)} spiral", fontsize=9)
+    return fig
+
+
+def spiral_figure(name: str, data: dict[str, np.ndarray] | None = None) -> Any:
+    """Fig. 2 (``'contracting'``) or 3 (``'unwinding'``): the path of the symmetry axis on the unit sphere.
+
+    The contracting spiral is seen from its limit point, the unwinding one from the pole of the great
+    circle it tends to; the far side of the sphere is dashed. ``data`` defaults to :func:`figure_data`.
+    """
+    import matplotlib.pyplot as plt
+
+    from rigidbody.plotting import viscous as pv
+
+    fig_no = {"contracting": 2, "unwinding": 3}[name]
+    medium = MEDIA[name]
+    d = figure_data(name) if data is None else data
+    fig = plt.figure(figsize=(5.5, 5.5))
+    ax = fig.add_subplot(111, projection="3d")
+    view = d["n_inf"] if name == "contracting" else d["g_inf"]
+    pv.sphere_path(d["n"], ax, view=view, label=f"{name} spiral", lw=1.0)
+    ax.set_title(f"Fig. {fig_no}: {name} spiral (B12={medium.B12}, B3={medium.B3}, θ12=2, θ3=1)", fontsize=9)
+    return fig
+
+
+def turn_figure(name: str) -> Any:
+    """Fig. 4 (``'contracting'``) or 5 (``'unwinding'``): one turn of the spiral from ``t1 = 0`` and the solid
+    angle χ it bounds (:func:`rigidbody.viscous.turn`), seen from the turn's centre."""
+    import matplotlib.pyplot as plt
+
+    from rigidbody.plotting import viscous as pv
+
+    fig_no = {"contracting": 4, "unwinding": 5}[name]
+    tr = vs.turn(BODY, MEDIA[name], N0, NDOT0[name], OMEGA0, 0.0)
+    fig = plt.figure(figsize=(5.5, 5.5))
+    ax = fig.add_subplot(111, projection="3d")
+    pv.turn_solid_angle(tr, ax)
+    fig.suptitle(f"Fig. {fig_no}: one turn of the {name} spiral, t in [0, {tr.t2:.3f}]", fontsize=10)
+    return fig
+
+
+def histories(data: dict[str, dict[str, np.ndarray]] | None = None) -> Any:
+    """Beyond the paper: curvature (4.5), spiral radius (5.2) and quasi-coordinates (5.1) against t for both
+    spirals, to t = 80."""
+    import matplotlib.pyplot as plt
+
+    from rigidbody.plotting import viscous as pv
+
+    datas = {name: figure_data(name) for name in MEDIA} if data is None else data
     fig, axes = plt.subplots(5, 2, figsize=(9.0, 9.0), sharex=True)
     for j, name in enumerate(("contracting", "unwinding")):
         d = datas[name]
@@ -91,8 +133,38 @@ def build(outdir: Path) -> list[Path]:
         axes[0, j].set_title(name)
     fig.suptitle("Curvature (4.5), spiral radius (5.2) and quasi-coordinates (5.1)")
     fig.tight_layout()
-    p = outdir / "viscous_histories.png"
-    fig.savefig(p, dpi=110)
-    plt.close(fig)
-    paths.append(p)
-    return paths
+    return fig
+
+
+def fig2_contracting_spiral(data: dict[str, np.ndarray] | None = None) -> Any:
+    """Fig. 2: the contracting spiral (:func:`spiral_figure`)."""
+    return spiral_figure("contracting", data)
+
+
+def fig3_unwinding_spiral(data: dict[str, np.ndarray] | None = None) -> Any:
+    """Fig. 3: the unwinding spiral (:func:`spiral_figure`)."""
+    return spiral_figure("unwinding", data)
+
+
+def fig4_turn_contracting() -> Any:
+    """Fig. 4: one turn of the contracting spiral and its solid angle (:func:`turn_figure`)."""
+    return turn_figure("contracting")
+
+
+def fig5_turn_unwinding() -> Any:
+    """Fig. 5: one turn of the unwinding spiral and its solid angle (:func:`turn_figure`)."""
+    return turn_figure("unwinding")
+
+
+register_figures(
+    "viscous",
+    "Figs 1-5: the ball-and-rod model, spirals of the symmetry axis, the solid angle of a turn (Krivtsov 2000)",
+    {
+        "fig1_ball_and_rod": fig1_ball_and_rod,
+        "fig2_contracting_spiral": fig2_contracting_spiral,
+        "fig3_unwinding_spiral": fig3_unwinding_spiral,
+        "fig4_turn_contracting": fig4_turn_contracting,
+        "fig5_turn_unwinding": fig5_turn_unwinding,
+        "histories": histories,
+    },
+)

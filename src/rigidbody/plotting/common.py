@@ -1,12 +1,26 @@
-"""Shared plotting helpers (axes, unit sphere, time series)."""
+"""Shared plotting helpers (axes, unit sphere, time series) and the standard plot of a result."""
 
 from __future__ import annotations
 
+import importlib
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
-__all__ = ["get_ax", "time_series", "unit_sphere"]
+__all__ = ["STANDARD_PLOTS", "get_ax", "plot_solution", "standard_plot", "time_series", "unit_sphere"]
+
+#: The standard figure of each kind of result: (fields the result carries, ``"module:function"`` that draws
+#: it). The first row whose fields a result has wins, so a more specific row comes first. A new analysis
+#: module adds its row here; the function takes ``(sol, ax=None, **kwargs)`` and returns what it drew on
+#: (an Axes or an array of Axes) and accepts that back as ``ax``, so members of a batch share the panels.
+STANDARD_PLOTS: tuple[tuple[frozenset[str], str], ...] = (
+    (frozenset({"u1", "u2", "u3", "Gz", "H", "r", "delta1"}), "rigidbody.plotting.lagrange:plot_averaged"),
+    (frozenset({"theta", "u", "Gz", "H", "r"}), "rigidbody.plotting.lagrange:plot_top_motion"),
+    (frozenset({"G", "T", "k2", "delta", "lam"}), "rigidbody.plotting.euler_poinsot:slow_variables"),
+    (frozenset({"R", "kappa", "gamma"}), "rigidbody.plotting.gyrostat:plot_satellite_motion"),
+    (frozenset({"n", "k", "zeta", "Omega"}), "rigidbody.plotting.viscous:plot_axis_path"),
+)
 
 
 def get_ax(ax: Any = None, projection: str | None = None, figsize: tuple[float, float] = (6.0, 4.5)) -> Any:
@@ -63,7 +77,7 @@ def unit_sphere(
                         antialiased=False, alpha=alpha, shade=False)
     else:
         ax.plot_surface(x, y, z, color=color, linewidth=0, alpha=alpha)
-    ax.set_box_aspect((1, 1, 1))
+    ax.set_box_aspect((1, 1, 1), zoom=1.25)  # the sphere fills the axes' box
     lim = (-1.05, 1.05)
     ax.set_xlim(lim)
     ax.set_ylim(lim)
@@ -89,3 +103,48 @@ def time_series(
         ax.grid(alpha=0.3)
     axes[-1].set_xlabel(xlabel)
     return axes
+
+
+def standard_plot(sol: Any) -> Callable[..., Any]:
+    """The function that draws the standard figure of ``sol`` (a row of :data:`STANDARD_PLOTS`).
+
+    Raises
+    ------
+    ValueError
+        If no row matches the fields of ``sol``.
+    """
+    fields = set(getattr(sol, "fields", ()))
+    for needed, target in STANDARD_PLOTS:
+        if needed <= fields:
+            module, _, name = target.partition(":")
+            func: Callable[..., Any] = getattr(importlib.import_module(module), name)
+            return func
+    raise ValueError(f"no standard plot for a result with fields {sorted(fields)}; draw its arrays with "
+                     "rigidbody.plotting.time_series or Matplotlib")
+
+
+def plot_solution(sol: Any, ax: Any = None, **kwargs: Any) -> Any:
+    """Draw the standard figure of a result (``sol.plot()``): the function :func:`standard_plot` picks.
+
+    Parameters
+    ----------
+    sol : rigidbody.core.ode.Solution
+        A single run, or a batch run (``sol.batch_shape`` non-empty): then every member
+        (``sol.member(index)``) is drawn on the same panels.
+    ax : Axes or array of Axes, optional
+        Where to draw (as many panels as the figure has); new ones by default.
+    **kwargs
+        Passed to the drawing function (line style, ``label``, ...).
+
+    Returns
+    -------
+    Axes or numpy.ndarray of Axes
+        What was drawn on.
+    """
+    func = standard_plot(sol)
+    batch_shape = tuple(getattr(sol, "batch_shape", ()))
+    if not batch_shape:
+        return func(sol, ax, **kwargs)
+    for index in np.ndindex(*batch_shape):
+        ax = func(sol.member(index), ax, **kwargs)
+    return ax

@@ -7,9 +7,9 @@ from typing import Any
 
 import numpy as np
 
-from .common import get_ax
+from .common import get_ax, time_series
 
-__all__ = ["VERDICT_COLORS", "dumbbell_side_view", "normalized_map_plot", "stability_map_plot"]
+__all__ = ["VERDICT_COLORS", "dumbbell_side_view", "normalized_map_plot", "plot_satellite_motion", "stability_map_plot"]
 
 #: colours of the verdict codes -1 (invalid), 0 (stable), 1 (unstable), 2 (undecided)
 VERDICT_COLORS = {-1: "0.85", 0: "#7fc97f", 1: "#e7298a", 2: "#fdc086"}
@@ -149,3 +149,30 @@ def dumbbell_side_view(
     ax.set_xlabel("distance from the ζ2 axis (units of R0)")
     ax.legend(fontsize=7, loc="lower right")
     return ax
+
+
+def plot_satellite_motion(sol: Any, ax: Any = None, **kw: Any) -> Any:
+    """The standard figure of :func:`rigidbody.gyrostat.simulate`: the distance ``R`` of the centre of mass
+    from the attracting centre, the latitude ``kappa`` of G and the direction cosines ``gamma`` of OG in the
+    body axes against ``t`` (three Axes, created when ``ax`` is None; a stationary motion keeps all
+    constant). Returns the Axes.
+    """
+    import matplotlib.pyplot as plt
+
+    new = ax is None
+    if new:
+        _, ax = plt.subplots(3, 1, figsize=(6.5, 6.5), sharex=True)
+    axes = np.asarray(ax, dtype=object).ravel()
+    if axes.size != 3:
+        raise ValueError(f"ax must hold 3 Axes, got {axes.size}")
+    time_series(sol.t, {"R": sol.R, "κ": sol.kappa}, axes=axes[:2], xlabel="")
+    gamma = np.asarray(sol.gamma)
+    for i in range(3):
+        axes[2].plot(sol.t, gamma[i], lw=1.0, label=f"$\\gamma_{i + 1}$", **kw)
+    axes[2].set_ylabel("γ (OG in body axes)")
+    axes[2].legend(loc="best", fontsize=8)
+    axes[2].grid(alpha=0.3)
+    axes[2].set_xlabel("t")
+    if new:
+        axes[0].figure.tight_layout()
+    return axes

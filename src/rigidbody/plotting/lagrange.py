@@ -8,7 +8,7 @@ import numpy as np
 
 from .common import get_ax
 
-__all__ = ["plot_integrals", "plot_roots", "slow_time_axis"]
+__all__ = ["plot_averaged", "plot_integrals", "plot_roots", "plot_top_motion", "slow_time_axis"]
 
 
 def slow_time_axis(sol: Any, x: str = "tau") -> tuple[np.ndarray, str]:
@@ -55,3 +55,52 @@ def plot_integrals(sol: Any, ax: Any = None, x: str = "tau", mgl: float | None =
     ax.legend(loc="best", fontsize=8)
     ax.grid(alpha=0.3)
     return arts
+
+
+def _panels(ax: Any, n: int, figsize: tuple[float, float]) -> np.ndarray:
+    if ax is not None:
+        axes = np.asarray(ax, dtype=object).ravel()
+        if axes.size != n:
+            raise ValueError(f"ax must hold {n} Axes, got {axes.size}")
+        return axes
+    import matplotlib.pyplot as plt
+
+    _, axes = plt.subplots(1, n, figsize=figsize)
+    return np.asarray(axes, dtype=object)
+
+
+def plot_averaged(sol: Any, ax: Any = None, x: str = "tau") -> np.ndarray:
+    """The standard figure of :func:`rigidbody.lagrange.averaged`: :func:`plot_roots` and
+    :func:`plot_integrals` side by side (two Axes, created when ``ax`` is None); returns the Axes."""
+    axes = _panels(ax, 2, (11.0, 4.0))
+    plot_roots(sol, axes[0], x=x)
+    plot_integrals(sol, axes[1], x=x)
+    if ax is None:
+        axes[0].figure.tight_layout()
+    return axes
+
+
+def plot_top_motion(sol: Any, ax: Any = None, **kw: Any) -> np.ndarray:
+    """The standard figure of a full motion (:func:`rigidbody.lagrange.simulate`,
+    :func:`rigidbody.lagrange.lagrange_motion`): the nutation ``u = cos(theta)`` and the integrals
+    ``Gz, H, r`` against the time (two Axes, created when ``ax`` is None); returns the Axes.
+
+    ``u`` moves between the roots ``u1`` and ``u2`` of the unperturbed motion; ``Gz, H, r`` are its
+    integrals, constant without a torque and slowly changing under one.
+    """
+    axes = _panels(ax, 2, (11.0, 4.0))
+    t = np.asarray(sol.time)
+    axes[0].plot(t, sol.u, lw=0.8, **kw)
+    axes[0].set_ylabel(r"$u = \cos\theta$")
+    for name, label, c in (("Gz", "$G_z$", "C3"), ("H", "$H$", "C4"), ("r", "$r$", "C5")):
+        # lagrange_motion keeps the constant integrals as single values
+        axes[1].plot(t, np.broadcast_to(np.asarray(getattr(sol, name), dtype=float), t.shape), color=c, lw=1.0,
+                     label=label)
+    axes[1].set_ylabel("integrals (1.2)")
+    axes[1].legend(loc="best", fontsize=8)
+    for a in axes:
+        a.set_xlabel(f"${sol.time_name}$")
+        a.grid(alpha=0.3)
+    if ax is None:
+        axes[0].figure.tight_layout()
+    return axes

@@ -10,7 +10,14 @@ import numpy as np
 
 from .common import get_ax, time_series, unit_sphere
 
-__all__ = ["look_from", "quasi_coordinate_histories", "sphere_path", "turn_solid_angle"]
+__all__ = [
+    "ball_and_rod_sketch",
+    "look_from",
+    "plot_axis_path",
+    "quasi_coordinate_histories",
+    "sphere_path",
+    "turn_solid_angle",
+]
 
 
 def look_from(ax: Any, direction: Any) -> Any:
@@ -123,3 +130,77 @@ def quasi_coordinate_histories(t: Any, data: dict[str, Any], axes: Any = None, t
         if np.all(k > 0) and k.max() / k.min() > 100:
             axes[0].set_yscale("log")
     return axes
+
+
+def ball_and_rod_sketch(
+    N: int, a: float, b: float, ball_radius: float, ax: Any = None, *, view: Any = (1.0, -0.55, 0.45)
+) -> Any:
+    """Draw the ball-and-rod structure of Krivtsov's fig. 1 (the model of :func:`rigidbody.viscous.ball_and_rod`).
+
+    The rod ``AB`` (length ``2b``) is the symmetry axis ``n``; ``N`` equal balls sit on a circle of radius
+    ``a`` about its centre ``C`` in the plane normal to it, joined to ``C`` by spokes; two more balls at
+    ``A`` and ``B``. Balls are drawn to scale with radius ``ball_radius``.
+
+    Parameters
+    ----------
+    N : int
+        Number of balls on the circle (>= 3).
+    a, b : float
+        Circle radius and half-length of the rod.
+    ball_radius : float
+        Radius of the balls as drawn.
+    ax : Axes3D, optional
+    view : array_like (3,)
+        Direction to look from.
+
+    Returns
+    -------
+    Axes3D
+    """
+    if N < 3:
+        raise ValueError(f"N must be >= 3, got {N!r}")
+    ax = get_ax(ax, projection="3d")
+    u = np.linspace(0.0, 2.0 * np.pi, 24)
+    w = np.linspace(0.0, np.pi, 12)
+    sx = np.outer(np.cos(u), np.sin(w))
+    sy = np.outer(np.sin(u), np.sin(w))
+    sz = np.outer(np.ones_like(u), np.cos(w))
+
+    def ball(c: np.ndarray, color: str) -> None:
+        ax.plot_surface(c[0] + ball_radius * sx, c[1] + ball_radius * sy, c[2] + ball_radius * sz,
+                        color=color, linewidth=0, shade=True)
+
+    ax.plot([0, 0], [0, 0], [-b, b], color="0.2", lw=2.0)
+    ang = 2.0 * np.pi * np.arange(N) / N
+    ring = np.linspace(0.0, 2.0 * np.pi, 200)
+    ax.plot(a * np.cos(ring), a * np.sin(ring), 0 * ring, color="0.6", lw=0.8, ls=":")
+    for k, t in enumerate(ang):
+        c = np.array([a * np.cos(t), a * np.sin(t), 0.0])
+        ax.plot([0, c[0]], [0, c[1]], [0, 0], color="0.35", lw=1.2)
+        ball(c, "C0")
+        ax.text(*(c * (1 + 2.2 * ball_radius / a)), str(k + 1), fontsize=9, ha="center", va="center")
+    # labels of A and B to the left of their balls as seen from ``view``
+    d = np.asarray(view, dtype=float)
+    left = np.cross(d, [0.0, 0.0, 1.0])
+    left = left / np.linalg.norm(left) if np.linalg.norm(left) > 0 else np.array([1.0, 0.0, 0.0])
+    for z, name in ((b, "A"), (-b, "B")):
+        ball(np.array([0.0, 0.0, z]), "C3")
+        ax.text(*(2.2 * ball_radius * left + [0.0, 0.0, z]), name, fontsize=10, ha="center", va="center")
+    ax.text(0.15 * a, 0.0, 0.12 * a, "C", fontsize=10)
+    ax.plot([0, 0], [0, 0], [b + 1.5 * ball_radius, b + 0.45 * a + 1.5 * ball_radius], color="k", lw=1.0)
+    ax.text(0.05 * a, 0, b + 0.5 * a + 1.5 * ball_radius, "n", fontsize=10, style="italic")
+    lim = max(a, b) + 2.0 * ball_radius
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.set_zlim(-lim, lim)
+    ax.set_box_aspect((1, 1, 1), zoom=1.25)
+    look_from(ax, view)
+    ax.set_axis_off()
+    return ax
+
+
+def plot_axis_path(sol: Any, ax: Any = None, **kw: Any) -> Any:
+    """The standard figure of :func:`rigidbody.viscous.simulate`: the path of the symmetry axis ``sol.n`` on
+    the unit sphere (:func:`sphere_path`; the sphere is drawn once, on an empty Axes). Returns the Axes3D."""
+    sphere = ax is None or not ax.collections
+    return sphere_path(sol.n, ax, sphere=sphere, **kw)

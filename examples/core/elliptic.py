@@ -1,6 +1,12 @@
-"""Jacobi functions in the papers' modulus k, near the separatrix, and a period average.
+"""
+Jacobi functions in the papers' modulus k
+=========================================
 
-Run: python examples/core_elliptic.py
+:mod:`rigidbody.core.elliptic` takes the modulus ``k`` of the papers (SciPy's functions take the parameter
+``m = k^2``). Prints ``sn`` over one period ``4K``, ``K`` and ``sn`` next to the separatrix given the
+complementary parameter ``1 - k^2 = 1e-12`` (where SciPy's ``ellipj`` fails for ``u > K``), and the mean of
+``sn^2`` over a period by :func:`rigidbody.core.averaging.sn2_average` against its closed form
+``(1 - E/K) / k^2``. Prints only.
 """
 
 import numpy as np

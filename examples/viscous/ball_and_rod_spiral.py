@@ -1,14 +1,19 @@
-"""Where does the symmetry axis go? A ball-and-rod structure (Krivtsov 2000, fig. 1) in a viscous medium.
+"""
+Where does the symmetry axis go? The ball-and-rod structure in a viscous medium
+===============================================================================
 
-Builds the structure, prints its regime, the closed-form limits (length of the spiral, total turning,
-total body turn about the axis), one turn with the solid-angle theorem, and draws the axis path.
+Krivtsov (PMM 2000): the structure of figure 1 (``N = 4`` balls of mass 1 and radius 0.3 on a circle of
+radius ``a = 1``, rod half-length ``b = 1.5``, ``beta = 0.1``; our choices), spun with ``Omega0 = 8`` about its
+axis ``n0 = e_z`` and tipped with ``dn/dt = (0.5, 0, 0)``. Prints its regime, the closed-form limits (5.1)
+(length of the spiral, total turning, turns of the body about its axis), one turn with the solid-angle
+theorem, and the agreement of the path reconstructed from ``v(t), k(t)`` with the full simulation; the
+simulation result draws its standard figure, the axis path on the sphere (``sim.plot()``).
 """
 
 import matplotlib.pyplot as plt
 import numpy as np
 
 from rigidbody import viscous as vs
-from rigidbody.plotting import viscous as pv
 
 body, medium = vs.ball_and_rod(N=4, a=1.0, b=1.5, beta=0.1, mass=1.0, ball_radius=0.3)
 print(body, medium, vs.regime(body, medium))
@@ -31,6 +36,6 @@ n = vs.axis_path(body, medium, n0, ndot0, Omega0, t)   # from v(t), k(t) alone
 sim = vs.simulate(body, medium, n0, ndot0, Omega0, (0.0, 80.0), t_eval=t)
 print("max |n_path - n_sim| =", np.max(np.linalg.norm(n - sim.n, axis=0)))
 
-ax = pv.sphere_path(n)
+ax = sim.plot()
 ax.set_title(f"{vs.regime(body, medium)} spiral of the ball-and-rod structure")
 plt.show()

@@ -1,12 +1,20 @@
-"""A torque the paper did not print: theta-dependent equatorial drag plus an axial motor.
+"""
+Beyond the paper: a motor torque
+================================
 
-Class (2.4) of Akulenko, Leshchenko, Chernousko (1979): M1 = p f, M2 = q f with f = -a (1 + kappa cos theta),
-M3 = m0 - b r. The general averaging engine (nutation mean of (2.7), then V of (2.13)) gives the slow
-evolution; the full equations (1.1) check it, and r has the exact form m0/b + (r0 - m0/b) exp(-b tau / C).
+A torque the paper did not print: theta-dependent equatorial drag plus an axial motor. Class (2.4) of
+Akulenko, Leshchenko, Chernousko (1979): ``M1 = p f, M2 = q f`` with ``f = -a (1 + kappa cos theta)``,
+``M3 = m0 - b r``. The general averaging engine (nutation mean of (2.7), then ``V`` of (2.13)) gives the slow
+evolution; the full equations (1.1) check it, and ``r`` has the exact form
+``m0/b + (r0 - m0/b) exp(-b tau / C)``. The top is the paper's (``A = 1.5, C = 1, mgl = 0.5``), spun with
+``r0 = sqrt(3)`` and tilted by 60 degrees; ``a = 0.125, b = 0.1, kappa = 0.5, m0 = 0.15`` and the span
+``tau in [0, 10]`` are our choices. The result draws itself (``avg.plot()``: the roots and the integrals
+against ``tau``).
 """
 
 import math
 
+import matplotlib.pyplot as plt
 import numpy as np
 
 from rigidbody import lagrange
@@ -34,3 +42,7 @@ for eps in (0.02, 0.01):
 print(" tau     u1        u2        u3        Gz        H         r")
 for j in range(0, avg.tau.size, 2):
     print(f"{avg.tau[j]:4.1f} " + " ".join(f"{x:9.5f}" for x in (*avg.u[:, j], avg.Gz[j], avg.H[j], avg.r[j])))
+
+axes = avg.plot()
+axes[0].set_title("roots of (1.4) under the motor torque")
+plt.show()

@@ -1,0 +1,498 @@
+r"""The averaging engine: the mean effect of any torque over the Euler--Poinsot motion.
+
+For a torque ``M = torque(omega, C, nu)`` (body components, see :mod:`._torques`) the averaged system of
+the slow variables :math:`G, T, k^2` and the unit vector :math:`\mathbf n` of :math:`\mathbf G` (in the
+orbital axes :math:`Ox_i`) is
+
+.. math::
+    \frac{d(G\mathbf n)}{d\tau} = \langle C\mathbf M\rangle,\qquad
+    \frac{dT}{d\tau} = \langle\boldsymbol\omega\cdot\mathbf M\rangle,\qquad
+    \frac{dk^2}{d\tau} = \frac{c\,\langle\dot P\rangle - k^2\langle\dot Q\rangle}{Q},
+
+with :math:`P = 2Ta_1 - G^2`, :math:`Q = G^2 - 2Ta_3 = G^2(a_1-a_3)(a_2-a_3)/R`, :math:`c = (a_2-a_3)/(a_1-a_2)`
+(so that :math:`k^2 = cP/Q` is (5)), :math:`\dot P = 2\sum_i(a_1-a_i)\omega_iM_i`,
+:math:`\dot Q = 2\sum_i(a_i-a_3)\omega_iM_i`, and :math:`a = (A_1, A_2, A_3)` for the kind ``'max'``,
+:math:`(A_3, A_2, A_1)` with the components relabelled for ``'min'``. Every term of :math:`\dot P` is
+:math:`O(k)` or smaller on the motion, so :math:`dk^2` keeps its relative accuracy as :math:`k\to0`
+(differentiating :math:`k^2(G, T)` would lose it to cancellation).
+
+The mean :math:`\langle\cdot\rangle` is over the precession angle :math:`\psi` about :math:`\mathbf G`
+(uniform, independent of the phase: no resonance), over one period :math:`4K` of the elliptic phase, and,
+in the orbit-averaged limit :math:`\varepsilon = 0`, over the orbit (uniform in time: weight
+:math:`(1+e\cos\nu)^{-2}` in the true anomaly). Each mean is the trapezoid rule on a uniform periodic grid
+(spectrally convergent for smooth integrands; the elliptic-phase node count comes from
+:func:`rigidbody.core.averaging.n_nodes`, i.e. from :math:`k`). The attitude on the grid is
+:math:`C = Y R_3(\psi)\alpha_0(u)` with :math:`Y = (\mathbf y_1, \mathbf y_2, \mathbf n)` and
+:math:`\alpha_0` the direction cosines of sec. 2 at :math:`\psi = 0`.
+
+Error estimate: the grid of :math:`n` nodes per axis contains the grids of :math:`n/2` and :math:`n/4`
+(every second and fourth node), so the means on them cost nothing more. With :math:`d_2 = |Q_{n/2} - Q_n|`,
+:math:`d_1 = |Q_{n/4} - Q_{n/2}|` and :math:`r = d_2/d_1`, the error of :math:`Q_n` is estimated by
+:math:`d_2` when :math:`r < 1/2` (it bounds :math:`|Q_n - Q|` whenever the errors at least halve per doubling,
+or alternate in sign -- the erratic convergence of torques with kinks), by the geometric tail
+:math:`d_2 r/(1-r)` for :math:`1/2 \le r < 0.9`, and by :math:`10\max(d_1, d_2)` when the differences do
+not decrease; differences at the rounding level of the mean count as converged. For a smooth torque this
+is pessimistic (the error of :math:`Q_n` is about :math:`d_2 r`), which costs one doubling at the start of
+a run and buys an honest figure for torques that are not smooth. The node counts are doubled along each
+axis whose estimate exceeds the tolerance, up to a budget.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..core import averaging as avg
+from ._model import Body, Orbit, _labels
+
+__all__ = ["TorqueAverage"]
+
+#: quantities averaged on the grid: C M (3 components), omega . M, dP/dt, dQ/dt
+_NQ = 6
+#: the largest grid the adaptive refinement may use (points of (nu, psi, u)): 2^19 ~ 5e5 points, ~40 MB of C
+_MAX_POINTS = 2**19
+#: rounding level of a mean, relative to the mean absolute value of the integrand (8 units of 2.2e-16: the
+#: products and sums that form each value, and the pairwise summation of the mean)
+_ROUND = 8 * 2.2e-16
+
+
+@dataclass
+class _State:
+    """One slow state: the body, the kind of motion and its sense, G, k^2, n and the true anomaly."""
+
+    body: Body
+    kind: str
+    sigma: int
+    G: float
+    k2: float
+    n: np.ndarray
+    nu: float | None
+    orbit: Orbit
+    mc: float = field(default=-1.0)
+
+    def __post_init__(self) -> None:
+        if self.mc < 0.0:
+            self.mc = 1.0 - self.k2
+        self.lab = (0, 1, 2) if self.kind == "max" else (2, 1, 0)
+        self.a: tuple[float, float, float] = _labels(self.body, self.kind)
+
+    @property
+    def Q(self) -> float:
+        a1, a2, a3 = self.a
+        R = a1 * (a2 - a3) + a3 * (a1 - a2) * self.k2
+        return self.G**2 * (a1 - a3) * (a2 - a3) / R
+
+    @property
+    def T(self) -> float:
+        a1, a2, a3 = self.a
+        return 0.5 * self.G**2 * (a2 - a3 + (a1 - a2) * self.k2) / (a1 * (a2 - a3) + a3 * (a1 - a2) * self.k2)
+
+
+@dataclass
+class _Mean:
+    """Averaged effect of a torque: L = <C M> (orbital axes), dT, dk2; linear in the torque."""
+
+    L: np.ndarray
+    dT: float
+    dk2: float
+
+    def __add__(self, other: _Mean) -> _Mean:
+        return _Mean(self.L + other.L, self.dT + other.dT, self.dk2 + other.dk2)
+
+
+def frame(n: np.ndarray) -> np.ndarray:
+    """An orthonormal frame (columns y1, y2, y3 = n); y2 in the orbit plane (the paper's Oy) off the poles."""
+    n1, n2, n3 = (float(x) for x in n)
+    r = math.sqrt(n1 * n1 + n2 * n2 + n3 * n3)
+    n1, n2, n3 = n1 / r, n2 / r, n3 / r
+    h = math.hypot(n1, n2)
+    c, s = (n1 / h, n2 / h) if h > 1e-300 else (1.0, 0.0)
+    # y2 = (-sin lam, cos lam, 0), y1 = y2 x n = (cos delta cos lam, cos delta sin lam, -sin delta)
+    return np.array([[n3 * c, -s, n1], [n3 * s, c, n2], [-h, 0.0, n3]])
+
+
+def _symmetric_phase(n: int, mc: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """sn, cn, dn on ``n`` (a multiple of 4) uniform nodes of 4K, exactly symmetric: the first quarter
+    period from the core, the rest by sn(2K - s) = sn s, cn(2K - s) = -cn s, f(s + 2K) = (-sn, -cn, dn).
+    Parts of a mean that are odd under these symmetries of the motion then cancel to rounding of the
+    products, not of the Jacobi functions."""
+    _, sn, cn, dn = avg.phase_grid(n=n, mc=mc, period="4K")
+    q = n // 4
+    h = n // 2
+    sn[q + 1:h + 1], cn[q + 1:h + 1], dn[q + 1:h + 1] = sn[q - 1::-1], -cn[q - 1::-1], dn[q - 1::-1]
+    sn[h:], cn[h:], dn[h:] = -sn[:h], -cn[:h], dn[:h]
+    return sn, cn, dn
+
+
+def motion_nodes(st: _State, n_u: int) -> tuple[np.ndarray, np.ndarray]:
+    r"""Body angular velocity ``(n_u, 3)`` and direction cosines :math:`\alpha_0` ``(n_u, 3, 3)`` at
+    :math:`\psi = 0` on ``n_u`` uniform nodes of the period :math:`4K` (the closed form of sec. 2)."""
+    b = st.body
+    a1, a2, a3 = st.a
+    k2, G, s = st.k2, st.G, st.sigma
+    R = a1 * (a2 - a3) + a3 * (a1 - a2) * k2
+    c_dn = G * math.sqrt((a2 - a3) / (a1 * R))
+    c_sn = G * math.sqrt((a1 - a3) / (a2 * R))
+    c_cn = G * math.sqrt((a1 - a2) / (a3 * R))
+    sn, cn, dn = _symmetric_phase(n_u, st.mc)
+    k = math.sqrt(k2)
+    omega = np.empty((n_u, 3))
+    w_dn, w_sn, w_cn = s * c_dn * dn, -s * k * c_sn * sn, k * c_cn * cn
+    if st.kind == "max":
+        omega[:, 0], omega[:, 1], omega[:, 2] = w_dn, w_sn, w_cn
+    else:
+        omega[:, 0], omega[:, 1], omega[:, 2] = w_cn, w_sn, w_dn
+    g = omega * b.A
+    # alpha_0 = dcm(0, theta, phi): rows (cos phi, -sin phi, 0), (cos th sin phi, cos th cos phi, -sin th), g/G
+    h = np.hypot(g[:, 0], g[:, 1])
+    safe = np.where(h > 0.0, h, 1.0)
+    sp = np.where(h > 0.0, g[:, 0] / safe, 0.0)
+    cp = np.where(h > 0.0, g[:, 1] / safe, 1.0)
+    ct, stt = g[:, 2] / G, h / G
+    al = np.empty((n_u, 3, 3))
+    al[:, 0, 0], al[:, 0, 1], al[:, 0, 2] = cp, -sp, 0.0
+    al[:, 1, 0], al[:, 1, 1], al[:, 1, 2] = ct * sp, ct * cp, -stt
+    al[:, 2, :] = g / G
+    return omega, al
+
+
+@functools.lru_cache(maxsize=64)
+def nu_nodes(e: float, n_nu: int) -> tuple[np.ndarray, np.ndarray]:
+    """True-anomaly nodes and time weights (sum 1) for the mean over one orbit of eccentricity ``e``
+    (Kepler's law: dt is proportional to (1 + e cos nu)^-2 d nu). Cached; read-only arrays."""
+    nu = np.arange(n_nu) * (2.0 * math.pi / n_nu)
+    w = (1.0 + e * np.cos(nu)) ** -2.0
+    w /= w.sum()
+    nu.setflags(write=False)
+    w.setflags(write=False)
+    return nu, w
+
+
+@functools.lru_cache(maxsize=64)
+def _psi_trig(n_psi: int) -> tuple[np.ndarray, np.ndarray]:
+    psi = np.arange(n_psi) * (2.0 * math.pi / n_psi)
+    c, s = np.cos(psi)[:, None], np.sin(psi)[:, None]
+    c.setflags(write=False)
+    s.setflags(write=False)
+    return c, s
+
+
+@dataclass
+class Grid:
+    """Node counts of the engine: precession angle, elliptic phase (a multiple of the core's count), orbit."""
+
+    n_psi: int = 8
+    m_u: float = 1.0
+    n_nu: int = 8
+
+    def n_u(self, mc: float) -> int:
+        n = round(self.m_u * avg.n_nodes(mc=mc, period="4K"))
+        return max(4, n + (-n) % 4)
+
+
+def torque_grid(torque: Any, st: _State, grid: Grid) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The torque at every node: ``M`` of shape ``(n_nu, n_psi, n_u, 3)`` (``n_nu = 1`` when nu is held),
+    the orbit weights ``w``, and the body angular velocity ``(n_u, 3)`` and attitudes ``C`` ``(n_psi, n_u,
+    3, 3)`` of the grid (C does not depend on nu)."""
+    n_u = grid.n_u(st.mc)
+    omega, al = motion_nodes(st, n_u)
+    Y = frame(st.n)
+    c, s = _psi_trig(grid.n_psi)
+    B = np.empty((grid.n_psi, 3, 3))  # Y R3(psi)
+    B[:, :, 0] = Y[:, 0] * c + Y[:, 1] * s
+    B[:, :, 1] = Y[:, 1] * c - Y[:, 0] * s
+    B[:, :, 2] = Y[:, 2]
+    C = B[:, None] @ al[None]  # (n_psi, n_u, 3, 3)
+    if st.nu is None:
+        nu, w = nu_nodes(st.orbit.e, grid.n_nu)
+    else:
+        nu, w = np.array([st.nu]), np.ones(1)
+    shape = (nu.size, grid.n_psi, n_u)
+    M = np.asarray(torque(np.broadcast_to(omega, (*shape, 3)), np.broadcast_to(C, (*shape, 3, 3)),
+                          np.broadcast_to(nu[:, None, None], shape)), dtype=float)
+    return (M if M.shape == (*shape, 3) else np.broadcast_to(M, (*shape, 3))), w, omega, C
+
+
+def quantities(st: _State, omega: np.ndarray, C: np.ndarray, M: np.ndarray) -> np.ndarray:
+    """The six averaged quantities at the (psi, u) nodes for a torque ``M`` (n_psi, n_u, 3) already averaged
+    over the orbit: C M (3), omega . M, dP/dt, dQ/dt; shape ``(n_psi, n_u, 6)``. All are linear in M with
+    coefficients that do not depend on nu, so averaging M over nu first is exact."""
+    V = np.empty((*M.shape[:-1], _NQ))
+    V[..., 0:3] = (C @ M[..., None])[..., 0]
+    OM = omega * M
+    V[..., 3] = OM.sum(-1)
+    a1, a2, a3 = st.a
+    l1, l2, l3 = st.lab
+    V[..., 4] = 2.0 * ((a1 - a2) * OM[..., l2] + (a1 - a3) * OM[..., l3])
+    V[..., 5] = 2.0 * ((a1 - a3) * OM[..., l1] + (a2 - a3) * OM[..., l2])
+    return V
+
+
+def _nu_mean(M: np.ndarray, w: np.ndarray, step: int = 1) -> np.ndarray:
+    ws = w[::step]
+    return np.tensordot(ws / ws.sum(), M[::step], axes=(0, 0))
+
+
+def lean_mean(torque: Any, st: _State, grid: Grid) -> np.ndarray:
+    """The six means on one grid, no error estimate (the integrators' right-hand sides)."""
+    M, w, omega, C = torque_grid(torque, st, grid)
+    return quantities(st, omega, C, _nu_mean(M, w)).mean(axis=(0, 1))
+
+
+def _sub(V: np.ndarray, axis: int, step: int) -> np.ndarray:
+    """Mean on every ``step``-th node along ``axis`` (0: psi, 1: u) of a (psi, u, 6) array."""
+    return V[::step].mean(axis=(0, 1)) if axis == 0 else V[:, ::step].mean(axis=(0, 1))
+
+
+def _axis_error(n: int, means: tuple[np.ndarray, ...], noise: np.ndarray) -> tuple[Any, Any]:
+    """(error estimate of the full grid, error estimate of the half grid) along one axis, per quantity,
+    from the means on the full, half and quarter grids. ``noise`` is the rounding level of a mean:
+    differences below twice it are convergence to rounding."""
+    if n == 1:
+        return np.zeros(_NQ), np.zeros(_NQ)
+    m1, m2 = means[0], means[1]
+    d2 = np.abs(m2 - m1)
+    if n % 4:
+        est = np.where(d2 <= 2.0 * noise, noise, 10.0 * d2)
+        return est, np.full(_NQ, np.inf)
+    d1 = np.abs(means[2] - m2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = d2 / d1
+        tail = d2 * r / (1.0 - r)
+    est = np.where(
+        d2 <= 2.0 * noise, noise,  # the half grid already agrees to rounding
+        np.where(
+            d1 <= 2.0 * noise, 10.0 * d2,  # the quarter grid agreed but the full one does not: do not trust
+            np.where(r < 0.5, d2, np.where(r < 0.9, tail, 10.0 * np.maximum(d1, d2))),
+        ),
+    )
+    est = np.maximum(est, noise)
+    return est, d2 + est
+
+
+@dataclass
+class Quadrature:
+    """Means of the six quantities with their estimated errors and the grid that produced them."""
+
+    mean: np.ndarray
+    error: np.ndarray
+    scale: np.ndarray
+    grid: Grid
+    lean: Grid
+    converged: bool
+    convergence: dict[str, float]
+
+
+def adaptive(torque: Any, st: _State, tol: float, grid: Grid | None = None, refine: bool = True) -> Quadrature:
+    """Mean of the six quantities with an error estimate; the grid is doubled along axes until ``tol``."""
+    g = Grid() if grid is None else Grid(grid.n_psi, grid.m_u, grid.n_nu)
+    if st.nu is not None:
+        g.n_nu = 1
+    while True:
+        M, w, omega, C = torque_grid(torque, st, g)
+        steps = (1, 2, 4) if g.n_nu >= 4 and g.n_nu % 4 == 0 else ((1, 2) if g.n_nu % 2 == 0 else (1,))
+        Vs = [quantities(st, omega, C, _nu_mean(M, w, k)) for k in steps]
+        V = Vs[0]
+        m = V.mean(axis=(0, 1))
+        S = _scale(np.abs(quantities(st, np.abs(omega), np.abs(C), np.tensordot(w, np.abs(M), axes=(0, 0)))))
+        noise = _ROUND * S
+        per_axis = {
+            "nu": (g.n_nu, tuple(v.mean(axis=(0, 1)) for v in Vs)),
+            "psi": (g.n_psi, (m, _sub(V, 0, 2), _sub(V, 0, 4) if g.n_psi % 4 == 0 else m)),
+            "u": (V.shape[1], (m, _sub(V, 1, 2), _sub(V, 1, 4))),
+        }
+        errs = {k: _axis_error(n, ms, noise) for k, (n, ms) in per_axis.items()}
+        err = sum(e[0] for e in errs.values())
+        ok = bool(np.all(err <= tol * S))
+        bad = [k for k, e in errs.items() if np.any(e[0] > tol * S / 3.0)]
+        npts = M.shape[0] * M.shape[1] * M.shape[2]
+        if ok or not refine or not bad or npts * 2 ** len(bad) > _MAX_POINTS:
+            break
+        for k in bad:
+            if k == "nu":
+                g.n_nu *= 2
+            elif k == "psi":
+                g.n_psi *= 2
+            else:
+                g.m_u *= 2.0
+    lean = Grid(g.n_psi, g.m_u, g.n_nu)
+    for k, (_, e_half) in errs.items():
+        if np.all(e_half <= tol * S / 3.0):
+            if k == "nu" and g.n_nu >= 4:
+                lean.n_nu //= 2
+            elif k == "psi" and g.n_psi >= 4:
+                lean.n_psi //= 2
+            elif k == "u":
+                lean.m_u /= 2.0
+    conv = {}
+    for k, (n, ms) in per_axis.items():
+        if n >= 4 and n % 4 == 0:
+            d2 = float(np.max(np.abs(ms[1] - ms[0]) / S))
+            d1 = float(np.max(np.abs(ms[2] - ms[1]) / S))
+            conv[k] = d2 / d1 if d1 > 0 else 0.0
+    return Quadrature(m, err, S, g, lean, ok, conv)
+
+
+def _scale(Vabs: np.ndarray) -> np.ndarray:
+    """Size of each quantity on the grid: the mean of its absolute terms (one scale for the 3 of C M)."""
+    S = Vabs.mean(axis=(0, 1))
+    S[0:3] = S[0:3].max()
+    return S + 1e-300
+
+
+def mean_of(q: np.ndarray, st: _State) -> _Mean:
+    """The averaged effect (L, dT, dk2) from the six means."""
+    a1, a2, a3 = st.a
+    c = (a2 - a3) / (a1 - a2)
+    dk2 = (c * q[4] - st.k2 * q[5]) / st.Q
+    return _Mean(np.array(q[0:3]), float(q[3]), float(dk2))
+
+
+def error_of(e: np.ndarray, st: _State) -> _Mean:
+    """Error bounds on (L, dT, dk2) from those of the six means (triangle inequality)."""
+    a1, a2, a3 = st.a
+    c = abs((a2 - a3) / (a1 - a2))
+    return _Mean(np.array(e[0:3]), float(e[3]), float((c * e[4] + st.k2 * e[5]) / abs(st.Q)))
+
+
+@dataclass(frozen=True)
+class TorqueAverage:
+    r"""The averaged effect of a torque at one slow state, as computed by the engine (:func:`average_torque`).
+
+    Attributes
+    ----------
+    rates : dict
+        ``dG``, ``dT``, ``dk2``, ``ddelta``, ``dlam`` (as :func:`averaged_rates`).
+    error : dict
+        Estimated absolute quadrature error of each rate (same keys).
+    L : numpy.ndarray
+        The mean torque :math:`\langle C\mathbf M\rangle` in the orbital axes, shape (3,).
+    dn : numpy.ndarray
+        :math:`d\mathbf n/d\tau` of the unit vector of :math:`\mathbf G` in the orbital axes (regular at
+        :math:`\sin\delta = 0`, where ``dlam`` is not).
+    nodes : tuple of int
+        ``(n_psi, n_u, n_nu)`` of the grid used (``n_nu = 1`` when :math:`\nu` is held).
+    converged : bool
+        Whether the estimated errors met the tolerance (relative to the size of the torque on the grid)
+        within the node budget.
+    convergence : dict
+        The last ratio :math:`d_2/d_1` of successive differences per axis (``'psi'``, ``'u'``, ``'nu'``):
+        near 0 for spectral convergence, about :math:`2^{-p}` for algebraic convergence of order :math:`p`.
+    """
+
+    rates: dict[str, float]
+    error: dict[str, float]
+    L: np.ndarray
+    dn: np.ndarray
+    nodes: tuple[int, int, int]
+    converged: bool
+    convergence: dict[str, float]
+
+
+def _sum_of(parts: list[Any]) -> Any:
+    if len(parts) == 1:
+        return parts[0]
+
+    def total(omega: Any, C: Any, nu: Any) -> np.ndarray:
+        out = np.asarray(parts[0](omega, C, nu), dtype=float)
+        for p in parts[1:]:
+            out = out + np.asarray(p(omega, C, nu), dtype=float)
+        return out
+
+    return total
+
+
+class Averager:
+    """Averages of one torque at slow states: the closed forms of its parts where they have them (unless
+    ``method='numerical'``), the engine for the rest. ``calibrate`` chooses the engine's grid at a state
+    (adaptively, to ``tol``); ``mean`` then evaluates on that grid (the integrators' right-hand sides);
+    ``report`` re-estimates the quadrature error at a state on that grid."""
+
+    def __init__(self, torque: Any, method: str, tol: float) -> None:
+        self.parts = list(torque.parts())
+        self.torque = _sum_of(self.parts)
+        self.method = method
+        self.tol = tol
+        self.closed: list[Any] = []
+        self.rest: Any = None
+        self.grid: Grid | None = None
+        self.first: Quadrature | None = None
+
+    def calibrate(self, st: _State) -> None:
+        closed: list[Any] = []
+        rest: list[Any] = []
+        for p in self.parts:
+            ok = self.method != "numerical" and p._closed(st) is not None
+            (closed if ok else rest).append(p)
+        self.closed = closed
+        self.rest = _sum_of(rest) if rest else None
+        if self.rest is not None:
+            self.first = adaptive(self.rest, st, self.tol)
+            self.grid = self.first.lean
+
+    def mean(self, st: _State) -> _Mean:
+        total: _Mean | None = None
+        for p in self.closed:
+            m = p._closed(st)
+            total = m if total is None else total + m
+        if self.rest is not None:
+            assert self.grid is not None
+            m = mean_of(lean_mean(self.rest, st, self.grid), st)
+            total = m if total is None else total + m
+        assert total is not None
+        return total
+
+    def report(self, st: _State) -> tuple[_Mean, _Mean]:
+        """(mean on the integrators' grid, a bound on its quadrature error) at a state. The bound is
+        |lean - fine| + (estimated error of the fine, calibration grid): the triangle inequality. Closed
+        forms count as exact."""
+        total = _Mean(np.zeros(3), 0.0, 0.0)
+        for p in self.closed:
+            total = total + p._closed(st)
+        err = _Mean(np.zeros(3), 0.0, 0.0)
+        if self.rest is not None:
+            assert self.first is not None and self.grid is not None
+            q = adaptive(self.rest, st, self.tol, grid=self.first.grid, refine=False)
+            lean = lean_mean(self.rest, st, self.grid)
+            total = total + mean_of(lean, st)
+            err = error_of(np.abs(lean - q.mean) + q.error, st)
+        return total, err
+
+
+def harmonic(torque: Any, st: _State, j: int, m: int) -> np.ndarray:
+    r"""The Fourier coefficient :math:`c_{jm}` of the six quantities on the torus of the motion.
+
+    In the angle variables of the Euler--Poinsot motion, :math:`\tilde\psi = \psi - \chi(t)` (:math:`\chi`
+    the periodic part of the precession angle) and the phase :math:`\vartheta = 2\pi t/P`, the flow is
+    linear: :math:`\dot{\tilde\psi} = \langle\dot\psi\rangle`, :math:`\dot\vartheta = 2\pi/P`. The
+    coefficient of :math:`e^{i(j\tilde\psi + m\vartheta)}` drives a resonance where
+    :math:`j\langle\dot\psi\rangle + 2\pi m/P = 0`. The nu of ``st`` is held (it must be a number).
+    """
+    from ._motion import EulerPoinsot
+
+    mot = EulerPoinsot(st.body, st.G, st.k2, st.kind, st.sigma, mc=st.mc)
+    n_u = 2 * max(Grid().n_u(st.mc), 4 * abs(m) + 8)
+    n_u += (-n_u) % 4
+    n_psi = max(8, 4 * abs(j))
+    omega, al = motion_nodes(st, n_u)
+    t = np.arange(n_u) * (mot.period / n_u)
+    psi_t, _, _ = mot.angles(t)
+    chi = np.asarray(psi_t) - mot.psi_rate_mean() * t
+    ang = np.arange(n_psi)[:, None] * (2.0 * math.pi / n_psi) + chi[None, :]
+    c, s = np.cos(ang), np.sin(ang)
+    Y = frame(st.n)
+    B = np.empty((n_psi, n_u, 3, 3))  # Y R3(psi)
+    B[..., 0] = Y[:, 0] * c[..., None] + Y[:, 1] * s[..., None]
+    B[..., 1] = Y[:, 1] * c[..., None] - Y[:, 0] * s[..., None]
+    B[..., 2] = Y[:, 2]
+    C = B @ al[None]
+    shape = (n_psi, n_u)
+    assert st.nu is not None
+    M = np.asarray(torque(np.broadcast_to(omega, (*shape, 3)), C, np.full(shape, st.nu)), dtype=float)
+    V = quantities(st, omega, C, np.broadcast_to(M, (*shape, 3)))
+    F = np.fft.fft2(V, axes=(0, 1)) / (n_psi * n_u)
+    return F[j % n_psi, m % n_u]
