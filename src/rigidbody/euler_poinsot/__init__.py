@@ -64,12 +64,15 @@ Separatrix (k^2 = 1) and its crossing
     limits of the averaged rates at k^2 -> 1 (the same from all regions) and their 1/K(k) approach.
 ``separatrix_crossing(body, torque, G, delta, lam, nu, source)``
     drifts of the energy along the arcs and the probabilities of capture into each region.
+``averaged(..., branch=...)``, ``averaged_branches(...)``
+    averaged runs go on through the separatrix in the chosen (by default the most probable) region, or in
+    each; ``simulate`` goes through it as well.
 
 All quantities are nondimensional in the paper's section-3 scaling (G0 = 1, A~ = A Omega0/G0,
 I~ = I/(G0 eps^2), orbital rate eps, tau = eps^2 t~); see docs/euler_poinsot.md.
 """
 
-from ._averaged import average_torque, averaged, averaged_rates, precession_rate
+from ._averaged import average_torque, averaged, averaged_branches, averaged_rates, precession_rate
 from ._engine import TorqueAverage
 from ._full import initial_state, simulate
 from ._model import (
@@ -122,6 +125,7 @@ __all__ = [
     "TorqueSum",
     "average_torque",
     "averaged",
+    "averaged_branches",
     "averaged_rates",
     "chi",
     "dk2_dtau",

@@ -39,13 +39,11 @@ from ._model import (
     Orbit,
     _as_orbit,
     _check_body,
-    _check_kind,
     _frame_y,
     _nut_freq,
-    k2_from,
-    kind_of,
 )
 from ._motion import EulerPoinsot
+from ._separatrix import _initial_kind
 from ._torques import probe, resolve
 
 __all__ = ["initial_state", "simulate"]
@@ -88,27 +86,6 @@ def _osculating(A: tuple[float, float, float], D: float) -> tuple[tuple[float, f
     """Moments labelled for the kind of motion D = G^2/2T belongs to, and its osculating k2 (in [0, 1])."""
     Alab = A if D >= A[1] else (A[2], A[1], A[0])
     return Alab, min(max(_k2_osc(Alab, D), 0.0), 1.0)
-
-
-def _initial_kind(body: Body, G0: float, k2_0: float | None, kind: str | None, T0: float | None
-                  ) -> tuple[float, str]:
-    """(k2_0, kind) from k2_0 and kind (defaults 0.99, 'max') or from the energy T0."""
-    if T0 is None:
-        kind = "max" if kind is None else kind
-        _check_kind(kind)
-        return (0.99 if k2_0 is None else k2_0), kind
-    if k2_0 is not None or kind is not None:
-        raise ValueError("give the initial state either by T0 or by k2_0 and kind, not both")
-    T0 = real(T0, "T0")
-    if T0 <= 0:
-        raise ValueError(f"T0 must be positive, got {T0}")
-    lo, hi = G0**2 / (2 * body.A1), G0**2 / (2 * body.A3)
-    if not (lo * (1 - 1e-12) <= T0 <= hi * (1 + 1e-12)):
-        raise ValueError(f"T0 must lie in [G0^2/(2 A1), G0^2/(2 A3)] = [{lo:.6g}, {hi:.6g}] (a rigid body), got {T0}")
-    k = kind_of(body, G0, T0)
-    if k == "separatrix":
-        raise ValueError(f"T0 = {T0} lies on the separatrix G0^2 = 2 T0 A2: start on either side of it")
-    return float(k2_from(body, G0, T0, k)), k
 
 
 def simulate(

@@ -71,7 +71,9 @@ import numpy as np
 
 from ..core import euler
 from ..core.validate import real
-from ._model import KINDS, Body, Drag, Orbit, _as_matrix, _as_orbit, _check_body
+from ._engine import frame, nu_nodes
+from ._model import KINDS, Body, Orbit, _as_orbit, _check_body, _check_kind, k2_from, kind_of
+from ._torques import drag_as_torque, resolve
 
 __all__ = ["ARCS", "REGIONS", "Separatrix", "SeparatrixCrossing", "SeparatrixLimits", "separatrix_crossing",
            "separatrix_limits"]
@@ -210,45 +212,19 @@ class Separatrix:
 # the perturbation: a torque callable (omega, C, nu) -> M, vectorised over leading axes
 # --------------------------------------------------------------------------------------------------
 def _torque_fn(torque: Any, body: Body, orbit: Orbit) -> TorqueFn:
-    """The whole perturbation as a callable: a drag tensor means drag plus the gravity-gradient torque."""
-    if callable(torque) and not isinstance(torque, Drag):
-        return torque  # a user's torque: the shape of its return is checked where it is used
-    I = _as_matrix(torque)
-    A = body.A
-    e = orbit.e
-
-    def drag_and_gravity(omega: np.ndarray, C: np.ndarray, nu: np.ndarray) -> np.ndarray:
-        er = np.stack([np.cos(nu), np.sin(nu), np.zeros_like(nu)], axis=-1)
-        rho = np.einsum("...ji,...j->...i", C, er)
-        f = (1.0 + e * np.cos(nu)) ** 3 / (1.0 - e * e) ** 3
-        return 3.0 * f[..., None] * np.cross(rho, A * rho) - omega @ I.T
-
-    return drag_and_gravity
+    """The whole perturbation as a torque object: a drag tensor means drag plus the gravity-gradient torque."""
+    what, tq = resolve(torque)
+    if what == "drag":
+        tq = drag_as_torque(tq, body, orbit)
+    tq._check_setup(body, orbit)
+    return tq
 
 
 def _orbit_nodes(nu: float | None, orbit: Orbit, n_nu: int) -> tuple[np.ndarray, np.ndarray]:
-    """True anomalies and weights: ``nu`` itself, or the time mean over one orbit (uniform mean anomaly)."""
+    """True anomalies and weights: ``nu`` itself, or the time mean over one orbit (Kepler's law)."""
     if nu is not None:
         return np.array([nu]), np.array([1.0])
-    e = orbit.e
-    M = np.arange(n_nu) * (2.0 * math.pi / n_nu)
-    E = M.copy()
-    for _ in range(50):  # Kepler's equation by Newton's method (e < 1)
-        dE = (E - e * np.sin(E) - M) / (1.0 - e * np.cos(E))
-        E -= dE
-        if np.max(np.abs(dE)) < 1e-15:
-            break
-    nus = 2.0 * np.arctan2(math.sqrt(1.0 + e) * np.sin(E / 2), math.sqrt(1.0 - e) * np.cos(E / 2))
-    return nus, np.full(n_nu, 1.0 / n_nu)
-
-
-def _frame(n: np.ndarray) -> np.ndarray:
-    """Columns y1, y2, y3 of the frame attached to G (y3 = n, y2 in the orbit plane), as in sec. 1."""
-    n = n / np.linalg.norm(n)
-    delta = math.acos(max(-1.0, min(1.0, float(n[2]))))
-    lam = math.atan2(float(n[1]), float(n[0]))
-    sd, cd, sl, cl = math.sin(delta), math.cos(delta), math.sin(lam), math.cos(lam)
-    return np.array([[cd * cl, -sl, sd * cl], [cd * sl, cl, sd * sl], [-sd, 0.0, cd]])
+    return nu_nodes(orbit.e, n_nu)
 
 
 def _unit_n(delta: Any, lam: Any) -> np.ndarray:
@@ -269,7 +245,7 @@ def _psi_average(body: Body, torque: TorqueFn, g: np.ndarray, n: np.ndarray, nus
     phi = np.arctan2(g[0], g[1])
     psi = np.arange(n_psi) * (2.0 * math.pi / n_psi)
     alpha = euler.dcm(psi[:, None], theta[None, :], phi[None, :])  # (n_psi, m, 3, 3): body -> Oy
-    C = np.einsum("ij,...jk->...ik", _frame(n), alpha)  # body -> Ox
+    C = np.einsum("ij,...jk->...ik", frame(n), alpha)  # body -> Ox
     omega = np.broadcast_to((g / body.A[:, None]).T, C.shape[:-1])
     Lb = np.zeros((3, g.shape[1]))
     Lo = np.zeros((3, g.shape[1]))
@@ -610,3 +586,76 @@ def separatrix_limits(
         s["dk2"] = sign * dk2_dD * (-2.0 * A2 * A2 / (Gf * Gf)) * s["dh"]
         slope[reg] = {q: (float(v) if np.ndim(v) == 0 else np.asarray(v)) for q, v in s.items()}
     return SeparatrixLimits(float(lim["dG"]), float(lim["dT"]), np.asarray(lim["dn"]), 0.0, slope)
+
+
+# --------------------------------------------------------------------------------------------------
+# what the integrators need: initial states on either side, the switch at the separatrix, the branch
+# --------------------------------------------------------------------------------------------------
+#: The averaged integration switches to the other side of the separatrix when k^2 reaches this value; the
+#: new kind of motion starts at the same k^2 with G and n continuous (T jumps by O(1e-9) relative: the two
+#: sides at 1 - k^2 = 1e-9 are that close in energy), and the time skipped is below 1e-7.
+K2_SWITCH = 1.0 - 1e-9
+
+
+def _initial_kind(body: Body, G0: float, k2_0: float | None, kind: str | None, T0: float | None
+                  ) -> tuple[float, str]:
+    """(k2_0, kind) from k2_0 and kind (defaults 0.99, 'max') or from the energy T0."""
+    if T0 is None:
+        kind = "max" if kind is None else kind
+        _check_kind(kind)
+        return (0.99 if k2_0 is None else k2_0), kind
+    if k2_0 is not None or kind is not None:
+        raise ValueError("give the initial state either by T0 or by k2_0 and kind, not both")
+    T0 = real(T0, "T0")
+    if T0 <= 0:
+        raise ValueError(f"T0 must be positive, got {T0}")
+    lo, hi = G0**2 / (2 * body.A1), G0**2 / (2 * body.A3)
+    if not (lo * (1 - 1e-12) <= T0 <= hi * (1 + 1e-12)):
+        raise ValueError(f"T0 must lie in [G0^2/(2 A1), G0^2/(2 A3)] = [{lo:.6g}, {hi:.6g}] (a rigid body), got {T0}")
+    k = kind_of(body, G0, T0)
+    if k == "separatrix":
+        raise ValueError(f"T0 = {T0} lies on the separatrix G0^2 = 2 T0 A2: start on either side of it")
+    return float(k2_from(body, G0, T0, k)), k
+
+
+BRANCHES = ("likely", "random")
+
+
+def _check_branch(branch: Any) -> Any:
+    """'likely', 'random', a region (kind, sigma) or a sequence of regions (one per crossing)."""
+    if isinstance(branch, str):
+        if branch not in BRANCHES:
+            raise ValueError(f"branch must be 'likely', 'random', a region such as ('max', 1) or a list of "
+                             f"regions, got {branch!r}")
+        return branch
+    try:
+        return (_check_region(branch, "branch"),)
+    except ValueError:
+        pass
+    try:
+        seq = tuple(branch)
+    except TypeError:
+        raise ValueError(f"branch must be 'likely', 'random', a region such as ('max', 1) or a list of regions, "
+                         f"got {branch!r}") from None
+    return tuple(_check_region(r, "branch") for r in seq)
+
+
+def _choose(crossing: SeparatrixCrossing, branch: Any, index: int, rng: np.random.Generator
+            ) -> tuple[Region | None, str]:
+    """The region the averaged motion continues in at crossing number ``index`` (or None and why not)."""
+    probs = crossing.probabilities
+    text = ", ".join(f"{r}: {p:.3g}" for r, p in probs.items() if p > 0)
+    if not crossing.crosses or crossing.undetermined > 0.5 or not any(p > 0 for p in probs.values()):
+        return None, ("the separatrix attracts from both sides: no region keeps the motions that reach it "
+                      f"(loop drifts {crossing.loop_drifts}); the averaged theory cannot continue")
+    if isinstance(branch, tuple) and index < len(branch):
+        want = branch[index]
+        if probs[want] <= 0.0:
+            return None, (f"the requested branch {want} is not entered: its averaged drift points back to the "
+                          f"separatrix (capture probability 0; probabilities {text})")
+        return want, ""
+    if branch == "random":
+        regions = [r for r in REGIONS if probs[r] > 0]
+        p = np.array([probs[r] for r in regions])
+        return regions[int(rng.choice(len(regions), p=p / p.sum()))], ""
+    return crossing.most_probable(), ""
