@@ -823,6 +823,15 @@ def _resonances(seg: _Segment) -> list[dict[str, float]]:
     return out
 
 
+def _slow_fields(A: tuple[float, float, float], y: np.ndarray, nvec: Any, nu: Any) -> dict[str, np.ndarray]:
+    """G, T (from (5) inverted, labelled moments A), k2, delta, n and nu of raw states y = (G, k2, ...)."""
+    G = y[0]
+    k2 = np.clip(y[1], 0.0, 1.0)
+    n = nvec(y) if y.shape[1] else np.empty((3, 0))
+    T = 0.5 * G**2 * np.array([_S_over_R(A, float(x)) for x in k2])
+    return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1.0, 1.0)), "n": n, "nu": nu}
+
+
 def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
     """Output fields of a segment (G, T, k2, delta, lam, nu, n), the quadrature report and the resonance check."""
     setup, res = seg.setup, seg.res
@@ -834,17 +843,13 @@ def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
         return n / np.linalg.norm(n, axis=0)
 
     def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
-        G = y[0]
-        k2 = np.clip(y[1], 0.0, 1.0)
-        n = nvec(y) if y.shape[1] else np.empty((3, 0))
-        T = 0.5 * G**2 * np.array([_S_over_R(A, float(x)) for x in k2])
         if eps == 0.0:
             nu = np.full_like(tau, seg.nu0)
         elif setup.orbit.e == 0.0:
             nu = (tau - seg.tau0) / eps + seg.nu0
         else:
             nu = y[5]
-        return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1.0, 1.0)), "n": n, "nu": nu}
+        return _slow_fields(A, y, nvec, nu)
 
     resonances = _resonances(seg) if eps > 0.0 and setup.resonance_tol is not None else []
     status, message, event = res.status, res.message, res.event
@@ -1147,16 +1152,13 @@ def _drag_piece(gen: _Generic, drag: Any, region: tuple[str, int], tau_span: Any
         return n / np.linalg.norm(n, axis=0)
 
     def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
-        G = y[0]
-        k2 = np.clip(y[1], 0.0, 1.0)
-        n = nvec(y) if y.shape[1] else np.empty((3, 0))
-        T = 0.5 * G**2 * np.array([_S_over_R(A, float(x)) for x in k2])
         if eps > 0.0 and not circular:
             nu = y[5]
         else:
             nu = tau * inv_eps + nu0 if eps > 0 else np.full_like(tau, nu0)
-        return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1.0, 1.0)), "n": n, "nu": nu,
-                "kind": np.full(tau.shape, kind), "sigma": np.full(tau.shape, sigma)}
+        out = _slow_fields(A, y, nvec, nu)
+        out["kind"], out["sigma"] = np.full(tau.shape, kind), np.full(tau.shape, sigma)
+        return out
 
     def finish(te: Any, lam_s: float) -> Solution:
         return _finish(res, te, make_fields, lam_s, nvec, lam_limit if eps == 0.0 else None)

@@ -300,10 +300,15 @@ def _captures(kind: str, loop: float, scale: float) -> bool:
     return loop < -tol if kind == "max" else loop > tol
 
 
-def _propagate(drifts: dict[Arc, float], source: Region, first: int = 0, max_steps: int = 200
+def _propagate(drifts: dict[Arc, float], source: Region, first: int = 0, max_steps: int = 200, floor: float = 0.0
                ) -> tuple[dict[Region, float], float, bool]:
-    """Capture probabilities from ``source`` by following the interval of h through the arc network."""
+    """Capture probabilities from ``source`` by following the interval of h through the arc network.
+
+    Drifts below ``floor`` in absolute value count as zero (a torque without effect on the separatrix).
+    """
     scale = max(abs(v) for v in drifts.values())
+    if scale <= floor:
+        return dict.fromkeys(REGIONS, 0.0), 0.0, False
     loops = {r: sum(drifts[a] for a in region_arcs(r)) for r in REGIONS}
     kind = source[0]
     a0 = region_arcs(source)[first]
@@ -456,7 +461,9 @@ def separatrix_crossing(
     nus2, wnu2 = _orbit_nodes(nu_, orb, max(2, n_nu // 2))
     coarse = _arc_drifts(sep, fn, n, nus2, wnu2, max(4, n_x // 2), max(2, n_psi // 2))
     err = max(abs(drifts[a] - coarse[a]) for a in ARCS)
-    probs, und, crosses = _propagate(drifts, src)
+    # drifts below 1e-12 of the separatrix energy per passage time count as zero: a torque that does not act on
+    # the separatrix (then no region keeps the motions reaching it: it attracts from all sides)
+    probs, und, crosses = _propagate(drifts, src, floor=1e-12 * sep.T / sep.rate)
     loops = {r: sum(drifts[a] for a in region_arcs(r)) for r in REGIONS}
     return SeparatrixCrossing(src, drifts, loops, probs, und, crosses, err)
 
@@ -646,8 +653,9 @@ def _choose(crossing: SeparatrixCrossing, branch: Any, index: int, rng: np.rando
     probs = crossing.probabilities
     text = ", ".join(f"{r}: {p:.3g}" for r, p in probs.items() if p > 0)
     if not crossing.crosses or crossing.undetermined > 0.5 or not any(p > 0 for p in probs.values()):
+        loops = ", ".join(f"{r}: {v:.3g}" for r, v in crossing.loop_drifts.items())
         return None, ("the separatrix attracts from both sides: no region keeps the motions that reach it "
-                      f"(loop drifts {crossing.loop_drifts}); the averaged theory cannot continue")
+                      f"(loop drifts {loops}); the averaged theory cannot continue")
     if isinstance(branch, tuple) and index < len(branch):
         want = branch[index]
         if probs[want] <= 0.0:
