@@ -299,3 +299,22 @@ def test_bad_input_is_refused_with_the_parameter_named():
         ep.Separatrix("body", 1.0)
     with pytest.raises(ValueError, match="mc"):
         ep.separatrix_limits(BODY, fn, 1.0, 0.5, 0.0, 0.0).near(("max", 1), 0.0)
+
+
+@pytest.mark.slow
+def test_branch_frequencies_of_simulate_match_the_capture_probabilities():
+    # the same check through the library's full equations (attitude and all: ep.simulate), 400 runs at
+    # eps = 0.05 (~90 s): initial k2 in [0.5, 0.6], phase u0 and precession angle psi0 uniform
+    M0 = [0.4, 0.0, -0.5]
+    p = p_max_plus(M0)
+    rng = np.random.default_rng(7)
+    n, hits = 400, 0
+    for _ in range(n):
+        k2 = rng.uniform(0.5, 0.6)
+        K = ep.EulerPoinsot(BODY, 1.0, k2, "min", 1).K
+        s = ep.simulate(BODY, constant(M0), 0.05, kind="min", k2_0=k2, u0=rng.uniform(0, 4 * K),
+                        psi0=rng.uniform(0, 2 * math.pi), tau_span=(0, 2.0), tau_eval=[2.0], min_spin_ratio=0)
+        region = (str(s.kind[-1]), int(s.sigma[-1]))
+        assert region in (("max", 1), ("min", -1)), region  # the two regions of positive probability only
+        hits += region == ("max", 1)
+    assert abs(hits / n - p) < 4 * math.sqrt(p * (1 - p) / n), (hits / n, p)
