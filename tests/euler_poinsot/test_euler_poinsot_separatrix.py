@@ -213,6 +213,16 @@ def test_capture_probabilities_do_not_depend_on_the_arc_the_bookkeeping_starts_f
                     assert p0[r] == pytest.approx(p1[r], abs=1e-12)
 
 
+def test_gravity_gradient_has_no_net_drift_along_any_arc():
+    # psi-averaged, the gravity torque's energy rate (omega - g/A2).L is odd along each arc (like g1 g2 g3):
+    # it moves no motion across the separatrix, at any true anomaly and direction of G
+    gg = ep.GravityGradient(BODY)
+    for nu, delta, lam in ((0.2, 0.7, 0.3), (1.9, 2.5, -1.0), (None, 1.2, 0.4)):
+        c = ep.separatrix_crossing(BODY, gg, 1.1, delta, lam, nu, ("min", 1))
+        assert max(abs(v) for v in c.drifts.values()) < 1e-13
+        assert not c.crosses
+
+
 def test_odd_torques_split_evenly():
     for src in (("min", 1), ("min", -1)):
         c = ep.separatrix_crossing(BODY, np.diag([0.919, 5.228, 1.666]), 1.0, 0.7, 0.3, 0.2, src)
