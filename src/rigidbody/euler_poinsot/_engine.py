@@ -115,6 +115,16 @@ def frame(n: np.ndarray) -> np.ndarray:
     return np.array([[n3 * c, -s, n1], [n3 * s, c, n2], [-h, 0.0, n3]])
 
 
+def amplitudes(st: _State) -> tuple[float, float, float]:
+    r"""The amplitudes of the Euler--Poinsot motion in the labelled axes (sec. 2):
+    :math:`\omega = (\sigma c_{dn}\operatorname{dn}, -\sigma k c_{sn}\operatorname{sn}, k c_{cn}\operatorname{cn})`."""
+    a1, a2, a3 = st.a
+    R = a1 * (a2 - a3) + a3 * (a1 - a2) * st.k2
+    G = st.G
+    return (G * math.sqrt((a2 - a3) / (a1 * R)), G * math.sqrt((a1 - a3) / (a2 * R)),
+            G * math.sqrt((a1 - a2) / (a3 * R)))
+
+
 def _symmetric_phase(n: int, mc: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """sn, cn, dn on ``n`` (a multiple of 4) uniform nodes of 4K, exactly symmetric: the first quarter
     period from the core, the rest by sn(2K - s) = sn s, cn(2K - s) = -cn s, f(s + 2K) = (-sn, -cn, dn).
@@ -132,12 +142,8 @@ def motion_nodes(st: _State, n_u: int) -> tuple[np.ndarray, np.ndarray]:
     r"""Body angular velocity ``(n_u, 3)`` and direction cosines :math:`\alpha_0` ``(n_u, 3, 3)`` at
     :math:`\psi = 0` on ``n_u`` uniform nodes of the period :math:`4K` (the closed form of sec. 2)."""
     b = st.body
-    a1, a2, a3 = st.a
     k2, G, s = st.k2, st.G, st.sigma
-    R = a1 * (a2 - a3) + a3 * (a1 - a2) * k2
-    c_dn = G * math.sqrt((a2 - a3) / (a1 * R))
-    c_sn = G * math.sqrt((a1 - a3) / (a2 * R))
-    c_cn = G * math.sqrt((a1 - a2) / (a3 * R))
+    c_dn, c_sn, c_cn = amplitudes(st)
     sn, cn, dn = _symmetric_phase(n_u, st.mc)
     k = math.sqrt(k2)
     omega = np.empty((n_u, 3))
