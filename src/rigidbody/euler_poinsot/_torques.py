@@ -20,8 +20,12 @@ vectorised over leading axes, so that the averaging engine evaluates a whole qua
 returns
     the body components of the torque, shape ``(..., 3)``.
 
-The arrays passed in may be read-only broadcast views: a torque must not write into them. The torque is in
-the module's section-3 scaling divided by :math:`\varepsilon^2` (the full equations in the slow time
+The leading axes of the three arguments broadcast against each other but need not be equal: the averaging
+engine passes ``omega`` of shape ``(1, 1, n, 3)``, ``C`` of shape ``(1, m, n, 3, 3)`` and ``nu`` of shape
+``(l, 1, 1)`` so that a torque that does not depend on the attitude or on ``nu`` is evaluated once per node
+of the phase (it checks on its first grid that the torque gives the same values as with full arrays, and
+passes full arrays otherwise). The arrays may be read-only views: a torque must not write into them. The
+torque is in the module's section-3 scaling divided by :math:`\varepsilon^2` (the full equations in the slow time
 :math:`\tau` read :math:`d\mathbf g/d\tau = \varepsilon^{-2}\,\mathbf g\times\boldsymbol\omega + \mathbf M`):
 Rachinskaya's drag is ``-I @ omega`` and the gravity-gradient torque is
 :math:`3f(\nu)\,\boldsymbol\rho\times(A\boldsymbol\rho)` with :math:`\boldsymbol\rho = C^T(\cos\nu, \sin\nu, 0)`
