@@ -905,11 +905,11 @@ def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
                        res.sol, res.nfev)
         resonances = [r for r in resonances if r["tau"] <= cut["tau"]]
     out = _finish(res, tau_eval, make_fields, lam0, nvec)
-    # the quadrature error along the run (relative to the size of the averaged torque), at the first, middle
-    # and last states (each estimate costs a few right-hand sides on the calibration grid)
+    # the quadrature error along the run (relative to the size of the averaged torque), at the first and the
+    # last state (each estimate costs a few right-hand sides on the calibration grid)
     qerr = 0.0
     if setup.averager.rest is not None and res.time.size:
-        for t in np.linspace(res.time[0], res.time[-1], min(3, res.time.size)):
+        for t in np.unique([res.time[0], res.time[-1]]):
             st = _state_of(setup, seg.kind, seg.sigma, float(t), res.sol(t), seg.tau0, seg.nu0)
             m, e = setup.averager.report(st)
             size = float(np.abs(m.L).max()) + abs(m.dT) / max(st.T, 1e-300) * st.G + 1e-300

@@ -257,7 +257,8 @@ def _nu_mean(M: np.ndarray, w: np.ndarray, step: int = 1) -> np.ndarray:
     if M.strides[0] == 0:  # the torque does not depend on nu (compact evaluation)
         return M[0]
     ws = w[::step]
-    return np.tensordot(ws / ws.sum(), M[::step], axes=(0, 0))
+    Ms = M[::step]
+    return ((ws / ws.sum()) @ Ms.reshape(Ms.shape[0], -1)).reshape(Ms.shape[1:])
 
 
 def lean_mean(torque: Any, st: _State, grid: Grid, compact: bool = False) -> np.ndarray:
