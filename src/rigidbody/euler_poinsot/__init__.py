@@ -79,16 +79,27 @@ from ._model import (
     spin_ratio,
 )
 from ._motion import EulerPoinsot
-from ._torques import FunctionTorque, GravityGradient, LinearDrag, Torque, TorqueSum
+from ._torques import (
+    ConstantTorque,
+    FunctionTorque,
+    GravityGradient,
+    LinearDrag,
+    MagneticDipole,
+    Torque,
+    TorqueSum,
+    ViscousCavity,
+)
 
 __all__ = [
     "KINDS",
     "Body",
+    "ConstantTorque",
     "Drag",
     "EulerPoinsot",
     "FunctionTorque",
     "GravityGradient",
     "LinearDrag",
+    "MagneticDipole",
     "N_star",
     "N_time",
     "Orbit",
@@ -96,6 +107,7 @@ __all__ = [
     "Torque",
     "TorqueAverage",
     "TorqueSum",
+    "ViscousCavity",
     "average_torque",
     "averaged",
     "averaged_rates",
