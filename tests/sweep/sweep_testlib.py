@@ -41,21 +41,29 @@ def calls(calls_dir: str) -> list[str]:
     return sorted(p.name.split("__")[0] for p in Path(calls_dir).iterdir())
 
 
-def counted(a: float, b: float, *, calls_dir: str, interrupt_at: float | None = None,
-            kill_at: float | None = None, delay: float = 0.0) -> dict:
-    """:func:`poly` that records its calls; ``interrupt_at``: raise KeyboardInterrupt at ``a`` (like Ctrl-C);
-    ``kill_at``: end its own process at ``a`` the first time (a killed worker), as told by a marker file."""
-    if interrupt_at is not None and a == interrupt_at and b == 0.0:
-        raise KeyboardInterrupt
-    if kill_at is not None and a == kill_at and b == 0.0:
-        marker = Path(calls_dir).parent / "killed"
+def _first(calls_dir: str, what: str, times: int = 1) -> bool:
+    """True for the first ``times`` visits (marker files made atomically, visible to every process)."""
+    for i in range(times):
         try:
-            fd = os.open(marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+            fd = os.open(Path(calls_dir).parent / f"{what}.{i}", os.O_CREAT | os.O_EXCL | os.O_WRONLY)
         except FileExistsError:
-            pass
-        else:
-            os.close(fd)
-            os._exit(3)
+            continue
+        os.close(fd)
+        return True
+    return False
+
+
+def counted(a: float, b: float, *, calls_dir: str, interrupt_at: float | None = None,
+            kill_at: float | None = None, kill_times: int = 1, delay: float = 0.0) -> dict:
+    """:func:`poly` that records its calls.
+
+    The first visit of ``(interrupt_at, 0)`` raises KeyboardInterrupt (like Ctrl-C), the first ``kill_times``
+    visits of ``(kill_at, 0)`` end its own process (a killed worker); later visits (a resumed run with the
+    same function) compute normally. "First" is told by marker files."""
+    if interrupt_at is not None and a == interrupt_at and b == 0.0 and _first(calls_dir, "interrupted"):
+        raise KeyboardInterrupt
+    if kill_at is not None and a == kill_at and b == 0.0 and _first(calls_dir, "killed", kill_times):
+        os._exit(3)
     record_call(calls_dir, a=a, b=b)
     if delay:
         import time
@@ -84,3 +92,14 @@ def poly_batched_raising(a: np.ndarray, b: np.ndarray) -> dict:
 
 def other_outputs(a: float, b: float) -> dict:
     return {"s": a + 2.0 * b}
+
+
+def changing(a: float, b: float, *, calls_dir: str) -> dict:
+    """A function whose code "changes" between runs: a second output once the file ``new_outputs`` exists.
+    The first visit of ``(3, 0)`` raises KeyboardInterrupt (an interrupted first run)."""
+    if a == 3.0 and b == 0.0 and _first(calls_dir, "interrupted"):
+        raise KeyboardInterrupt
+    out = {"s": a + 2.0 * b}
+    if (Path(calls_dir).parent / "new_outputs").exists():
+        out["q"] = np.array([a, b])
+    return out

@@ -103,10 +103,11 @@ def _from_store(st: Store, layout: Layout) -> tuple[_Arrays, np.ndarray]:
         mask = np.zeros(layout.shape, dtype=bool)
         for c in np.flatnonzero(done):
             mask[layout.slices(int(c))] = True
-        arrays.status[mask] = st.read("status")[mask]
-        arrays.message[mask] = st.read("message").astype(object)[mask]
+        chunks = [int(c) for c in np.flatnonzero(done)]
+        arrays.status[mask] = st.read("status", layout, chunks)[mask]
+        arrays.message[mask] = st.read("message", layout, chunks).astype(object)[mask]
         for name, arr in arrays.outputs.items():
-            arr[mask] = st.read(name)[mask]
+            arr[mask] = st.read(name, layout, chunks)[mask]
     return arrays, done
 
 
@@ -192,7 +193,6 @@ def sweep(
     if progress is not None and not isinstance(progress, bool):
         raise TypeError(f"progress must be None, True or False, got {progress!r}")
     g = check_grid(grid)
-    names = tuple(g)
     shape = tuple(int(v.size) for v in g.values())
     n_points = math.prod(shape)
     name = function_name(func)

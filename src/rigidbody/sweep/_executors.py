@@ -10,6 +10,7 @@ from __future__ import annotations
 import multiprocessing
 import os
 import sys
+from collections import deque
 from collections.abc import Iterator
 from concurrent.futures import FIRST_COMPLETED, Executor, Future, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
@@ -61,57 +62,84 @@ def new_pool(max_workers: int) -> ProcessPoolExecutor:
 
 
 def run_executor(executor: Executor | None, max_workers: int, tasks: Iterator[Task]) -> Iterator[ChunkResult | Lost]:
-    """Run on a ``concurrent.futures`` executor; ``None``: local processes we own (restarted if one dies)."""
+    """Run on a ``concurrent.futures`` executor; ``None``: local processes we own.
+
+    When a worker process dies, every chunk in flight fails with the pool. We restart the pool and run
+    those chunks again one at a time: the one that kills its worker again is lost (reported, not stored),
+    the others complete. A pool that breaks before finishing any chunk at all raises (the workers cannot
+    start, typically a script without a ``__main__`` guard).
+    """
     owned = executor is None
     pool: Executor = new_pool(max_workers) if executor is None else executor
     n_workers = max_workers if owned else int(getattr(executor, "_max_workers", None) or local_cpu_count())
     limit = 2 * max(1, n_workers)  # few chunks in flight: a broken pool or Ctrl-C loses little
-    pending: dict[Future[ChunkResult], int] = {}
+    pending: dict[Future[ChunkResult], Task] = {}
+    backlog: deque[Task] = deque()
     todo = iter(tasks)
-    exhausted = False
     clean = False
-    completed = 0  # chunks finished by the current pool
+    completed = 0
+
+    def restart() -> Executor:
+        pool.shutdown(wait=False, cancel_futures=True)
+        return new_pool(max_workers)
+
     try:
         while True:
-            while not exhausted and len(pending) < limit:
-                t = next(todo, None)
-                if t is None:
-                    exhausted = True
-                    break
-                pending[pool.submit(run_task, t)] = t.chunk
-            if not pending:
-                break
-            done, _ = wait(pending, return_when=FIRST_COMPLETED)
             broken = False
-            for fut in done:
-                c = pending.pop(fut)
-                exc = fut.exception()
+            while len(pending) < limit:
+                t = backlog.popleft() if backlog else next(todo, None)
+                if t is None:
+                    break
+                try:
+                    pending[pool.submit(run_task, t)] = t
+                except BrokenProcessPool:
+                    backlog.appendleft(t)
+                    broken = True
+                    break
+            if not pending and not broken:
+                break
+            suspects: list[Task] = []
+            if pending:
+                done, _ = wait(pending, return_when=FIRST_COMPLETED)
+                for fut in done:
+                    t = pending.pop(fut)
+                    exc = fut.exception()
+                    if exc is None:
+                        completed += 1
+                        yield fut.result()
+                    elif isinstance(exc, BrokenProcessPool):
+                        broken = True
+                        suspects.append(t)
+                    elif not isinstance(exc, Exception):
+                        raise exc  # KeyboardInterrupt, SystemExit raised in a worker: stop the sweep
+                    else:
+                        yield Lost(t.chunk, f"the chunk's task failed: {type(exc).__name__}: {exc}")
+            if not broken:
+                continue
+            if not completed:
+                raise RuntimeError(
+                    "a local worker process died before any chunk finished: a script must start the sweep under "
+                    "`if __name__ == '__main__':` (the workers are spawned and import the script), or the "
+                    "function ended its process")
+            suspects += list(pending.values())  # they fail with the pool
+            pending.clear()
+            if not owned:
+                for t in [*suspects, *backlog, *todo]:
+                    yield Lost(t.chunk, "a worker process died and broke the executor")
+                break
+            pool = restart()
+            for t in sorted(suspects, key=lambda x: x.chunk):  # one at a time: find the chunk that kills
+                fut = pool.submit(run_task, t)
+                exc = wait([fut]) and fut.exception()
                 if exc is None:
-                    completed += 1
                     yield fut.result()
                 elif isinstance(exc, BrokenProcessPool):
-                    broken = True
-                    yield Lost(c, f"a worker process died while this chunk was in flight ({exc})")
+                    yield Lost(t.chunk, "its worker process died (twice: once among others, once alone)")
+                    pool = restart()
                 elif not isinstance(exc, Exception):
-                    raise exc  # KeyboardInterrupt, SystemExit raised in a worker: stop the sweep
+                    raise exc
                 else:
-                    yield Lost(c, f"the chunk's task failed: {type(exc).__name__}: {exc}")
-            if broken:
-                if not completed:
-                    raise RuntimeError(
-                        "a local worker process died before any chunk finished (a script must start the sweep "
-                        "under `if __name__ == '__main__':`, since the workers are spawned and import the "
-                        "script; or the function ended its process)")
-                completed = 0
-                for fut, c in list(pending.items()):
-                    yield Lost(c, "a worker process died while this chunk was in flight")
-                pending.clear()
-                if not owned:
-                    for t in todo:
-                        yield Lost(t.chunk, "the executor broke (a worker process died)")
-                    break
-                pool.shutdown(wait=False, cancel_futures=True)
-                pool = new_pool(max_workers)
+                    yield Lost(t.chunk, f"the chunk's task failed: {type(exc).__name__}: {exc}")
         clean = True
     finally:
         if owned:
@@ -138,7 +166,7 @@ def run_dask(client: Any, tasks: Iterator[Task]) -> Iterator[ChunkResult | Lost]
     futures = {client.submit(run_task, t, pure=False): t.chunk for t in tasks}
     remaining = dict(futures)
     try:
-        for fut in distributed.as_completed(list(futures)):
+        for fut in distributed.as_completed(list(futures), loop=client.loop):
             c = remaining.pop(fut)
             if fut.status == "finished":
                 yield fut.result()

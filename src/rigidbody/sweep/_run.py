@@ -98,7 +98,7 @@ def _load_function(blob: bytes) -> Any:
     if key not in _loaded:
         if len(_loaded) > 8:
             _loaded.clear()
-        _loaded[key] = pickle.loads(blob)  # noqa: S301 - the blob was pickled by the caller's own process
+        _loaded[key] = pickle.loads(blob)  # pickled by the sweeping process itself
     return _loaded[key]
 
 
