@@ -23,6 +23,9 @@ MODULES = [
     "rigidbody.viscous",
     "rigidbody.plotting",
     "rigidbody.paperfigs",
+    "rigidbody.sweep",
+    "rigidbody.studies",
+    "rigidbody.plotting.studies",
 ] + [f"rigidbody.core.{name}" for name in importlib.import_module("rigidbody.core").__all__]
 
 

@@ -168,15 +168,13 @@ def run_dask(client: Any, tasks: Iterator[Task]) -> Iterator[ChunkResult | Lost]
     try:
         for fut in distributed.as_completed(list(futures), loop=client.loop):
             c = remaining.pop(fut)
-            if fut.status == "finished":
-                yield fut.result()
-            elif fut.status == "error":
-                exc = fut.exception()
-                if not isinstance(exc, Exception):
-                    raise exc  # KeyboardInterrupt, SystemExit: stop the sweep
+            try:
+                # a result whose worker died after it finished is recomputed by the scheduler: result() waits
+                res = fut.result()
+            except Exception as exc:  # the task failed as a whole (e.g. KilledWorker after Dask's retries)
                 yield Lost(c, f"the chunk's task failed on the cluster: {type(exc).__name__}: {exc}")
             else:
-                yield Lost(c, f"the chunk's task was {fut.status} on the cluster")
+                yield res
             fut.release()
     finally:
         if remaining:

@@ -106,11 +106,11 @@ def _describe(exc: BaseException) -> str:
     return f"{type(exc).__name__}: {exc}"
 
 
-def _as_outputs(out: Any, names: tuple[str, ...], allow_status: bool = False) -> dict[str, np.ndarray]:
+def _as_outputs(out: Any, names: tuple[str, ...], allow_status: bool = False) -> dict[str, Any]:
     if not isinstance(out, Mapping):
         raise TypeError(f"the function must return a mapping of output names to numbers or arrays, "
                         f"got {type(out).__name__}")
-    res: dict[str, np.ndarray] = {}
+    res: dict[str, Any] = {}
     for key, value in out.items():
         if allow_status and key in RESERVED:
             continue
@@ -119,18 +119,21 @@ def _as_outputs(out: Any, names: tuple[str, ...], allow_status: bool = False) ->
         if key in RESERVED or key in names:
             raise ValueError(f"output name {key!r} collides with a grid name or the sweep's own "
                              f"variables {RESERVED}")
+        if type(value) is float:  # the common case, without a NumPy round trip
+            res[key] = value
+            continue
         a = np.asarray(value)
         if a.dtype.kind not in "biuf":
             raise TypeError(f"output {key!r} must be real numbers, got dtype {a.dtype}")
-        res[key] = a.astype(float)
+        res[key] = a.astype(float) if a.ndim else float(a)
     return res
 
 
-def _schema(outputs: dict[str, np.ndarray], lead: int = 0) -> dict[str, tuple[int, ...]]:
-    return {k: tuple(int(s) for s in v.shape[lead:]) for k, v in outputs.items()}
+def _schema(outputs: dict[str, Any], lead: int = 0) -> dict[str, tuple[int, ...]]:
+    return {k: () if type(v) is float else tuple(int(s) for s in np.shape(v)[lead:]) for k, v in outputs.items()}
 
 
-def _pack(chunk: int, rows: list[dict[str, np.ndarray] | None], status: np.ndarray,
+def _pack(chunk: int, rows: list[dict[str, Any] | None], status: np.ndarray,
           message: list[str]) -> ChunkResult:
     """Stack per-point outputs; a point whose outputs differ from the chunk's first good point fails."""
     n = len(rows)
@@ -149,6 +152,9 @@ def _pack(chunk: int, rows: list[dict[str, np.ndarray] | None], status: np.ndarr
     outputs: dict[str, np.ndarray] = {}
     if schema is not None:
         for k, shp in schema.items():
+            if shp == ():
+                outputs[k] = np.array([np.nan if row is None else row[k] for row in rows], dtype=float)
+                continue
             a = np.full((n, *shp), np.nan)
             for i, row in enumerate(rows):
                 if row is not None:
@@ -159,11 +165,12 @@ def _pack(chunk: int, rows: list[dict[str, np.ndarray] | None], status: np.ndarr
 
 def _per_point(func: Any, names: tuple[str, ...], points: list[np.ndarray], chunk: int) -> ChunkResult:
     n = points[0].size if points else 0
-    rows: list[dict[str, np.ndarray] | None] = []
+    rows: list[dict[str, Any] | None] = []
     status = np.zeros(n, dtype=np.int64)
     message = [""] * n
+    columns = [p.tolist() for p in points]  # Python scalars
     for i in range(n):
-        kwargs = {name: p[i].item() for name, p in zip(names, points)}
+        kwargs = {name: c[i] for name, c in zip(names, columns)}
         try:
             rows.append(_as_outputs(func(**kwargs), names))
         except Exception as exc:  # a failing point is recorded, the sweep goes on
@@ -216,7 +223,7 @@ def compute_chunk(func: Any, is_batched_func: bool, names: tuple[str, ...], coor
                 parts.append(_batched_call(func, names, one, chunk))
             except Exception as exc:
                 parts.append(ChunkResult(chunk, 1, None, {}, np.array([RAISED]), [_describe(exc)]))
-        rows: list[dict[str, np.ndarray] | None] = []
+        rows: list[dict[str, Any] | None] = []
         for part in parts:
             ok = part.schema is not None and part.status[0] == OK
             rows.append({k: v[0] for k, v in part.outputs.items()} if ok else None)
