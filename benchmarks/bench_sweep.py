@@ -15,6 +15,7 @@ Run: python benchmarks/bench_sweep.py
 
 from __future__ import annotations
 
+import os
 import time
 from functools import partial
 
@@ -22,6 +23,7 @@ import numpy as np
 
 from rigidbody import gyrostat, studies
 from rigidbody.sweep import gyrostat_stability, sweep
+from rigidbody.sweep._executors import local_cpu_count
 
 
 def trivial(a: float, b: float) -> dict[str, float]:
@@ -59,8 +61,10 @@ def main() -> None:
     t_ser, ds = timed(lambda: sweep(studies.spin_end, grid, executor="serial", progress=False))
     t_proc, dp = timed(lambda: sweep(studies.spin_end, grid, progress=False))
     same = bool(np.array_equal(ds["regime"].values, dp["regime"].values))
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     print(f"spin_end (one averaged evolution per point), 256 points: serial {t_ser:.2f} s, local processes "
-          f"{t_proc:.2f} s: speed-up {t_ser / t_proc:.2f}x; identical: {same}")
+          f"({local_cpu_count()} workers) {t_proc:.2f} s: speed-up {t_ser / t_proc:.2f}x; identical: {same}; "
+          f"load average {load:.1f} on {os.cpu_count()} CPUs (other jobs take their share)")
 
     sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
     g = {"theta0": np.linspace(-1.2, 1.2, 100), "k2": np.linspace(-0.05, 0.05, 50)}

@@ -10,7 +10,7 @@ small parameter and the initial state with :func:`rigidbody.sweep.sweep`:
 * Lagrange top (Akulenko, Leshchenko, Chernousko 1979): the first approximation (3.4) against the full
   equations (1.1) over tau in [0, 2], over (eps, theta0); the theory's order is eps.
 
-The quick grids run in seconds on local processes. For the full grids (about 440 and 590 full simulations,
+The quick grids run in seconds on local processes. For the full grids (440 and 585 full simulations,
 the smallest eps costing seconds each) set ``SIZE = "full"`` and, to use a Dask cluster, ``EXECUTOR`` to its
 scheduler address: that is the one line that changes. ``STORE`` keeps finished chunks, so an interrupted
 run resumes where it stopped. Writes study_averaging.png in the current directory.

@@ -229,3 +229,26 @@ def test_the_stores_chunk_layout_wins(tmp_path, calls):
     again = sweep(f, GRID, executor="serial", store=store, progress=False, chunk_size=7)
     xr.testing.assert_identical(again, ref)
     assert len(lib.calls(str(calls))) == A.size * B.size
+
+
+def test_a_string_grid_in_a_store(tmp_path):
+    def f(kind, x):
+        return {"y": x if kind == "max" else -x}
+
+    store = tmp_path / "s.zarr"
+    grid = {"kind": ["max", "min"], "x": [1.0, 2.0, 3.0]}
+    ds = sweep(f, grid, executor="serial", store=store, progress=False, chunk_size=2)
+    np.testing.assert_array_equal(ds["y"].values, [[1.0, 2.0, 3.0], [-1.0, -2.0, -3.0]])
+    xr.testing.assert_identical(load(store), ds)
+    xr.testing.assert_identical(sweep(f, grid, executor="serial", store=store, progress=False), ds)
+    with pytest.raises(ValueError, match="other values of 'kind'"):
+        sweep(f, {"kind": ["max", "mid"], "x": [1.0, 2.0, 3.0]}, executor="serial", store=store, progress=False)
+    # equal numbers are the same grid whatever their dtype
+    ints = sweep(lambda_free_int, {"n": [1, 2, 3]}, executor="serial", store=tmp_path / "i.zarr", progress=False)
+    floats = sweep(lambda_free_int, {"n": [1.0, 2.0, 3.0]}, executor="serial", store=tmp_path / "i.zarr",
+                   progress=False)
+    np.testing.assert_array_equal(ints["m"].values, floats["m"].values)
+
+
+def lambda_free_int(n):
+    return {"m": 2.0 * n}

@@ -75,7 +75,7 @@ def solution_to_xarray(sol: Any, batch_dims: Any = None) -> Any:
     time = np.asarray(sol.time)
     data: dict[str, Any] = {}
     for name in sol.fields:
-        a = np.asarray(sol[name])
+        a = np.asarray(getattr(sol, name))
         if a.shape[:nb] != batch_shape or a.shape[-1:] != time.shape:
             raise ValueError(f"field {name!r} has shape {a.shape}, not batch {batch_shape} + (..., {time.size})")
         if a.ndim == nb + 1:

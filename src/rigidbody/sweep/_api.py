@@ -325,8 +325,7 @@ def load(store: str | os.PathLike[str]) -> Any:
     st = Store.open(store, create=False)
     if st is None:
         raise FileNotFoundError(f"no sweep store at {os.fspath(store)!r}")
-    g = {n: np.asarray(st.group[n][:]) for n in st.meta["grid"]}
-    g = {n: (v.astype(str) if v.dtype.kind in "OT" else v) for n, v in g.items()}
+    g = {n: st.coordinate(n) for n in st.meta["grid"]}
     layout = Layout(tuple(v.size for v in g.values()), st.block)
     arrays, _ = _from_store(st, layout)
     return arrays.dataset(g, st.meta["function"])

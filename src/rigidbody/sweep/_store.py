@@ -122,14 +122,20 @@ class Store:
             raise ValueError(f"{where} holds a sweep over the grid {list(self.meta['grid'])}, not over "
                              f"{list(grid)} (names and order must agree)")
         for name, values in grid.items():
-            stored = np.asarray(self.group[name][:])
+            stored = self.coordinate(name)
+            numeric = stored.dtype.kind in "biuf" and values.dtype.kind in "biuf"
             same = stored.shape == values.shape and (
-                np.array_equal(stored, values, equal_nan=True) if values.dtype.kind in "fc"
-                else np.array_equal(stored.astype(values.dtype), values))
+                np.array_equal(stored.astype(float), values.astype(float), equal_nan=True) if numeric
+                else stored.dtype.kind == values.dtype.kind and np.array_equal(stored, values))
             if not same:
                 raise ValueError(f"{where} holds a sweep with other values of {name!r} ({stored.size} values "
                                  f"from {stored[0]!r} to {stored[-1]!r}); the grid given has {values.size} "
                                  f"from {values[0]!r} to {values[-1]!r}")
+
+    def coordinate(self, name: str) -> np.ndarray:
+        """A grid coordinate as stored (strings as a NumPy ``str`` array, whatever zarr returns)."""
+        a = np.asarray(self.group[name][:])
+        return np.array(a.tolist(), dtype=str) if a.dtype.kind in "OTU" else a
 
     def check_outputs(self, schema: dict[str, tuple[int, ...]], function: str) -> None:
         stored = self.outputs
