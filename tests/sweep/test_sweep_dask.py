@@ -8,11 +8,10 @@ import subprocess
 import sys
 import time
 from functools import partial
-from pathlib import Path
 
 import sweep_testlib as lib
 import xarray as xr
-from test_sweep_store import GRID, HERE, SRC, _reference, _resume, _same_results
+from test_sweep_store import GRID, HERE, SRC, _quiet, _reference, _resume, _same_results
 
 from rigidbody.sweep import sweep
 
@@ -40,18 +39,6 @@ def test_a_killed_dask_worker_loses_nothing(client, tmp_path):
     ds = sweep(f, GRID, executor=client, progress=False, chunk_size=3)
     _same_results(ds, _reference())
     assert (tmp_path / "killed.0").exists()
-
-
-def _quiet(calls: Path, for_s: float = 1.0, timeout: float = 30.0) -> None:
-    """Wait until no call file appears for ``for_s`` seconds (tasks already running on the cluster finish)."""
-    t0 = time.monotonic()
-    n, since = -1, time.monotonic()
-    while time.monotonic() - since < for_s:
-        m = len(list(calls.iterdir()))
-        if m != n:
-            n, since = m, time.monotonic()
-        assert time.monotonic() - t0 < timeout
-        time.sleep(0.05)
 
 
 def test_an_interrupted_dask_client_resumes_from_its_store(client, cluster, tmp_path):

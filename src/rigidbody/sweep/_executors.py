@@ -17,7 +17,7 @@ from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from typing import Any
 
-from ._run import ChunkResult, Task, compute_chunk, ignore_sigint, run_task
+from ._run import ChunkResult, Task, compute_chunk, init_worker, run_task
 
 
 @dataclass(frozen=True)
@@ -58,7 +58,7 @@ def new_pool(max_workers: int) -> ProcessPoolExecutor:
     # GUI); the function travels pickled by value where it must (cloudpickle), so functions of a script's
     # or a notebook's __main__ work
     return ProcessPoolExecutor(max_workers=max_workers, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=ignore_sigint)
+                               initializer=init_worker, initargs=(os.getpid(),))
 
 
 def run_executor(executor: Executor | None, max_workers: int, tasks: Iterator[Task]) -> Iterator[ChunkResult | Lost]:

@@ -238,8 +238,23 @@ def run_task(task: Task) -> ChunkResult:
     return compute_chunk(func, task.is_batched, task.names, task.coords, task.chunk)
 
 
-def ignore_sigint() -> None:
-    """Initializer of local worker processes: Ctrl-C is handled by the sweeping process, which ends them."""
+def init_worker(parent: int) -> None:
+    """Initializer of local worker processes.
+
+    Ctrl-C is handled by the sweeping process, which ends its workers. A worker whose sweeping process
+    died (killed: it could not end them) ends itself: its task queue would never close, and it would wait
+    forever.
+    """
+    import os
     import signal
+    import threading
+    import time
 
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+    def watch() -> None:
+        while os.getppid() == parent:
+            time.sleep(0.5)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="rigidbody-sweep-parent-watch", daemon=True).start()
