@@ -237,3 +237,12 @@ def test_gyrostat_stability_wrapper_reproduces_the_stability_map():
 
 def test_status_constants():
     assert (NOT_COMPUTED, RAISED) == (-1, 1)
+
+
+def test_docstring_example_runs():
+    import doctest
+
+    import rigidbody.sweep._api as api
+
+    result = doctest.testmod(api, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    assert result.attempted > 0 and result.failed == 0
