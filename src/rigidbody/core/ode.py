@@ -129,6 +129,23 @@ class Solution:
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """Draw the module's standard figure (:func:`rigidbody.plotting.plot_solution`); returns the Axes."""
         return _display.plot_solution(self, ax, **kwargs)
+    def to_xarray(self, batch_dims: Any = None) -> Any:
+        """This result as an ``xarray.Dataset``: time as a dimension, batch axes kept (needs xarray).
+
+        Parameters
+        ----------
+        batch_dims : sequence of str or mapping of str to array_like, optional
+            Names (and coordinates) of the batch dimensions; default ``batch_0, batch_1, ...``.
+
+        Returns
+        -------
+        xarray.Dataset
+            One variable per field (dimensions: the batch's, ``component`` for vector fields, then the
+            time ``t`` or ``tau`` with the times as coordinate), ``status`` and ``message`` per member.
+        """
+        from ._xarray import solution_to_xarray
+
+        return solution_to_xarray(self, batch_dims)
 
     def __repr__(self) -> str:
         n = self.time.size
