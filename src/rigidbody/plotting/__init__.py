@@ -7,7 +7,7 @@ what every module uses (axes creation, the unit sphere, time series). Matplotlib
 modules only; ``import rigidbody`` does not import them.
 """
 
-from . import common, euler_poinsot, gyrostat, lagrange, viscous
+from . import common, euler_poinsot, gyrostat, lagrange, studies, viscous
 from .common import STANDARD_PLOTS, get_ax, plot_solution, standard_plot, time_series, unit_sphere
 from .euler_poinsot import (
     equal_3d,
@@ -21,6 +21,7 @@ from .euler_poinsot import (
 )
 from .gyrostat import VERDICT_COLORS, dumbbell_side_view, normalized_map_plot, plot_satellite_motion, stability_map_plot
 from .lagrange import plot_averaged, plot_integrals, plot_roots, plot_top_motion, slow_time_axis
+from .studies import REGIME_COLORS, averaging_error_plot, scaled_error_map, spin_end_map
 from .viscous import (
     ball_and_rod_sketch,
     look_from,
@@ -31,8 +32,10 @@ from .viscous import (
 )
 
 __all__ = [
+    "REGIME_COLORS",
     "STANDARD_PLOTS",
     "VERDICT_COLORS",
+    "averaging_error_plot",
     "ball_and_rod_sketch",
     "common",
     "dumbbell_side_view",
@@ -56,12 +59,15 @@ __all__ = [
     "plot_solution",
     "plot_top_motion",
     "quasi_coordinate_histories",
+    "scaled_error_map",
     "slow_time_axis",
     "slow_variables",
     "sphere_path",
+    "spin_end_map",
     "spiral_axis",
     "stability_map_plot",
     "standard_plot",
+    "studies",
     "time_series",
     "turn_solid_angle",
     "unit_sphere",
