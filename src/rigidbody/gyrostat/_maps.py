@@ -68,9 +68,10 @@ class StabilityMap:
         out = np.empty((*self.shape, 5))
         out[..., 0] = self.s1
         out[..., 1] = s2
-        np.multiply(s2, self._parts["a11"], out=out[..., 2])
-        np.multiply(s2, self._parts["C"], out=out[..., 3])
-        np.multiply(s2, self.s3, out=out[..., 4])
+        with np.errstate(over="ignore", invalid="ignore"):
+            np.multiply(s2, self._parts["a11"], out=out[..., 2])
+            np.multiply(s2, self._parts["C"], out=out[..., 3])
+            np.multiply(s2, self.s3, out=out[..., 4])
         out[self.code == -1] = np.nan
         return out
 
