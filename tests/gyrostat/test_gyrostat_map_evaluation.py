@@ -86,3 +86,33 @@ def test_non_finite_and_overflowing_input_is_invalid_without_warnings():
         assert mp.code[0, 4:6].tolist() == mp.code[0, 6:8].tolist() and np.all(mp.code[:, 6:8] >= 0)
         bad_body = gyrostat.stability_map(SAT, 1.0, 0.3, k2=0.01, M=np.array([1.0, math.inf, math.nan]), grid=False)
         assert bad_body.code.tolist()[1:] == [-1, -1] and bad_body.code[0] >= 0
+
+
+def test_closed_form_a_ij_equal_the_elimination_of_the_printed_entries():
+    """second_variation_side writes a22, a23, a33 of (2.5) in closed form (W_g2g2 and W_b3g2 combined
+    through the third relation (2.4)); a_matrix builds them from the entries one by one, as printed.  Equal
+    to rounding, over random bodies, tilts in all four quadrants and both signs of omega0."""
+    from rigidbody.gyrostat._stability import a_matrix, hessian_entries, second_variation_side
+    from rigidbody.gyrostat._stationary import family_side
+
+    rng = np.random.default_rng(8)
+    n = 400
+    a = rng.uniform(0.3, 1.0, (n, 3))
+    A = a / a.mean(axis=1, keepdims=True) * rng.uniform(0.01, 0.3, n)[:, None] ** 2
+    ok = (A[:, 0] <= A[:, 1] + A[:, 2]) & (A[:, 1] <= A[:, 0] + A[:, 2]) & (A[:, 2] <= A[:, 0] + A[:, 1])
+    A = A[ok]
+    th = rng.uniform(-3.1, 3.1, A.shape[0])
+    sgn = rng.choice([-1.0, 1.0], A.shape[0])
+    f = family_side(1.0, A[:, 0], A[:, 1], A[:, 2], 1.0, 1.0, th, sgn)
+    d = second_variation_side(f, 1.0, A[:, 0], A[:, 1], A[:, 2], 1.0, 1.0)
+    e = hessian_entries(1.0, A[:, 0], A[:, 1], A[:, 2], 1.0, 1.0, th, f["kappa0"], f["omega0"], 0.0, f["S0"])
+    ref = a_matrix(e, th, f["kappa0"])
+    use = d["valid"]
+    got = {"a11": d["a11"], "a22": d["a22"], "a12": d["a12"], "a13": d["a13"], "a23": d["a23"], "a33": d["a33_0"]}
+    where = {"a11": (0, 0), "a22": (1, 1), "a12": (0, 1), "a13": (0, 2), "a23": (1, 2), "a33": (2, 2)}
+    # entries of size O(1) built from terms of size O(1) (nondimensional, l/R <= 0.3) and 1/cos^3 up to
+    # ~1e3 near the singular chart: 1e-12 of the row scale
+    scale = np.max(np.abs(ref[use]), axis=(1, 2))
+    for name, (i, j) in where.items():
+        err = np.abs(got[name][use] - ref[use][:, i, j]) / scale
+        assert np.max(err) < 1e-12, (name, np.max(err))

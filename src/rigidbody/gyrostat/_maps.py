@@ -58,19 +58,21 @@ class StabilityMap:
     s3: np.ndarray
     degree: np.ndarray
     code: np.ndarray
-    #: k2-free parts behind the lazy minors: a11 and a11 a22 - a12^2
+    #: what the lazy minors recompute a11 and a11 a22 - a12^2 from: the side parameters, omega_sign, rtol
     _parts: dict[str, Any] = field(repr=False, compare=False)
 
     @cached_property
     def minors(self) -> np.ndarray:
         """The leading minors ``s1, s2, s2 a11, s2 (a11 a22 - a12^2), s2 s3`` (NaN at invalid points)."""
         s2 = self.s2
+        with np.errstate(all="ignore"):  # a11 and a11 a22 - a12^2 do not involve k2: per theta0 on a grid
+            _, d = _side(self._parts["side"], self._parts["omega_sign"], self._parts["rtol"])
         out = np.empty((*self.shape, 5))
         out[..., 0] = self.s1
         out[..., 1] = s2
         with np.errstate(over="ignore", invalid="ignore"):
-            np.multiply(s2, self._parts["a11"], out=out[..., 2])
-            np.multiply(s2, self._parts["C"], out=out[..., 3])
+            np.multiply(s2, d["a11"], out=out[..., 2])
+            np.multiply(s2, d["C"], out=out[..., 3])
             np.multiply(s2, self.s3, out=out[..., 4])
         out[self.code == -1] = np.nan
         return out
@@ -187,8 +189,25 @@ def stability_map(
     return _evaluate(arrs, shape, kname, omega_sign, rtol)
 
 
-#: points per block of the evaluation: its temporaries stay in the CPU cache (2**15 doubles = 256 kB)
-_BLOCK = 1 << 15
+#: points per block of the evaluation: its temporaries stay in the CPU cache (2**14 doubles = 128 kB)
+_BLOCK = 1 << 14
+
+_SIDE_NAMES = ("M", "A1", "A2", "A3", "mu", "R0", "theta0")
+
+
+def _physical(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any) -> Any:
+    """A body (positive masses, triangle inequalities) that fits inside its orbit (_stationary.check_fits)."""
+    with np.errstate(all="ignore"):
+        return (
+            (M > 0) & (A1 > 0) & (A2 > 0) & (A3 > 0) & (mu > 0) & (R0 > 0)
+            & (A1 <= (A2 + A3) * (1 + 1e-12)) & (A2 <= (A1 + A3) * (1 + 1e-12)) & (A3 <= (A1 + A2) * (1 + 1e-12))
+            & (R0**2 > (A1 + A2 + A3) / (2 * M))
+        )
+
+
+def _side(p: dict[str, np.ndarray], omega_sign: int, rtol: float) -> tuple[dict, dict]:
+    f = family_side(p["M"], p["A1"], p["A2"], p["A3"], p["mu"], p["R0"], p["theta0"], omega_sign)
+    return f, second_variation_side(f, p["M"], p["A1"], p["A2"], p["A3"], p["mu"], p["R0"], rtol=rtol)
 
 
 def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, omega_sign: int,
@@ -201,19 +220,20 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
     """
     nd = len(shape)
     pad = {n: a.reshape((1,) * (nd - a.ndim) + a.shape) for n, a in arrs.items()}
-    side_names = ("M", "A1", "A2", "A3", "mu", "R0", "theta0")
-    side_shape = np.broadcast_shapes(*(pad[n].shape for n in side_names))
+    side_shape = np.broadcast_shapes(*(pad[n].shape for n in _SIDE_NAMES))
     ax = int(np.argmax(shape)) if nd else 0
     n_ax = shape[ax] if nd else 1
     per = math.prod(shape) // max(n_ax, 1)
     step = max(1, _BLOCK // max(per, 1))
     side_cut = nd > 0 and side_shape[ax] == n_ax  # the side quantities vary along the blocked axis
+    body = [pad[n] for n in ("M", "A1", "A2", "A3", "mu", "R0")]
+    physical_all = _physical(*body) if all(b.size == 1 for b in body) else None  # once for a fixed body
 
     kfull = "k3" if kname == "k2" else "k2"  # the computed component; the given one is returned as a view
     full = {n: np.empty(shape) for n in (kfull, "s2", "s3")}
     degree = np.empty(shape, dtype=np.int64)
     code = np.empty(shape, dtype=np.int8)
-    side = {n: np.empty(side_shape) for n in ("kappa0", "omega0", "s1", "a11", "C")}
+    side = {n: np.empty(side_shape) for n in ("kappa0", "omega0", "s1")}
 
     def cut(a: np.ndarray, sl: slice) -> np.ndarray:
         if nd == 0 or a.shape[ax] != n_ax or n_ax == 1:
@@ -223,17 +243,10 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
     for i0 in range(0, n_ax, step):
         sl = slice(i0, i0 + step)
         p = {n: cut(pad[n], sl) for n in pad}
-        M, A1, A2, A3, mu, Rv = p["M"], p["A1"], p["A2"], p["A3"], p["mu"], p["R0"]
         with np.errstate(all="ignore"):
-            physical = (
-                (M > 0) & (A1 > 0) & (A2 > 0) & (A3 > 0) & (mu > 0) & (Rv > 0)
-                & (A1 <= (A2 + A3) * (1 + 1e-12)) & (A2 <= (A1 + A3) * (1 + 1e-12))
-                & (A3 <= (A1 + A2) * (1 + 1e-12))
-                & (Rv**2 > (A1 + A2 + A3) / (2 * M))  # the body fits inside its orbit (_stationary.check_fits)
-            )
-            f = family_side(M, A1, A2, A3, mu, Rv, p["theta0"], omega_sign)
-            d = second_variation_side(f, M, A1, A2, A3, mu, Rv, rtol=rtol)
-            valid = d["valid"] & physical
+            f, d = _side(p, omega_sign, rtol)
+            valid = d["valid"] & (_physical(*(p[n] for n in ("M", "A1", "A2", "A3", "mu", "R0")))
+                                  if physical_all is None else physical_all)
             if kname == "k2":
                 k2 = p["k2"]
                 # k3 by the first relation (2.4); NaN where cos(theta0 + kappa0) = 0 (invalid there anyway)
@@ -260,9 +273,9 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
                 degree[blk][bad] = -1
             if side_cut or i0 == 0:
                 sblk = blk if side_cut else (slice(None),) * nd
-                for n, x in (("kappa0", f["kappa0"]), ("omega0", f["omega0"]), ("s1", d["g1g1"]),
-                             ("a11", d["a11"]), ("C", d["C"])):
-                    side[n][sblk] = x
+                side["kappa0"][sblk] = f["kappa0"]
+                side["omega0"][sblk] = f["omega0"]
+                side["s1"][sblk] = d["g1g1"]
 
     def b(x: np.ndarray) -> np.ndarray:
         return np.broadcast_to(x, shape)
@@ -272,7 +285,7 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
         s1 = np.where(code == -1, np.nan, s1)
     P = {n: np.broadcast_to(v, shape) for n, v in arrs.items()}
     ks = {kname: P[kname], kfull: full[kfull]}
-    parts = {"a11": side["a11"], "C": side["C"]}
+    parts = {"side": {n: pad[n] for n in _SIDE_NAMES}, "omega_sign": omega_sign, "rtol": rtol}
     return StabilityMap(
         params=P, kappa0=b(side["kappa0"]), omega0=b(side["omega0"]), k2=ks["k2"], k3=ks["k3"],
         s1=s1, s2=full["s2"], s3=full["s3"], degree=degree, code=code, _parts=parts,

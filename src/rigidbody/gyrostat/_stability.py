@@ -73,7 +73,7 @@ def hessian_entries(
 
 
 def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R: Any,
-             form: str = "stable") -> dict[str, np.ndarray]:
+             form: str = "stable", gamma2: bool = True) -> dict[str, np.ndarray]:
     """The entries of :func:`hessian_entries` WITHOUT the gyrostatic terms ``omega0 k2 / cos(theta0 + kappa0)``
     of W_b1b1 and ``omega0 k2 / cos^3(theta0 + kappa0)`` of W_b3b3 (the only places k2 enters).
 
@@ -82,7 +82,10 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
     kappa0``, ``om = omega0``, ``om2 = omega0^2``, ``n2 = omega0^2 cos^2 kappa0``, ``S = S0``, ``st2 = st^2``,
     ``stct = st ct``, ``ct2 = ct^2``, ``ck2 = ck^2``, ``icp = 1 / cp``.  The printed expressions, with the
     factors that are the same at every point of a map (the body, mu, R0) grouped first, so that array
-    operations are spent only on what varies, and shared subexpressions computed once.
+    operations are spent only on what varies, and shared subexpressions computed once.  Also returns
+    ``Q`` (the bracket of W_b3b3, W_Rb3, W_kb3), ``L`` (lambda0) and ``om2iS = omega0^2 / S0``.
+    ``gamma2=False`` leaves out W_g2g2, W_b3g2 and W_b3b3 (:func:`second_variation_side` uses the a_ij
+    they combine into, in closed form).
     """
     st, ct, sk, ck, sp = b["st"], b["ct"], b["sk"], b["ck"], b["sp"]
     om2, S, ck2, icp, stct = b["om2"], b["S"], b["ck2"], b["icp"], b["stct"]
@@ -92,7 +95,7 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
     s2k = (2 * sk) * ck
     Q = (0.5 * MR2) * (s2k * icp) - (A2 - A3) * sp  # M R0^2 sin 2 kappa0 / (2 cos(theta0 + kappa0)) - (A2 - A3) sin(..)
     om2iS = om2 * iS
-    e = {}
+    e = {"Q": Q, "om2iS": om2iS}
     # M omega0^2 cos^2 kappa0 = M n2 (second relation (2.4))
     e["RR"] = (((4 * MR2) * ck2 - S) * iS * (M * b["n2"]) + (18 * n0 / R**2 * (A2 - A3)) * b["st2"]
                + (18 * n0 / R**2 * (2 * A3 - A1 - A2) / 3 - 2 * M * n0))
@@ -101,15 +104,19 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
         G = 3 * n0 * (A2 - A3)
         L = (G * stct) / ck  # = lambda0 = M R0^2 omega0^2 sin kappa0 by the third relation (2.4)
         e["g1g1"] = 3 * n0 * (A1 - A3) - G * (st * sp) / ck
-        e["g2g2"] = G * (b["c2t"] - stct * b["tk"]) / b["ct2"]
+        if gamma2:
+            e["g2g2"] = G * (b["c2t"] - stct * b["tk"]) / b["ct2"]
     else:
         L = (MR2 * om2) * sk
         e["g1g1"] = -L * sp / ct + 3 * n0 * (A1 - A3)
-        e["g2g2"] = -L * sp / (b["ct2"] * ct) + 3 * n0 * (A2 - A3)
-    Lst = L * st
-    e["b1b1"] = Lst * icp + (A2 - A1) * om2
-    e["b3b3"] = Lst * (icp * icp * icp) + (A2 - A3) * om2 + om2iS * (Q * Q)
-    e["b3g2"] = (L * sk) * icp / -ct
+        if gamma2:
+            e["g2g2"] = -L * sp / (b["ct2"] * ct) + 3 * n0 * (A2 - A3)
+    e["L"] = L
+    e["Lsticp"] = L * st * icp
+    e["b1b1"] = e["Lsticp"] + (A2 - A1) * om2
+    if gamma2:
+        e["b3b3"] = e["Lsticp"] * (icp * icp) + (A2 - A3) * om2 + om2iS * (Q * Q)
+        e["b3g2"] = (L * sk) * icp / -ct
     e["b1g1"] = L
     MRom2s2k = (M * R) * (om2 * s2k)
     e["Rk"] = (S - (2 * MR2) * ck2) * iS * MRom2s2k
@@ -188,19 +195,28 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
     exists and the chart (beta1, beta3, gamma1, gamma2) is regular (abs(cos theta0) and abs(cos(theta0 +
     kappa0)) > 1e-6).
     """
-    ct, icp = f["ct"], f["icp"]
+    icp = f["icp"]
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        e = _entries(f, M, A1, A2, A3, mu, R0)
-        q = ct * icp
-        g2g2, b3g2, Rg2 = e["g2g2"], e["b3g2"], e["Rg2"]
+        e = _entries(f, M, A1, A2, A3, mu, R0, gamma2=False)
+        # (2.5) in closed form with the stable entries: with h = cos^2 theta0 W_g2g2 = G (cos 2 theta0 - sin
+        # theta0 cos theta0 tan kappa0) and lambda0 sin kappa0 = G sin theta0 cos theta0 tan kappa0 (G =
+        # 3 mu R0^-3 (A2 - A3)), the three a_ij that hold W_g2g2 and W_b3g2 reduce to
+        #   a22 = W_kk + h,  a23 = W_kb3 - G cos 2 theta0 / cos(theta0 + kappa0),
+        #   a33 = W_b3b3 + (h + 2 lambda0 sin kappa0) / cos^2(theta0 + kappa0)   (W_b3b3 written out below)
+        # (checked against a_matrix(hessian_entries(...)) in tests/gyrostat/test_gyrostat_map_evaluation.py)
+        G = 3 * mu / R0**3 * (A2 - A3)
+        stct_tk = f["stct"] * f["tk"]
+        Gc2t = G * f["c2t"]
+        icp2 = icp * icp
         w1 = f["om"] * icp
         a11 = e["RR"]
-        a22 = e["kk"] + f["ct2"] * g2g2
-        a12 = e["Rk"] + ct * Rg2
-        a13 = e["Rb3"] - q * Rg2
-        qg2 = q * g2g2
-        a23 = e["kb3"] + ct * (b3g2 - qg2)
-        a33_0 = e["b3b3"] + q * (qg2 - 2 * b3g2)
+        a22 = e["kk"] + (Gc2t - G * stct_tk)
+        Rg2ct = (9 * mu * (A2 - A3) / R0**4) * f["stct"]  # cos theta0 W_Rg2
+        a12 = e["Rk"] + Rg2ct
+        a13 = e["Rb3"] - Rg2ct * icp
+        a23 = e["kb3"] - Gc2t * icp
+        a33_0 = (icp2 * (e["Lsticp"] + (Gc2t + G * stct_tk)) + (A2 - A3) * f["om2"]
+                 + e["om2iS"] * (e["Q"] * e["Q"]))
         a12sq, a13sq, a23sq = a12 * a12, a13 * a13, a23 * a23
         a11a22 = a11 * a22
         C = a11a22 - a12sq
@@ -215,7 +231,7 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
         s1neg, a11neg, Cneg = g1g1 < 0, a11 < 0, C < 0
         d = {
             "g1g1": g1g1, "b1g1": e["b1g1"], "b1b1_0": e["b1b1"], "w1": w1, "a11": a11, "a22": a22, "a12": a12,
-            "a13": a13, "a23": a23, "a33_0": a33_0, "w3": w1 * (icp * icp), "C": C,
+            "a13": a13, "a23": a23, "a33_0": a33_0, "w3": w1 * icp2, "C": C,
             "D0": a12a23a13 - a11a23sq - a22a13sq, "b1g1_sq": e["b1g1"] * e["b1g1"], "F": F,
             "E0": np.abs(a12a23a13) + np.abs(a11a23sq) + np.abs(a22a13sq),
             "sure_T": (g1g1 != 0) & (a11 != 0) & (np.abs(C) > tol * F),

@@ -102,7 +102,7 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
     Returns arrays (broadcast over the inputs): ``n0 = mu / R0^3``, ``n2`` (the right-hand side of the second
     relation (2.4), omega0^2 cos^2 kappa0), ``exists`` (n2 > 0), ``kappa0``, ``omega0``, the sines and cosines
     ``sin_t, cos_t, cos_2t`` of theta0 and 2 theta0 (:func:`sin_cos`), ``sin_k, cos_k`` of kappa0 and
-    ``sin_tk, cos_tk`` of theta0 + kappa0, ``S0``, ``lambda0`` and ``rest`` (the terms of the first relation
+    ``sin_tk, cos_tk`` of theta0 + kappa0, ``S0`` and ``rest`` (the terms of the first relation
     (2.4) free of k2, k3); and the products the second variation needs (see ``gyrostat._stability._entries``).
 
     ``tan kappa0 = 3/2 (A2 - A3) mu R0^-3 sin 2 theta0 / (M R0^2 n2)`` (third relation divided by the second,
@@ -134,10 +134,9 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
         rest = (A2 - A3) * (om2 * (sp * cp) + (3 * n0) * stct)
         ck2 = ck * ck
         S0 = MR2 * ck2 + A2 * cp2 + A3 * (sp * sp)
-        lam = (MR2 * om2) * sk
     return {"n0": n0, "n2": n2, "exists": exists, "theta0": th, "kappa0": kap, "omega0": om, "sin_t": st,
             "cos_t": ct, "cos_2t": c2t, "sin_k": sk, "cos_k": ck, "sin_tk": sp, "cos_tk": cp, "S0": S0,
-            "lambda0": lam, "rest": rest,
+            "rest": rest,
             # the same under the short names of the bundle that gyrostat._stability._entries reads
             "st": st, "ct": ct, "c2t": c2t, "sk": sk, "ck": ck, "tk": tk, "sp": sp, "cp": cp, "om": om, "om2": om2,
             "S": S0, "st2": st2, "stct": stct, "ct2": ct * ct, "icp": 1.0 / cp, "ck2": ck2, "cp2": cp2}
@@ -188,10 +187,11 @@ def family_arrays(
     def full(x: np.ndarray) -> np.ndarray:
         return np.array(np.broadcast_to(x, shape))
 
+    lam = np.asarray(M, dtype=float) * np.asarray(R0, dtype=float) ** 2 * f["om2"] * f["sin_k"]  # M R0^2 om0^2 sin ka0
     return {
         "theta0": full(f["theta0"]), "n2": full(f["n2"]), "kappa0": full(f["kappa0"]), "omega0": full(om),
         "k2": full(k2v), "k3": full(k3v), "S0": full(f["S0"]), "k": om * f["S0"] + k2v * cp + k3v * sp,
-        "lambda0": full(f["lambda0"]), "exists": f["exists"] & ok, "sin_tk": full(sp), "cos_tk": full(cp),
+        "lambda0": full(lam), "exists": f["exists"] & ok, "sin_tk": full(sp), "cos_tk": full(cp),
         "sin_t": full(f["sin_t"]), "cos_t": full(f["cos_t"]),
     }
 
