@@ -245,20 +245,20 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
         p = {n: cut(pad[n], sl) for n in pad}
         with np.errstate(all="ignore"):
             f, d = _side(p, omega_sign, rtol)
-            valid = d["valid"] & (_physical(*(p[n] for n in ("M", "A1", "A2", "A3", "mu", "R0")))
-                                  if physical_all is None else physical_all)
+            if physical_all is None:
+                valid = d["valid"] & _physical(*(p[n] for n in ("M", "A1", "A2", "A3", "mu", "R0")))
+            else:
+                valid = d["valid"] if physical_all else np.zeros_like(d["valid"])
             if kname == "k2":
                 k2 = p["k2"]
-                # k3 by the first relation (2.4); NaN where cos(theta0 + kappa0) = 0 (invalid there anyway)
-                ok = f["cos_tk"] != 0
-                t = np.where(ok, f["sin_tk"] / f["cos_tk"], np.nan)
-                kc = k2 * t + f["rest"] / (f["omega0"] * f["cos_tk"])
+                # k3 by the first relation (2.4) (NaN where cos(theta0 + kappa0) = 0, see below)
+                kc = k2 * (f["sin_tk"] * f["icp"]) + f["rest"] * f["icp"] / f["omega0"]
             else:
                 # k2 from k3 divides by sin(theta0 + kappa0): ill-conditioned near theta0 = 0, pi
                 k2, _, _ = family_momentum(f, k3=p["k3"])
                 kc = k2
                 valid = valid & (np.abs(f["sin_tk"]) > SINGULAR_TOL)
-            valid = valid & np.isfinite(p[kname])
+            # (a k2 or k3 that is not finite makes s2, s3 non-finite: verdicts() marks the point invalid)
             v = verdicts(d, k2, valid, rtol=rtol)
             blk = (slice(None),) * ax + (sl,) if nd else ()
             full[kfull][blk] = kc
@@ -268,6 +268,8 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
             code[blk] = v["code"]
             bad = ~v["valid"]
             if np.any(bad):  # invalid points: NaN quantities, degree -1
+                if kname == "k2":
+                    full[kfull][blk][bad & (f["cos_tk"] == 0)] = np.nan
                 full["s2"][blk][bad] = np.nan
                 full["s3"][blk][bad] = np.nan
                 degree[blk][bad] = -1

@@ -84,8 +84,8 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
     factors that are the same at every point of a map (the body, mu, R0) grouped first, so that array
     operations are spent only on what varies, and shared subexpressions computed once.  Also returns
     ``Q`` (the bracket of W_b3b3, W_Rb3, W_kb3), ``L`` (lambda0) and ``om2iS = omega0^2 / S0``.
-    ``gamma2=False`` leaves out W_g2g2, W_b3g2 and W_b3b3 (:func:`second_variation_side` uses the a_ij
-    they combine into, in closed form).
+    ``gamma2=False`` leaves out W_g2g2, W_b3g2, W_b3b3 and W_Rg2 (:func:`second_variation_side` uses the
+    a_ij they combine into, in closed form).
     """
     st, ct, sk, ck, sp = b["st"], b["ct"], b["sk"], b["ck"], b["sp"]
     om2, S, ck2, icp, stct = b["om2"], b["S"], b["ck2"], b["icp"], b["stct"]
@@ -122,7 +122,8 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
     e["Rk"] = (S - (2 * MR2) * ck2) * iS * MRom2s2k
     e["Rb3"] = (2 * M * R) * (om2iS * ck2) * Q
     e["kb3"] = (-R) * iS * MRom2s2k * Q
-    e["Rg2"] = (9 * mu * (A2 - A3) / R**4) * st
+    if gamma2:
+        e["Rg2"] = (9 * mu * (A2 - A3) / R**4) * st
     return e
 
 
@@ -205,17 +206,17 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
         #   a33 = W_b3b3 + (h + 2 lambda0 sin kappa0) / cos^2(theta0 + kappa0)   (W_b3b3 written out below)
         # (checked against a_matrix(hessian_entries(...)) in tests/gyrostat/test_gyrostat_map_evaluation.py)
         G = 3 * mu / R0**3 * (A2 - A3)
-        stct_tk = f["stct"] * f["tk"]
+        Gstct_tk = G * (f["stct"] * f["tk"])
         Gc2t = G * f["c2t"]
         icp2 = icp * icp
         w1 = f["om"] * icp
         a11 = e["RR"]
-        a22 = e["kk"] + (Gc2t - G * stct_tk)
+        a22 = e["kk"] + (Gc2t - Gstct_tk)
         Rg2ct = (9 * mu * (A2 - A3) / R0**4) * f["stct"]  # cos theta0 W_Rg2
         a12 = e["Rk"] + Rg2ct
         a13 = e["Rb3"] - Rg2ct * icp
         a23 = e["kb3"] - Gc2t * icp
-        a33_0 = (icp2 * (e["Lsticp"] + (Gc2t + G * stct_tk)) + (A2 - A3) * f["om2"]
+        a33_0 = (icp2 * (e["Lsticp"] + (Gc2t + Gstct_tk)) + (A2 - A3) * f["om2"]
                  + e["om2iS"] * (e["Q"] * e["Q"]))
         a12sq, a13sq, a23sq = a12 * a12, a13 * a13, a23 * a23
         a11a22 = a11 * a22
@@ -234,7 +235,7 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
             "a13": a13, "a23": a23, "a33_0": a33_0, "w3": w1 * icp2, "C": C,
             "D0": a12a23a13 - a11a23sq - a22a13sq, "b1g1_sq": e["b1g1"] * e["b1g1"], "F": F,
             "E0": np.abs(a12a23a13) + np.abs(a11a23sq) + np.abs(a22a13sq),
-            "sure_T": (g1g1 != 0) & (a11 != 0) & (np.abs(C) > tol * F),
+            "sure_T": (g1g1 * a11 != 0) & (np.abs(C) > tol * F),  # (a product that underflows: not sure)
             # degree of the leading part: sign changes in (1, s1) and in (1, a11, a11 a22 - a12^2)
             "neg_T": s1neg.astype(np.int8) + a11neg + (a11neg ^ Cneg), "s1neg": s1neg, "Cneg": Cneg,
         }
@@ -283,8 +284,7 @@ def verdicts(d: dict[str, np.ndarray], k2: np.ndarray, valid: np.ndarray, rtol: 
     shape = code.shape
     valid = np.broadcast_to(valid, shape)
     n_zero: np.ndarray | None = None
-    slow = ~sure
-    slow &= valid
+    slow = valid & ~sure
     if np.any(slow):
         B = np.stack([_take(d["g1g1"], slow), _take(d["b1g1"], slow), _take(d["b1g1"], slow), b1b1[slow]],
                      axis=-1).reshape(-1, 2, 2)

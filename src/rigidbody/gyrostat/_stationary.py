@@ -89,7 +89,9 @@ def sin_cos(theta: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     th = np.asarray(theta, dtype=float)
     T = np.tan(th)
     X = np.tan(2 * th)
-    ct = np.copysign(1.0 / np.sqrt(1.0 + T * T), T * np.tan(0.5 * th))
+    ct = 1.0 / np.sqrt(1.0 + T * T)
+    if th.size and not np.max(np.abs(th)) <= 0.5 * np.pi:  # cos > 0 for abs(theta) <= fl(pi/2) < pi/2
+        ct = np.copysign(ct, T * np.tan(0.5 * th))
     st = T * ct
     c2t = np.copysign(1.0 / np.sqrt(1.0 + X * X), X * T)
     return st, ct, c2t
