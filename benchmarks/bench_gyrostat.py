@@ -8,7 +8,8 @@ minors s1, s2, s2 a11, s2 (a11 a22 - a12^2), s2 s3 positive), 'unstable' when it
 (meshgrid) arrays.
 
 Accuracy: the verdicts of both sides are compared with the same formulas evaluated at 50 digits (mpmath)
-on every point where the two disagree (up to a sample of them).
+on every point where the two disagree (up to a sample of them), over a grid, scattered points, and points
+next to the boundaries s2 = 0 and s3 = 0.  Times are the best of interleaved repetitions.
 
 Run: python benchmarks/bench_gyrostat.py
 """
@@ -33,6 +34,18 @@ def timed(fun, repeat=3):
         t0 = time.perf_counter()
         out = fun()
         best = min(best, time.perf_counter() - t0)
+    return best, out
+
+
+def timed_pair(f, g, repeat=7):
+    """Best times of f and g, interleaved (a busy machine slows both alike), and their last results."""
+    best = [np.inf, np.inf]
+    out = [None, None]
+    for _ in range(repeat):
+        for i, fun in enumerate((f, g)):
+            t0 = time.perf_counter()
+            out[i] = fun()
+            best[i] = min(best[i], time.perf_counter() - t0)
     return best, out
 
 
@@ -101,29 +114,36 @@ def reference_codes(sat, R0, th, k2):
 
 
 def accuracy(sat, R0, th, k2, ours, base, sample=200):
-    """Wrong verdicts of each side among the points where they disagree (all of them, or a sample)."""
+    """Against the printed formulas at 50 digits, on the points where the two sides disagree (all of them, or
+    a sample scaled up to all): wrong verdicts of the library (a 'stable' or 'unstable' the reference
+    contradicts), library points called 'undecided' because an eigenvalue is zero to its threshold rtol =
+    1e-12 (degenerate by its rule; the reference, without a threshold, is nondegenerate there), and wrong
+    verdicts of the baseline."""
     diff = np.flatnonzero(ours != base)
     rng = np.random.default_rng(0)
     pick = rng.choice(diff, min(sample, diff.size), replace=False) if diff.size else diff
     ref = reference_codes(sat, R0, th[pick], k2[pick])
     scale = diff.size / max(pick.size, 1)
-    return diff.size, round(float(np.sum(ours[pick] != ref)) * scale), round(float(np.sum(base[pick] != ref)) * scale)
+    wrong = (ours[pick] != ref) & (ours[pick] != 2)
+    within = (ours[pick] == 2) & (ref != 2)
+    return (diff.size, round(float(np.sum(wrong)) * scale), round(float(np.sum(within)) * scale),
+            round(float(np.sum(base[pick] != ref)) * scale))
 
 
-def compare(label, sat, R0, th, k2, library_call):
+def compare(label, sat, R0, library_call):
     """Time the library call and the baseline on the same points; print the ratio and the accuracies."""
-    t_lib, mp = timed(library_call)
+    mp = library_call()
     TH, K2 = np.broadcast_arrays(mp.params["theta0"], mp.params["k2"])
     TH, K2 = np.ascontiguousarray(TH), np.ascontiguousarray(K2)
     with np.errstate(all="ignore"):
-        t_base, (base, _, _, _) = timed(lambda: baseline_codes(sat, R0, TH, K2))
+        (t_lib, t_base), (mp, (base, _, _, _)) = timed_pair(library_call, lambda: baseline_codes(sat, R0, TH, K2))
     ours = np.asarray(mp.code)
-    nd, wrong_ours, wrong_base = accuracy(sat, R0, TH.ravel(), K2.ravel(), ours.ravel(), base.ravel())
+    nd, wrong_ours, zero_ours, wrong_base = accuracy(sat, R0, TH.ravel(), K2.ravel(), ours.ravel(), base.ravel())
     counts = {v: int(np.sum(ours == c)) for c, v in ((0, "stable"), (1, "unstable"), (2, "undecided"), (-1, "invalid"))}
     print(f"{label}: stability_map {t_lib:.3f} s, baseline {t_base:.3f} s -> baseline/library = "
           f"{t_base / t_lib:.2f}x  ({ours.size:,} points, {counts})")
-    print(f"    verdicts differ at {nd} points; wrong against the 50-digit printed formulas: library {wrong_ours}, "
-          f"baseline {wrong_base}")
+    print(f"    verdicts differ at {nd} points; against the printed formulas at 50 digits: library wrong {wrong_ours} "
+          f"(undecided as degenerate to rtol {zero_ours}), baseline wrong {wrong_base}")
 
 
 def main() -> None:
@@ -132,13 +152,20 @@ def main() -> None:
     n0 = math.sqrt(sat.mu / R0**3)
     theta0 = np.linspace(-1.5, 1.5, 1000)
     k2 = np.linspace(-4.0, 4.0, 1000) * sat.Abar * n0
-    compare("grid 1000 x 1000 (theta0, k2), SI", sat, R0, theta0, k2,
-            lambda: gyrostat.stability_map(sat, R0, theta0, k2=k2))
+    compare("grid 1000 x 1000 (theta0, k2), SI", sat, R0, lambda: gyrostat.stability_map(sat, R0, theta0, k2=k2))
     rng = np.random.default_rng(1)
     th_r = rng.uniform(-1.5, 1.5, 10**6)
     k2_r = rng.uniform(-4.0, 4.0, 10**6) * sat.Abar * n0
-    compare("10^6 scattered points (grid=False), SI", sat, R0, th_r, k2_r,
+    compare("10^6 scattered points (grid=False), SI", sat, R0,
             lambda: gyrostat.stability_map(sat, R0, th_r, k2=k2_r, grid=False))
+    # next to the boundaries s2 = 0 and s3 = 0 (k2 within 1e-10 .. 1e-6 relative): where float64 decides
+    th_b = rng.uniform(-1.4, 1.4, 10**5)
+    b = gyrostat.exact_boundaries(sat, R0, th_b)
+    kb = np.where(rng.random(th_b.size) < 0.5, b["k2_s2"], b["k2_s3"])
+    ok = np.isfinite(kb)
+    th_b, kb = th_b[ok], kb[ok] * (1 + rng.choice([-1, 1], ok.sum()) * 10 ** rng.uniform(-10, -6, ok.sum()))
+    compare(f"{th_b.size:,} points next to s2 = 0 or s3 = 0 (grid=False), SI", sat, R0,
+            lambda: gyrostat.stability_map(sat, R0, th_b, k2=kb, grid=False))
 
     t, _ = timed(lambda: gyrostat.normalized_stability_map(sat, R0, theta0, np.linspace(-6, 6, 1000)))
     print(f"normalized_stability_map 1000 x 1000: {t:.2f} s")
