@@ -240,15 +240,22 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
             return a
         return a[(slice(None),) * ax + (sl,)]
 
+    def side_part(p: dict[str, np.ndarray]) -> tuple[dict, dict, np.ndarray]:
+        f, d = _side(p, omega_sign, rtol)
+        if physical_all is None:
+            valid = d["valid"] & _physical(*(p[n] for n in ("M", "A1", "A2", "A3", "mu", "R0")))
+        else:
+            valid = d["valid"] if physical_all else np.zeros_like(d["valid"])
+        return f, d, valid
+
+    if not side_cut:  # the side quantities do not vary along the blocked axis: compute them once
+        with np.errstate(all="ignore"):
+            shared = side_part(pad)
     for i0 in range(0, n_ax, step):
         sl = slice(i0, i0 + step)
         p = {n: cut(pad[n], sl) for n in pad}
         with np.errstate(all="ignore"):
-            f, d = _side(p, omega_sign, rtol)
-            if physical_all is None:
-                valid = d["valid"] & _physical(*(p[n] for n in ("M", "A1", "A2", "A3", "mu", "R0")))
-            else:
-                valid = d["valid"] if physical_all else np.zeros_like(d["valid"])
+            f, d, valid = side_part(p) if side_cut else shared
             if kname == "k2":
                 k2 = p["k2"]
                 # k3 by the first relation (2.4) (NaN where cos(theta0 + kappa0) = 0, see below)
