@@ -261,8 +261,14 @@ def test_scalar_fast_paths_return_python_floats_and_validate():
             ell.jacobi(0.3, bad)
     with pytest.raises(ValueError, match="u must be finite"):
         ell.jacobi(math.inf, 0.5)
+    with pytest.raises(ValueError, match="u must be finite"):
+        ell.jacobi(np.array([0.0, math.nan]), 0.5)
     with pytest.raises(ValueError, match="must lie in"):
         ell.E(np.array([0.2, 1.2]))
+    # no NaN for valid input, even where SciPy's phase 2^n a u overflows (the digits are gone, not the value)
+    for u in (1.7e308, -1e305, np.array([1.7e308, 0.3])):
+        for v in (*ell.jacobi(u, 0.5), *ell.jacobi(u, mc=1e-6)):
+            assert np.all(np.isfinite(v))
 
 
 @settings(max_examples=80)
