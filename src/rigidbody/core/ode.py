@@ -33,7 +33,9 @@ class Event:
     Parameters
     ----------
     fun : callable
-        ``fun(t, y) -> float``; the event is a zero crossing of it.
+        ``fun(t, y) -> float``; the event is a zero crossing of it. For
+        :func:`rigidbody.core.batch.integrate_batch` it is vectorised: ``t`` of shape ``(m,)``, ``y`` of
+        shape ``(m, n)``, the result of shape ``(m,)``.
     name : str
         Short identifier (``'separatrix'``, ``'u1_eq_u2'``...): a key of ``Solution.t_events``.
     terminal : bool
@@ -52,31 +54,44 @@ class Event:
 
 
 class Solution:
-    """Result of an integration: named arrays plus SciPy's status.
+    """Result of an integration: named arrays plus SciPy's status, for one run or a batch of runs.
+
+    A single run (``batch_shape == ()``) has the time array of shape ``(n_t,)``, scalar fields of shape
+    ``(n_t,)``, vector fields of shape ``(k, n_t)``, ``y`` of shape ``(n_state, n_t)`` and a scalar
+    ``status``, ``message`` and ``event``. A batch run (:func:`rigidbody.core.batch.integrate_batch` and the
+    batch calls of the analyses) has a leading ``batch_shape`` on every field and on ``y``, the common output
+    grid as ``time``, per-member ``status`` (int array), ``message`` and ``event`` (object arrays),
+    ``success`` (bool array) and NaN in a member's samples after its end; ``sol[i]`` (or
+    :meth:`member`) is the single-run view of member ``i``.
 
     Attributes
     ----------
     time_name : str
         ``'t'`` or ``'tau'``; the time array is available under that name (and as ``time``).
+    batch_shape : tuple of int
+        ``()`` for a single run, the shape of the batch otherwise.
     y : numpy.ndarray
-        Raw state, shape ``(n_state, n_t)``.
+        Raw state, shape ``batch_shape + (n_state, n_t)``.
     fields : tuple of str
         Names of the derived arrays, each an attribute.
-    status : int
-        -1 failure, 0 end of the span reached, 1 a terminal event.
-    message : str
-    success : bool
+    status : int or numpy.ndarray
+        -1 failure, 0 end of the span reached, 1 a terminal event (per member for a batch).
+    message : str or numpy.ndarray
+    success : bool or numpy.ndarray
         ``status >= 0``.
-    event : str or None
-        Name of the terminal event that ended the run.
+    event : str or None, or numpy.ndarray
+        Name of the terminal event that ended the run (per member for a batch).
     t_events : dict
-        Event name -> times at which it occurred.
+        Event name -> times at which it occurred (for a batch: an object array of per-member arrays).
     y_events : dict
-        Event name -> states at those times.
+        Event name -> states at those times (likewise).
     sol : scipy.integrate.OdeSolution or None
-        Dense output of the raw state when requested.
-    nfev : int
-        Number of right-hand-side evaluations.
+        Dense output of the raw state when requested (single runs only).
+    nfev : int or numpy.ndarray
+        Number of right-hand-side evaluations (per member for a batch).
+    t_final, y_final : float and numpy.ndarray, or arrays
+        The time at which the run ended (the end of the span, a terminal event, a failure) and the raw state
+        there; per member for a batch. None where the producer does not record them.
     """
 
     def __init__(
@@ -85,19 +100,24 @@ class Solution:
         time: np.ndarray,
         y: np.ndarray,
         data: Mapping[str, np.ndarray],
-        status: int,
-        message: str,
-        event: str | None,
+        status: Any,
+        message: Any,
+        event: Any,
         t_events: dict[str, np.ndarray],
         y_events: dict[str, np.ndarray],
         sol: Any,
-        nfev: int,
+        nfev: Any,
+        *,
+        batch_shape: tuple[int, ...] = (),
+        t_final: Any = None,
+        y_final: Any = None,
     ) -> None:
         self.time_name = time_name
         self.time = time
         self.y = y
         self._data = dict(data)
         self.fields = tuple(self._data)
+        self.batch_shape = tuple(int(b) for b in batch_shape)
         self.status = status
         self.message = message
         self.success = status >= 0
@@ -106,6 +126,8 @@ class Solution:
         self.y_events = y_events
         self.sol = sol
         self.nfev = nfev
+        self.t_final = t_final
+        self.y_final = y_final
 
     def __getattr__(self, name: str) -> Any:
         if name == self.__dict__.get("time_name"):
@@ -115,8 +137,66 @@ class Solution:
             return data[name]
         raise AttributeError(f"Solution has no field {name!r}; fields: {self.__dict__.get('fields')}")
 
-    def __getitem__(self, name: str) -> np.ndarray:
-        return getattr(self, name)
+    def __getitem__(self, key: Any) -> Any:
+        if isinstance(key, str):
+            return getattr(self, key)
+        return self.member(key)
+
+    def member(self, index: Any) -> Solution:
+        """The single-run :class:`Solution` of one member of a batch.
+
+        Parameters
+        ----------
+        index : int or tuple of int
+            Position in ``batch_shape`` (a flat int is accepted for a 1-D batch; negative indices count
+            from the end).
+
+        Returns
+        -------
+        Solution
+            Fields, ``y``, status, message, event and event records of that member, with the samples where
+            it has no value (before its start, after its end) left out.
+
+        Raises
+        ------
+        TypeError
+            For a single run (it has no members) or a non-integer index.
+        IndexError
+            For an index outside ``batch_shape``.
+        """
+        if not self.batch_shape:
+            raise TypeError("a single run has no members; index fields by name (sol['Gz'])")
+        idx = index if isinstance(index, tuple) else (index,)
+        if len(idx) != len(self.batch_shape) or not all(
+            isinstance(i, (int, np.integer)) and not isinstance(i, bool) for i in idx
+        ):
+            raise TypeError(f"a member index is a tuple of {len(self.batch_shape)} int(s) for batch_shape "
+                            f"{self.batch_shape}, got {index!r}")
+        for i, nb in zip(idx, self.batch_shape):
+            if not -nb <= i < nb:
+                raise IndexError(f"member index {index!r} is out of range for batch_shape {self.batch_shape}")
+        y = self.y[idx]
+        keep = np.all(np.isfinite(y), axis=0) if y.ndim > 1 else np.isfinite(y)
+        data = {}
+        for name, arr in self._data.items():
+            a = np.asarray(arr)[idx]
+            data[name] = a[..., keep]
+        t_events = {k: np.asarray(v[idx], dtype=float) for k, v in self.t_events.items()}
+        y_events = {k: np.asarray(v[idx], dtype=float) for k, v in self.y_events.items()}
+        nfev = self.nfev[idx] if np.ndim(self.nfev) else self.nfev
+        t_final = None if self.t_final is None else float(np.asarray(self.t_final)[idx])
+        y_final = None if self.y_final is None else np.asarray(self.y_final)[idx]
+        return Solution(self.time_name, self.time[keep], y[..., keep], data, int(self.status[idx]),
+                        str(self.message[idx]), self.event[idx], t_events, y_events, None, int(nfev),
+                        t_final=t_final, y_final=y_final)
+
+    def __bool__(self) -> bool:
+        return True
+
+    def __len__(self) -> int:
+        if not self.batch_shape:
+            raise TypeError("a single run has no members (len() is defined for batch solutions)")
+        return self.batch_shape[0]
 
     def __dir__(self) -> list[str]:
         return sorted(set(super().__dir__()) | set(self._data) | {self.time_name})
@@ -124,6 +204,13 @@ class Solution:
     def __repr__(self) -> str:
         n = self.time.size
         span = f"[{self.time[0]:.6g}, {self.time[-1]:.6g}]" if n else "[]"
+        if self.batch_shape:
+            st = np.asarray(self.status)
+            return (
+                f"Solution({self.time_name}={span}, n={n}, batch_shape={self.batch_shape}, "
+                f"fields={list(self.fields)}, status: {int(np.sum(st == 0))} reached the end, "
+                f"{int(np.sum(st == 1))} ended by an event, {int(np.sum(st < 0))} failed)"
+            )
         return (
             f"Solution({self.time_name}={span}, n={n}, fields={list(self.fields)}, "
             f"status={self.status}, message={self.message!r})"
