@@ -433,7 +433,7 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
             if sol.status == 1 and sol.event == "branch_point" and chart == "auto":
                 te = float(sol.t_events["branch_point"][-1])
                 ye = sol.y_events["branch_point"][-1]
-                s = _k.decode_u(_k.SCALAR, st.A, st.C, st.mgl, *ye.tolist(), d1, d2)
+                s = _k.decode_u(_k.SCALAR, st.A, st.C, st.mgl, float(ye[0]), float(ye[1]), float(ye[2]), d1, d2)
                 Gz, H, r = s.Gz, s.H, s.r
                 tau = te
                 cur = "GHr"

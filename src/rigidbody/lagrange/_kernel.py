@@ -162,6 +162,33 @@ class UState:
     __slots__ = ("Cr", "Gz", "H", "K", "Sm", "Sp", "c", "cth", "d21", "d31", "d32", "gm", "gp", "k2", "mc", "pim",
                  "pip", "r", "sth", "u1", "u2", "u3", "w1", "w2", "z1", "z2")
 
+    Cr: Any
+    Gz: Any
+    H: Any
+    K: Any
+    Sm: Any
+    Sp: Any
+    c: Any
+    cth: Any
+    d21: Any
+    d31: Any
+    d32: Any
+    gm: Any
+    gp: Any
+    k2: Any
+    mc: Any
+    pim: Any
+    pip: Any
+    r: Any
+    sth: Any
+    u1: Any
+    u2: Any
+    u3: Any
+    w1: Any
+    w2: Any
+    z1: Any
+    z2: Any
+
 
 def decode_u(xp: Any, A: float, C: float, mgl: float, x1: Any, x2: Any, th: Any, d1: Any, d2: Any) -> UState:
     """Roots, gaps and (Gz, H, r) by (2.8) at the u-chart point ``(x1, x2, theta)`` with signs ``delta1, delta2``.
@@ -262,6 +289,30 @@ class GState:
 
     __slots__ = ("Cr", "Gz", "H", "K", "S", "cs", "d21", "gm", "gp", "half", "k2", "mc", "msum", "ok", "r", "s1",
                  "s2", "s3", "sn", "spread", "u1", "u2", "u3")
+
+    Cr: Any
+    Gz: Any
+    H: Any
+    K: Any
+    S: Any
+    cs: Any
+    d21: Any
+    gm: Any
+    gp: Any
+    half: Any
+    k2: Any
+    mc: Any
+    msum: Any
+    ok: Any
+    r: Any
+    s1: Any
+    s2: Any
+    s3: Any
+    sn: Any
+    spread: Any
+    u1: Any
+    u2: Any
+    u3: Any
 
 
 def decode_g(xp: Any, A: float, C: float, mgl: float, sigma: Any, psi: Any, H: Any) -> GState:
