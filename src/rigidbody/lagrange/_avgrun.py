@@ -93,13 +93,11 @@ class _Setup:
             return np.array([*_k.gaps_to_x(_k.SCALAR, w1, z1, w2, z2), th])
         return np.array([-np.inf, -np.inf, th])
 
-    def closeness_x(self, xp: Any, s: _k.UState) -> Any:
-        """``min(b1, b2)``: ``b1 = |Gz^2 - C^2 r^2|/(Gz^2 + C^2 r^2) = 2 sqrt(Pi+ Pi-)/(Pi+ + Pi-)``, ``b2 =
-        C^2 r^2/(Gz^2 + C^2 r^2)``, the distances from the branch points of (2.8)."""
-        tot = s.pip + s.pim
-        b1 = 2.0 * xp.sqrt(s.pip * s.pim) / tot
-        b2 = s.Cr * s.Cr / (self.A * self.mgl * tot)
-        return xp.minimum(b1, b2)
+    def closeness_x(self, xp: Any, s: _k.UState, d1: Any) -> Any:
+        """``min(b1, b2)``: ``b1 = |Gz^2 - C^2 r^2|/(Gz^2 + C^2 r^2) = sin 2 theta``, ``b2 = C^2 r^2/(Gz^2 +
+        C^2 r^2) = (1 - delta1 sin 2 theta)/2``, the distances from the branch points of (2.8)."""
+        b1 = 2.0 * s.sth * s.cth
+        return xp.minimum(b1, 0.5 * (1.0 - d1 * b1))
 
     # ---- right-hand sides --------------------------------------------------------------------------
     def means_u(self, xp: Any, s: _k.UState) -> tuple[Any, Any, Any]:
@@ -166,7 +164,7 @@ class _Setup:
 
     def ev_branch(self, xp: Any, x1: Any, x2: Any, x3: Any, d1: Any, d2: Any) -> Any:
         s = _k.decode_u(xp, self.A, self.C, self.mgl, x1, x2, x3, d1, d2)
-        return self.closeness_x(xp, s) - self.sw
+        return self.closeness_x(xp, s, d1) - self.sw
 
     def ev_w(self, xp: Any, psi: Any) -> Any:
         # sign changes of Gz^2 - C^2 r^2 = S^2 cos(2 pi psi); a value that is zero to integration accuracy (a
@@ -293,15 +291,16 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
     # a stage outside the charts' domain (overflow, a root order violated) gets NaN: the step is rejected
     A, C, mgl = st.A, st.C, st.mgl
     drag = st.drag
+    fast = None if drag is None else _k.u_drag_rates_scalar_factory(A, C, mgl, drag.a, drag.b)
 
     def rhs_x(tau: float, y: Any, d1: float, d2: float) -> Any:
         x1, x2, th = y
         if not x1 < x2:
             return nan3
         try:
-            if drag is not None:
-                return list(_k.u_drag_rates_scalar(A, C, mgl, drag.a, drag.b, x1, x2, th, d1, d2))
-            return list(st.rhs_x(SC, x1, x2, th, d1, d2))
+            if fast is not None:
+                return fast(x1, x2, th, d1, d2)
+            return st.rhs_x(SC, x1, x2, th, d1, d2)
         except (ZeroDivisionError, OverflowError, ValueError):
             return nan3
 
@@ -330,8 +329,8 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
         key = (*y, d1, d2)
         if cache["key"] != key:
             try:
-                s = _k.decode_u(SC, A, C, mgl, key[0], key[1], key[2], d1, d2)
-                cache["val"] = (s.k2 - st.deg, s.mc - st.deg, st.closeness_x(SC, s) - st.sw)
+                k2, mc, b = _k.u_event_values_scalar(key[0], key[1], key[2], d1)
+                cache["val"] = (k2 - st.deg, mc - st.deg, b - st.sw)
             except (ZeroDivisionError, OverflowError, ValueError):
                 cache["val"] = (math.nan, math.nan, math.nan)
             cache["key"] = key

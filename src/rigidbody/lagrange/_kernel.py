@@ -27,6 +27,7 @@ call) or :data:`ARRAY` (NumPy, for a batch, elementwise over members), so one fo
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -405,67 +406,118 @@ def slow_to_polar(xp: Any, C: float, Gz: Any, H: Any, r: Any) -> tuple[Any, Any,
 # ---------------------------------------------------------------------------------------------------
 # one-run fast path: the u chart under linear drag as one math-scalar function
 # ---------------------------------------------------------------------------------------------------
-def u_drag_rates_scalar(
-    A: float, C: float, mgl: float, a: float, b: float, x1: float, x2: float, th: float, d1: float, d2: float
-) -> tuple[float, float, float]:
-    """:func:`decode_u`, :func:`drag_means` and :func:`u_chart_rates` fused for floats (the same formulas,
-    evaluated with ``math`` and branches instead of selections; tests compare the two)."""
-    sqrt, exp = math.sqrt, math.exp
-    ax1, ax2 = abs(x1), abs(x2)
-    t1, t2 = exp(-2.0 * ax1), exp(-2.0 * ax2)
-    i1, i2 = 1.0 / (1.0 + t1), 1.0 / (1.0 + t2)
-    if x1 >= 0.0:
-        w1, z1, u1 = 2.0 * i1, 2.0 * t1 * i1, (1.0 - t1) * i1
-    else:
-        w1, z1, u1 = 2.0 * t1 * i1, 2.0 * i1, (t1 - 1.0) * i1
-    if x2 >= 0.0:
-        w2, z2, u2 = 2.0 * i2, 2.0 * t2 * i2, (1.0 - t2) * i2
-    else:
-        w2, z2, u2 = 2.0 * t2 * i2, 2.0 * i2, (t2 - 1.0) * i2
+def u_drag_rates_scalar_factory(
+    A: float, C: float, mgl: float, a: float, b: float
+) -> Callable[[float, float, float, float, float], tuple[float, float, float]]:
+    """``f(x1, x2, theta, delta1, delta2) -> d(x1, x2, theta)/dtau`` of the u chart under linear drag.
+
+    :func:`decode_u`, :func:`drag_means` and :func:`u_chart_rates` fused for floats: the same formulas,
+    evaluated with ``math``, branches instead of selections and the parameters' combinations computed once
+    (tests compare the two).
+    """
+    sqrt, exp, sin, cos, sinh = math.sqrt, math.exp, math.sin, math.cos, math.sinh
+    amg2 = 2.0 * A * mgl
+    iA, iC, i2A = 1.0 / A, 1.0 / C, 0.5 / A
+    kA = C / A - 1.0
+    aA, bC = a / A, b / C
+    two_a_A = 2.0 * a / A
+
+    def rates(x1: float, x2: float, th: float, d1: float, d2: float) -> tuple[float, float, float]:
+        ax1 = x1 if x1 >= 0.0 else -x1
+        ax2 = x2 if x2 >= 0.0 else -x2
+        t1 = exp(-2.0 * ax1)
+        t2 = exp(-2.0 * ax2)
+        i1 = 1.0 / (1.0 + t1)
+        i2 = 1.0 / (1.0 + t2)
+        if x1 >= 0.0:
+            w1, z1, u1 = 2.0 * i1, 2.0 * t1 * i1, (1.0 - t1) * i1
+        else:
+            w1, z1, u1 = 2.0 * t1 * i1, 2.0 * i1, (t1 - 1.0) * i1
+        if x2 >= 0.0:
+            w2, z2, u2 = 2.0 * i2, 2.0 * t2 * i2, (1.0 - t2) * i2
+        else:
+            w2, z2, u2 = 2.0 * t2 * i2, 2.0 * i2, (t2 - 1.0) * i2
+        sn = sin(th)
+        cs = cos(th)
+        ww = w1 * w2 * sn * sn
+        c = 2.0 * ww / (z1 * z2 * cs * cs - ww)
+        d21 = 4.0 * sinh(x2 - x1) * exp(-(ax1 + ax2)) * i1 * i2
+        d32 = c + z2
+        d31 = c + z1
+        pip = w1 * w2 * (2.0 + c)
+        pim = z1 * z2 * c
+        Sp = sqrt(amg2 * pip)
+        Sm = sqrt(amg2 * pim)
+        if d1 < 0.0:
+            gp, gm = d2 * Sp, -d2 * Sm
+        elif pip >= pim:
+            gp, gm = d2 * Sp, d2 * Sm
+        else:
+            gp, gm = -d2 * Sp, -d2 * Sm
+        Gz = 0.5 * (gp + gm)
+        Cr = 0.5 * (gp - gm)
+        r = Cr * iC
+        # <sn^2> - 1/2 by the AGM series (sn2_excess)
+        aa, bb, q, cc, p, sx = 1.0, sqrt(d32 / d31), 1.0, d21 / d31, 1.0, 0.0
+        while True:
+            aa, bb = 0.5 * (aa + bb), sqrt(aa * bb)
+            f = cc / (16.0 * aa * aa)
+            q *= f
+            cc *= f
+            pq = p * q
+            sx += pq
+            if pq <= 1e-17 * (0.5 + sx):
+                break
+            p *= 2.0
+        lo = d21 * (0.5 + sx)
+        hi = d21 * (0.5 - sx)
+        v = u1 + lo
+        gv = gp - Cr * (w1 + lo) if v <= 0.0 else gm + Cr * (z2 + hi)
+        brv = b * r
+        F1 = -aA * gv - brv * v
+        F2 = -two_a_A * (mgl * (w1 + c + hi) - Cr * Cr * i2A) - brv * r
+        CF3 = -bC * Cr
+        GA = Gz * iA
+        kr = kA * r
+        if u1 <= 0.0:
+            N1 = gp - Cr * w1
+            N3 = gp * iA - w1 * (2.0 * kr + GA) + kr * w1 * w1
+        else:
+            N1 = gm + Cr * z1
+            N3 = -gm * iA + z1 * (GA - 2.0 * kr) + kr * z1 * z1
+        P1 = (N1 * F1 * iA + N3 * CF3) / (w1 * z1)
+        if u2 <= 0.0:
+            N1 = gp - Cr * w2
+            N3 = gp * iA - w2 * (2.0 * kr + GA) + kr * w2 * w2
+        else:
+            N1 = gm + Cr * z2
+            N3 = -gm * iA + z2 * (GA - 2.0 * kr) + kr * z2 * z2
+        P2 = (N1 * F1 * iA + N3 * CF3) / (w2 * z2)
+        sgm = 1.0 if gm >= 0.0 else -1.0
+        sgp = 1.0 if gp >= 0.0 else -1.0
+        dth = (Sp * (F1 - CF3) * sgm - Sm * (F1 + CF3) * sgp) / (Sp * Sp + Sm * Sm)
+        md = mgl * d21
+        return (P1 - F2) / (md * d31), (F2 - P2) / (md * d32), dth
+
+    return rates
+
+
+def u_event_values_scalar(x1: float, x2: float, th: float, d1: float) -> tuple[float, float, float]:
+    """``(k^2, mc, min(b1, b2))`` at a u-chart point: the modulus (1.4), its complement and the distance from
+    the branch points of (2.8), ``b1 = |Gz^2 - C^2 r^2|/(Gz^2 + C^2 r^2) = sin 2 theta`` and
+    ``b2 = C^2 r^2/(Gz^2 + C^2 r^2) = (1 - delta1 sin 2 theta)/2`` (from ``tan theta = |Gz - C r|/|Gz + C r|``)."""
+    ax1 = x1 if x1 >= 0.0 else -x1
+    ax2 = x2 if x2 >= 0.0 else -x2
+    t1 = math.exp(-2.0 * ax1)
+    t2 = math.exp(-2.0 * ax2)
+    i1 = 1.0 / (1.0 + t1)
+    i2 = 1.0 / (1.0 + t2)
+    w1, z1 = (2.0 * i1, 2.0 * t1 * i1) if x1 >= 0.0 else (2.0 * t1 * i1, 2.0 * i1)
+    w2, z2 = (2.0 * i2, 2.0 * t2 * i2) if x2 >= 0.0 else (2.0 * t2 * i2, 2.0 * i2)
     sn, cs = math.sin(th), math.cos(th)
     ww = w1 * w2 * sn * sn
     c = 2.0 * ww / (z1 * z2 * cs * cs - ww)
-    d21 = 4.0 * math.sinh(x2 - x1) * exp(-(ax1 + ax2)) * i1 * i2
-    d32, d31 = c + z2, c + z1
-    pip, pim = w1 * w2 * (2.0 + c), z1 * z2 * c
-    amg2 = 2.0 * A * mgl
-    Sp, Sm = sqrt(amg2 * pip), sqrt(amg2 * pim)
-    if d1 < 0.0:
-        gp, gm = d2 * Sp, -d2 * Sm
-    else:
-        sg = d2 if pip >= pim else -d2
-        gp, gm = sg * Sp, sg * Sm
-    Gz, Cr = 0.5 * (gp + gm), 0.5 * (gp - gm)
-    r = Cr / C
-    # <sn^2> - 1/2 by the AGM series (sn2_excess)
-    k2 = d21 / d31
-    aa, bb, q, cc, p, sx = 1.0, sqrt(d32 / d31), 1.0, k2, 1.0, 0.0
-    while True:
-        aa, bb = 0.5 * (aa + bb), sqrt(aa * bb)
-        f = cc / (16.0 * aa * aa)
-        q *= f
-        cc *= f
-        sx += p * q
-        if p * q <= 1e-17 * (0.5 + sx):
-            break
-        p *= 2.0
-    lo, hi = d21 * (0.5 + sx), d21 * (0.5 - sx)
-    v = u1 + lo
-    gv = gp - Cr * (w1 + lo) if v <= 0.0 else gm + Cr * (z2 + hi)
-    F1 = -a * gv / A - b * r * v
-    F2 = -2.0 * a * (mgl * (w1 + c + hi) - Cr * Cr / (2.0 * A)) / A - b * r * r
-    CF3 = -b * Cr / C
-    kA = C / A - 1.0
-    GA = Gz / A
-    P = []
-    for u, w, z in ((u1, w1, z1), (u2, w2, z2)):
-        if u <= 0.0:
-            N1 = gp - Cr * w
-            N3 = gp / A - w * (2.0 * kA * r + GA) + kA * r * w * w
-        else:
-            N1 = gm + Cr * z
-            N3 = -gm / A + z * (GA - 2.0 * kA * r) + kA * r * z * z
-        P.append((N1 * F1 / A + N3 * CF3) / (w * z))
-    dth = (Sp * (F1 - CF3) * (1.0 if gm >= 0.0 else -1.0) - Sm * (F1 + CF3) * (1.0 if gp >= 0.0 else -1.0)) / (
-        Sp * Sp + Sm * Sm)
-    return (P[0] - F2) / (mgl * d21 * d31), (F2 - P[1]) / (mgl * d21 * d32), dth
+    d21 = 4.0 * math.sinh(x2 - x1) * math.exp(-(ax1 + ax2)) * i1 * i2
+    d31 = c + z1
+    b1 = 2.0 * sn * cs
+    return d21 / d31, (c + z2) / d31, min(b1, 0.5 * (1.0 - d1 * b1))
