@@ -98,41 +98,46 @@ def _locate(
     ev: Event, dense: _Dense, rows: np.ndarray, ta: np.ndarray, tb: np.ndarray, ga: np.ndarray,
     args_rows: tuple[np.ndarray, ...],
 ) -> np.ndarray:
-    """Zero of ``ev.fun`` on each member's step ``[ta, tb]`` (a bracket with ``ga`` at ``ta``), to 4 ulp.
+    """Zero of ``ev.fun`` on each member's step ``[ta, tb]`` (a bracket with ``ga`` at ``ta``).
 
-    A vectorised Illinois (modified regula falsi) iteration with a bisection fallback: every iteration
-    evaluates the event once on all unconverged members.
+    A vectorised Illinois (modified regula falsi) iteration with a bisection fallback, each member until its
+    estimate moves by less than 4 ulp of ``t`` or 1e-12 of the step: every iteration evaluates the event once
+    on the unconverged members.
     """
     a, b = ta.copy(), tb.copy()
     fa = ga.copy()
     fb = np.asarray(ev.fun(b, dense(b, rows), *args_rows), dtype=float).reshape(-1)
     side = np.zeros(a.size)
-    for it in range(200):
-        width = b - a
-        tol = 4.0 * _EPS * np.maximum(np.abs(a), np.abs(b))
-        todo = (width > tol) & (fa != 0.0) & (fb != 0.0)
-        if not np.any(todo):
-            break
-        with np.errstate(all="ignore"):
-            c = b - fb * (b - a) / (fb - fa)
-        bad = ~np.isfinite(c) | (c <= a) | (c >= b) | (it % 8 == 7)  # every 8th iteration: bisect
-        c = np.where(bad, 0.5 * (a + b), c)
+    root = np.where(fb == 0.0, b, np.where(fa == 0.0, a, 0.5 * (a + b)))
+    todo = (fa != 0.0) & (fb != 0.0)
+    # converged when an estimate moves by less than 4 ulp of t or 1e-12 of the step: far below the integration
+    # error of the state at the event (the event function's own rounding would stall a tighter criterion)
+    tol_all = np.maximum(4.0 * _EPS * np.maximum(np.abs(ta), np.abs(tb)), 1e-12 * (tb - ta))
+    for _ in range(100):
         idx = np.nonzero(todo)[0]
-        fc = np.full(a.size, np.nan)
+        if not idx.size:
+            break
+        ai, bi, fai, fbi = a[idx], b[idx], fa[idx], fb[idx]
+        with np.errstate(all="ignore"):
+            c = bi - fbi * (bi - ai) / (fbi - fai)
+        c = np.where(~np.isfinite(c) | (c <= ai) | (c >= bi), 0.5 * (ai + bi), c)
         sub_args = tuple(x[idx] for x in args_rows)
-        fc[idx] = np.asarray(ev.fun(c[idx], dense(c[idx], rows[idx]), *sub_args), dtype=float).reshape(-1)
-        same_as_a = todo & (np.sign(fc) == np.sign(fa))
-        other = todo & ~same_as_a
-        # Illinois: halve the stale end's value when the same end is kept twice
-        fb = np.where(same_as_a & (side == -1), 0.5 * fb, fb)
-        fa = np.where(other & (side == 1), 0.5 * fa, fa)
-        a = np.where(same_as_a, c, a)
-        fa = np.where(same_as_a, fc, fa)
-        b = np.where(other, c, b)
-        fb = np.where(other, fc, fb)
-        side = np.where(same_as_a, -1, np.where(other, 1, side))
-    root = np.where(fa == 0.0, a, np.where(fb == 0.0, b, 0.5 * (a + b)))
-    # never report a root before the bracket's start: return the end where the sign already changed
+        fc = np.asarray(ev.fun(c, dense(c, rows[idx]), *sub_args), dtype=float).reshape(-1)
+        tol = tol_all[idx]
+        conv = (fc == 0.0) | (np.abs(c - root[idx]) <= tol) | (bi - ai <= 2.0 * tol)
+        root[idx] = c
+        keep_a = np.sign(fc) == np.sign(fai)  # c replaces a (the root lies in [c, b])
+        si = side[idx]
+        # Illinois: halve the value at the end kept twice in a row
+        fb[idx] = np.where(keep_a & (si == -1), 0.5 * fbi, fbi)
+        fa[idx] = np.where(~keep_a & (si == 1), 0.5 * fai, fai)
+        a[idx] = np.where(keep_a, c, ai)
+        fa[idx] = np.where(keep_a, fc, fa[idx])
+        b[idx] = np.where(keep_a, bi, c)
+        fb[idx] = np.where(keep_a, fb[idx], fc)
+        side[idx] = np.where(keep_a, -1, 1)
+        todo[idx] = ~conv
+    # never report a root outside the step
     return np.clip(root, ta, tb)
 
 
@@ -150,6 +155,7 @@ def integrate_batch(
     time_name: str = "t",
     fields: Callable[[np.ndarray, np.ndarray], Mapping[str, np.ndarray]] | None = None,
     max_steps: int = 1_000_000,
+    first_step: Any = None,
 ) -> Solution:
     """Integrate a batch of independent systems ``dy/dt = fun(t, y)`` with per-member DOP853 step control.
 
@@ -168,7 +174,8 @@ def integrate_batch(
         Common increasing output grid (default: 101 points spanning ``[min t0, max t1]``). A member
         contributes the samples that lie in its own ``[t0, t_end]`` and NaN elsewhere.
     rtol, atol : float
-        Tolerances as in :func:`scipy.integrate.solve_ivp` (``atol`` may be an array of shape ``(n,)``).
+        Tolerances as in :func:`scipy.integrate.solve_ivp` (``atol`` may be an array of shape ``(n,)``, or
+        ``batch_shape + (n,)`` for per-member absolute tolerances).
     events : iterable of Event
         Named events; ``Event.fun(t, y, *args)`` is vectorised like ``fun`` and returns shape ``(m,)``.
         A terminal event ends its member (``status = 1``, ``event`` its name).
@@ -184,6 +191,9 @@ def integrate_batch(
         member has no sample); each array has leading axis ``B``.
     max_steps : int
         Step attempts per member before it ends with ``status = -1`` (a guard against runaway runs).
+    first_step : float or array_like, optional
+        Initial step size per member (NaN or None: SciPy's heuristic), e.g. the ``last_step`` of a batch being
+        continued.
 
     Returns
     -------
@@ -191,7 +201,8 @@ def integrate_batch(
         A batch solution: ``batch_shape``, ``time`` (the grid), ``y`` of shape ``batch_shape + (n, n_t)``,
         per-member ``status`` (0 end reached, 1 terminal event, -1 failure), ``message``, ``event``,
         ``success``, ``t_events``/``y_events`` (name -> object array of per-member arrays), ``nfev`` (per
-        member), ``t_final``/``y_final`` (each member's last time and state).
+        member), ``t_final``/``y_final`` (each member's last time and state), ``last_step`` (the step size each
+        member would have taken next).
 
     Raises
     ------
@@ -221,8 +232,14 @@ def integrate_batch(
         raise ValueError(f"rtol must be finite and > 0, got {rtol!r}")
     rtol = max(rtol, 100.0 * _EPS)  # SciPy's floor (without its warning)
     atol_a = np.asarray(atol, dtype=float)
-    if np.any(~np.isfinite(atol_a)) or np.any(atol_a < 0.0) or atol_a.shape not in ((), (n,)):
-        raise ValueError(f"atol must be >= 0, a scalar or of shape ({n},), got {atol!r}")
+    if atol_a.shape in ((*batch_shape, n), (B, n)) and atol_a.ndim >= 2:
+        atol_a = atol_a.reshape(B, n)  # per member
+    elif atol_a.shape not in ((), (n,)):
+        raise ValueError(f"atol must be a scalar or of shape ({n},) or batch_shape + ({n},), got shape "
+                         f"{atol_a.shape}")
+    if np.any(~np.isfinite(atol_a)) or np.any(atol_a < 0.0):
+        raise ValueError(f"atol must be finite and >= 0, got {atol!r}")
+    per_member_atol = atol_a.ndim == 2
     if t_eval is None:
         te = np.linspace(float(T0.min()), float(T1.max()), 101)
     else:
@@ -252,6 +269,7 @@ def integrate_batch(
     nfev = np.zeros(B, dtype=int)
     t_final = T0.copy()
     y_final = Y0.copy()
+    last_step = np.full(B, np.nan)
     tev: list[list[list[float]]] = [[[] for _ in range(B)] for _ in evs]
     yev: list[list[list[np.ndarray]]] = [[[] for _ in range(B)] for _ in evs]
 
@@ -303,11 +321,12 @@ def integrate_batch(
     gval = [g.copy() for g in G0]
     rejected = np.zeros(gidx.size, dtype=bool)
     nattempt = np.zeros(gidx.size, dtype=int)
+    atol_m = atol_a[live] if per_member_atol else atol_a
 
     # initial step (Hairer, Norsett, Wanner, II.4, as scipy.integrate._ivp.common.select_initial_step)
     if gidx.size:
         with np.errstate(all="ignore"):
-            scale = atol_a + np.abs(y) * rtol
+            scale = atol_m + np.abs(y) * rtol
             d0 = _rms_rows(y / scale)
             d1 = _rms_rows(f / scale)
             h0 = np.where((d0 < 1e-5) | (d1 < 1e-5), 1e-6, 0.01 * d0 / d1)
@@ -319,12 +338,17 @@ def integrate_batch(
                           (0.01 / np.maximum(d1, d2)) ** (1.0 / (_ORDER_EST + 1)))
             h_abs = np.minimum.reduce([100.0 * h0, h1, t1 - t, np.full(t.size, float(max_step))])
         h_abs = np.where(np.isfinite(h_abs) & (h_abs > 0.0), h_abs, t1 - t)
+        if first_step is not None:
+            fs = _as_member_array(first_step, B, "first_step")[gidx]
+            h_abs = np.where(np.isfinite(fs) & (fs > 0.0), np.minimum(fs, t1 - t), h_abs)
 
     K = np.empty((_N_STAGES + 4, 0, n))  # stages 0..11, f_new (12), dense-output stages 13..15
+    K2 = K.reshape(_N_STAGES + 4, 0)  # the same memory, one row per stage: linear combinations are matrix products
     while gidx.size:
         m = gidx.size
         if K.shape[1] != m:
             K = np.empty((_N_STAGES + 4, m, n))
+            K2 = K.reshape(_N_STAGES + 4, m * n)
         min_step = 10.0 * np.abs(np.nextafter(t, np.inf) - t)
         h_abs = np.clip(h_abs, min_step, max_step)
         h = np.minimum(h_abs, t1 - t)
@@ -334,21 +358,21 @@ def integrate_batch(
             K[0] = f
             hc = h[:, None]
             for s in range(1, _N_STAGES):
-                dy = np.tensordot(_A[s, :s], K[:s], axes=1) * hc
+                dy = (_A[s, :s] @ K2[:s]).reshape(m, n) * hc
                 K[s] = fun(t + _C[s] * h, y + dy, *prm)
-            y_new = y + np.tensordot(_B, K[:_N_STAGES], axes=1) * hc
+            y_new = y + (_B @ K2[:_N_STAGES]).reshape(m, n) * hc
             f_new = np.asarray(fun(t_new, y_new, *prm), dtype=float)
             K[_N_STAGES] = f_new
-            scale = atol_a + np.maximum(np.abs(y), np.abs(y_new)) * rtol
-            e5 = np.tensordot(_E5, K[: _N_STAGES + 1], axes=1) / scale
-            e3 = np.tensordot(_E3, K[: _N_STAGES + 1], axes=1) / scale
+            scale = atol_m + np.maximum(np.abs(y), np.abs(y_new)) * rtol
+            e5 = (_E5 @ K2[: _N_STAGES + 1]).reshape(m, n) / scale
+            e3 = (_E3 @ K2[: _N_STAGES + 1]).reshape(m, n) / scale
             e5n = np.einsum("ij,ij->i", e5, e5)
             e3n = np.einsum("ij,ij->i", e3, e3)
             denom = e5n + 0.01 * e3n
             err = np.where((e5n == 0.0) & (e3n == 0.0), 0.0, h * e5n / np.sqrt(denom * n))
         nfev[gidx] += _N_STAGES
         nattempt += 1
-        good = np.isfinite(err) & np.all(np.isfinite(y_new), axis=1) & np.all(np.isfinite(f_new), axis=1)
+        good = np.isfinite(err) & np.isfinite(y_new).all(axis=1) & np.isfinite(f_new).all(axis=1)
         acc = good & (err < 1.0)
         with np.errstate(all="ignore"):
             fac = np.where(err == 0.0, _MAX_FACTOR, np.minimum(_MAX_FACTOR, _SAFETY * err ** _ERR_EXP))
@@ -401,12 +425,14 @@ def integrate_batch(
             dense: _Dense | None = None
             nd = np.nonzero(need)[0]
             if nd.size:
-                Kd = K[:, ia[nd]]
+                Kd = np.ascontiguousarray(K[:, ia[nd]])  # a reshape of it must be a view
+                md = nd.size
+                Kd2 = Kd.reshape(_N_STAGES + 4, md * n)
                 hd = ha[nd][:, None]
                 prm_d = tuple(p[ia[nd]] for p in prm)
                 with np.errstate(all="ignore"):
                     for s in range(_N_STAGES + 1, _N_STAGES + 4):
-                        dy = np.tensordot(_A_EXTRA[s - _N_STAGES - 1, :s], Kd[:s], axes=1) * hd
+                        dy = (_A_EXTRA[s - _N_STAGES - 1, :s] @ Kd2[:s]).reshape(md, n) * hd
                         Kd[s] = fun(ta[nd] + _C_EXTRA[s - _N_STAGES - 1] * ha[nd], ya[nd] + dy, *prm_d)
                 nfev[gidx[ia[nd]]] += 3
                 dly = yna[nd] - ya[nd]
@@ -414,7 +440,7 @@ def integrate_batch(
                 Fd[0] = dly
                 Fd[1] = hd * Kd[0] - dly
                 Fd[2] = 2.0 * dly - hd * (f_new[ia[nd]] + Kd[0])
-                Fd[3:] = hd * np.tensordot(_D, Kd, axes=1)
+                Fd[3:] = hd * (_D @ Kd2).reshape(4, md, n)
                 dense = _Dense(ta[nd], ha[nd], ya[nd], Fd)
             # position of each accepted member in the dense arrays
             pos = np.full(ia.size, -1)
@@ -450,10 +476,12 @@ def integrate_batch(
             # output samples in (t_old, t_stop]
             hi = np.searchsorted(te, t_stop, side="right")
             cnt = np.maximum(hi - lo, 0)
-            if cnt.sum():
+            tot = int(cnt.sum())
+            if tot:
                 assert dense is not None
                 rows = np.repeat(np.arange(ia.size), cnt)
-                jj = np.concatenate([np.arange(a_, b_) for a_, b_ in zip(lo[cnt > 0], hi[cnt > 0])])
+                # grid indices lo .. hi - 1 of each member, concatenated
+                jj = np.repeat(lo - np.cumsum(cnt) + cnt, cnt) + np.arange(tot)
                 Yout[gidx[ia[rows]], :, jj] = dense(te[jj], pos[rows])
 
             # terminal events end their member at the root
@@ -485,11 +513,14 @@ def integrate_batch(
         rejected = np.where(acc, False, True)
         h_abs = h_next
         if np.any(done):
+            last_step[gidx[done]] = h_abs[done]
             keep_ = ~done
             gidx, t, t1, y, f = gidx[keep_], t[keep_], t1[keep_], y[keep_], f[keep_]
             h_abs, rejected, nattempt = h_abs[keep_], rejected[keep_], nattempt[keep_]
             prm = tuple(p[keep_] for p in prm)
             gval = [g[keep_] for g in gval]
+            if per_member_atol:
+                atol_m = atol_m[keep_]
 
     # ---- assemble ---------------------------------------------------------------------------------
     t_events: dict[str, np.ndarray] = {}
@@ -514,4 +545,5 @@ def integrate_batch(
         nfev.reshape(batch_shape), batch_shape=batch_shape, t_final=t_final.reshape(batch_shape),
         y_final=y_final.reshape((*batch_shape, n)),
     )
+    sol.last_step = last_step.reshape(batch_shape)
     return sol

@@ -50,7 +50,7 @@ class Event:
         Human-readable explanation written to ``Solution.message`` when the event ends the run.
     """
 
-    fun: Callable[..., float]
+    fun: Callable[..., Any]
     name: str
     terminal: bool = True
     direction: float = 0.0
@@ -134,7 +134,7 @@ class Solution:
         self.nfev = nfev
         self.t_final = t_final
         self.y_final = y_final
-        self.last_step: float | None = None
+        self.last_step: Any = None
 
     def __getattr__(self, name: str) -> Any:
         if name == self.__dict__.get("time_name"):

@@ -62,42 +62,38 @@ class _Setup:
         if closed_form and not isinstance(torque, LinearDrag):
             raise TypeError("closed_form=True is available for LinearDrag only (3.4)")
         self.drag = torque if (closed_form and isinstance(torque, LinearDrag)) else None
+        self.kd = None if self.drag is None else _k.drag_constants(self.A, self.C, self.mgl, self.drag.a,
+                                                                    self.drag.b)
         self.rtol, self.atol, self.n, self.chart = rtol, atol, n, chart
         self.deg, self.sw = degenerate_tol, switch_tol
 
     # ---- slow variables <-> chart coordinates ------------------------------------------------------
-    def slow_to_x(self, Gz: float, H: float, r: float, u123: tuple[float, float, float]) -> np.ndarray:
-        """u-chart coordinates of (Gz, H, r) with roots ``u123``, the small gaps refined by (1.6)."""
+    def slow_to_x(self, xp: Any, Gz: Any, H: Any, r: Any, u1: Any, u2: Any, u3: Any) -> tuple[Any, Any, Any]:
+        """u-chart coordinates of (Gz, H, r) with roots ``u1 < u2 < u3`` (absolute accuracy), the small gaps
+        refined by (1.6): ``(1+u1)(1+u2)(1+u3) = (Gz + C r)^2/(2 A mgl)``, ``(1-u1)(1-u2)(u3-1) = (Gz - C r)^2/
+        (2 A mgl)`` and ``(1+u1) + (1+u2) + (u3-1) = K/mgl + C^2 r^2/(2 A mgl)``."""
         A, C, mgl = self.A, self.C, self.mgl
-        u1, u2, u3 = u123
         Cr = C * r
         amg2 = 2.0 * A * mgl
-        pip = (Gz + Cr) ** 2 / amg2  # (1+u1)(1+u2)(1+u3)
-        pim = (Gz - Cr) ** 2 / amg2  # (1-u1)(1-u2)(u3-1)
+        pip = (Gz + Cr) ** 2 / amg2
+        pim = (Gz - Cr) ** 2 / amg2
         w1, w2, z1, z2, c = 1.0 + u1, 1.0 + u2, 1.0 - u1, 1.0 - u2, u3 - 1.0
-        if z2 >= c and z1 * z2 > 0.0:
-            c = pim / (z1 * z2)
-        elif c > 0.0:
-            z2 = pim / (z1 * c)
-        if w2 < 0.25:  # both lower roots near -1: their sum and product by (1.6)
-            K = H + mgl - Cr * Cr / (2.0 * C)
-            ssum = K / mgl + Cr * Cr / (2.0 * A * mgl) - c
-            prod = pip / (2.0 + c)
-            big = 0.5 * ssum + math.sqrt(max(0.25 * ssum * ssum - prod, 0.0))
-            if big > 0.0:
-                w2, w1 = big, prod / big
-        elif w2 > 0.0:
-            w1 = pip / (w2 * (2.0 + c))
-        th = math.atan2(abs(Gz - Cr), abs(Gz + Cr))
-        if min(w1, z1, w2, z2) > 0.0:
-            return np.array([*_k.gaps_to_x(_k.SCALAR, w1, z1, w2, z2), th])
-        return np.array([-np.inf, -np.inf, th])
-
-    def closeness_x(self, xp: Any, s: _k.UState, d1: Any) -> Any:
-        """``min(b1, b2)``: ``b1 = |Gz^2 - C^2 r^2|/(Gz^2 + C^2 r^2) = sin 2 theta``, ``b2 = C^2 r^2/(Gz^2 +
-        C^2 r^2) = (1 - delta1 sin 2 theta)/2``, the distances from the branch points of (2.8)."""
-        b1 = 2.0 * s.sth * s.cth
-        return xp.minimum(b1, 0.5 * (1.0 - d1 * b1))
+        by_c = (z2 >= c) & (z1 * z2 > 0.0)  # u3 - 1 is the smaller gap: from the product
+        c, z2 = (xp.where(by_c, pim / xp.where(by_c, z1 * z2, 1.0), c),
+                 xp.where(~by_c & (c > 0.0), pim / (z1 * xp.where(c > 0.0, c, 1.0)), z2))
+        # both lower roots near -1: their sum and product by (1.6); otherwise 1 + u1 from the product
+        K = H + mgl - Cr * Cr / (2.0 * C)
+        ssum = K / mgl + Cr * Cr / (2.0 * A * mgl) - c
+        prod = pip / (2.0 + c)
+        big = 0.5 * ssum + xp.sqrt(xp.maximum(0.25 * ssum * ssum - prod, 0.0))
+        pair = (w2 < 0.25) & (big > 0.0)
+        w1 = xp.where(pair, prod / xp.where(pair, big, 1.0),
+                      xp.where(w2 > 0.0, pip / (xp.where(w2 > 0.0, w2, 1.0) * (2.0 + c)), w1))
+        w2 = xp.where(pair, big, w2)
+        # q = tan(theta/2), tan theta = |Gz - C r|/|Gz + C r|
+        Sp, Sm = xp.abs(Gz + Cr), xp.abs(Gz - Cr)
+        q = Sm / (xp.sqrt(Sp * Sp + Sm * Sm) + Sp)
+        return 0.5 * xp.log(w1 / z1), 0.5 * xp.log(w2 / z2), q
 
     # ---- right-hand sides --------------------------------------------------------------------------
     def means_u(self, xp: Any, s: _k.UState) -> tuple[Any, Any, Any]:
@@ -140,6 +136,8 @@ class _Setup:
         return float(np.mean(F[0])), float(np.mean(F[1])), float(np.mean(F[2]))
 
     def rhs_x(self, xp: Any, x1: Any, x2: Any, x3: Any, d1: Any, d2: Any) -> tuple[Any, Any, Any]:
+        if self.drag is not None:
+            return _k.u_drag_rates(xp, self.kd, x1, x2, x3, d1, d2)
         s = _k.decode_u(xp, self.A, self.C, self.mgl, x1, x2, x3, d1, d2)
         F = self.means_u(xp, s)
         return _k.u_chart_rates(xp, self.A, self.C, self.mgl, s, *F)
@@ -153,18 +151,18 @@ class _Setup:
             return tuple(np.where(bad, np.nan, v) for v in d)  # type: ignore[return-value]  # 3 arrays
         return d if g.ok else (math.nan, math.nan, math.nan)
 
-    # ---- event functions (xp-generic in the chart coordinates) -------------------------------------
-    def ev_deg(self, xp: Any, x1: Any, x2: Any, x3: Any) -> Any:
-        s = _k.decode_u(xp, self.A, self.C, self.mgl, x1, x2, x3, -1.0, 1.0)
-        return s.k2 - self.deg
+    def roots_g(self, xp: Any, Gz: Any, H: Any, r: Any) -> tuple[Any, Any, Any]:
+        """Roots of (1.5) at (Gz, H, r) with ``Gz^2 + C^2 r^2 > 0`` by :func:`_kernel.decode_g` (the largest by
+        Newton from the trigonometric formula, the pair by (1.6)); the chart switches of one run and of a batch
+        use this same routine."""
+        g = _k.decode_g(xp, self.A, self.C, self.mgl, *_k.slow_to_polar(xp, self.C, Gz, H, r))
+        return g.u1, g.u2, g.u3
 
-    def ev_sep(self, xp: Any, x1: Any, x2: Any, x3: Any) -> Any:
-        s = _k.decode_u(xp, self.A, self.C, self.mgl, x1, x2, x3, -1.0, 1.0)
-        return s.mc - self.deg
-
-    def ev_branch(self, xp: Any, x1: Any, x2: Any, x3: Any, d1: Any, d2: Any) -> Any:
-        s = _k.decode_u(xp, self.A, self.C, self.mgl, x1, x2, x3, d1, d2)
-        return self.closeness_x(xp, s, d1) - self.sw
+    def u_events(self, xp: Any, x1: Any, x2: Any, th: Any, d1: Any) -> tuple[Any, Any, Any]:
+        """The u-chart events: ``k^2 - degenerate_tol`` (regular precession), ``mc - degenerate_tol``
+        (separatrix), ``min(b1, b2) - switch_tol`` (branch point of (2.8))."""
+        k2, mc, b = _k.u_event_values(xp, x1, x2, th, d1)
+        return k2 - self.deg, mc - self.deg, b - self.sw
 
     def ev_w(self, xp: Any, psi: Any) -> Any:
         # sign changes of Gz^2 - C^2 r^2 = S^2 cos(2 pi psi); a value that is zero to integration accuracy (a
@@ -291,15 +289,15 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
     # a stage outside the charts' domain (overflow, a root order violated) gets NaN: the step is rejected
     A, C, mgl = st.A, st.C, st.mgl
     drag = st.drag
-    fast = None if drag is None else _k.u_drag_rates_scalar_factory(A, C, mgl, drag.a, drag.b)
+    kd = None if drag is None else _k.drag_constants(A, C, mgl, drag.a, drag.b)
 
     def rhs_x(tau: float, y: Any, d1: float, d2: float) -> Any:
         x1, x2, th = y
         if not x1 < x2:
             return nan3
         try:
-            if fast is not None:
-                return fast(x1, x2, th, d1, d2)
+            if kd is not None:
+                return _k.u_drag_rates(SC, kd, x1, x2, th, d1, d2)
             return st.rhs_x(SC, x1, x2, th, d1, d2)
         except (ZeroDivisionError, OverflowError, ValueError):
             return nan3
@@ -329,8 +327,7 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
         key = (*y, d1, d2)
         if cache["key"] != key:
             try:
-                k2, mc, b = _k.u_event_values_scalar(key[0], key[1], key[2], d1)
-                cache["val"] = (k2 - st.deg, mc - st.deg, b - st.sw)
+                cache["val"] = st.u_events(SC, key[0], key[1], key[2], d1)
             except (ZeroDivisionError, OverflowError, ValueError):
                 cache["val"] = (math.nan, math.nan, math.nan)
             cache["key"] = key
@@ -407,7 +404,7 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
     status, message, event, nfev = 0, _MSG_END, None, 0
     tau = t0
     Gz, H, r = Gz0, H0, r0
-    u123: tuple[float, ...] = u_init
+    del u_init  # the u chart starts from roots_g (the batch computes the same)
     last_out = -math.inf
     atol_x = np.full(3, st.rtol)
     engine = "python" if method == "DOP853" else "scipy"
@@ -415,7 +412,7 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
     for _ in range(max_segments):
         tev = None if te_all is None else te_all[(te_all >= tau) & (te_all > last_out)]
         if cur == "u":
-            x0 = st.slow_to_x(Gz, H, r, u123)  # type: ignore[arg-type]  # a 3-tuple
+            x0 = np.array(st.slow_to_x(SC, Gz, H, r, *st.roots_g(SC, Gz, H, r)))
             evs = [Event(ev_deg, "u1_eq_u2", True, -1.0, _MSG_DEG), Event(ev_sep, "separatrix", True, -1.0, _MSG_SEP)]
             if chart in ("auto", "u"):
                 evs.append(Event(ev_branch, "branch_point", True, -1.0, _MSG_BRANCH))
@@ -490,11 +487,11 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
             else:
                 Gz, H, r = (float(v) for v in ye)
             tau = te
-            u123 = _roots_or_double(st.top, Gz, H, r)
             d1, d2 = deltas(st.top, Gz, r)
             cur = "u"
             t_events["chart_switch"].append(te)
-            if (u123[1] - u123[0]) <= st.deg * (u123[2] - u123[0]):
+            u1, u2, u3 = st.roots_g(SC, Gz, H, r)
+            if (u2 - u1) <= st.deg * (u3 - u1):
                 status, event = 1, "u1_eq_u2"
                 message = f"stopped by event 'u1_eq_u2' at tau = {te:.6g}: {_MSG_DEG}"
                 break
@@ -614,7 +611,7 @@ def averaged(
     -----
     *What the tolerance controls.* The slow variables of a decaying top (``r``, ``Gz``, the gaps
     ``1 + u1``, ``1 + u2``, ``u3 - 1``) shrink by many orders. The u chart is therefore integrated in
-    ``(atanh u1, atanh u2, theta)``, ``tan theta = |Gz - C r|/|Gz + C r|``, and the GHr chart in
+    ``(atanh u1, atanh u2, q)``, ``q = tan(theta/2)``, ``tan theta = |Gz - C r|/|Gz + C r|``, and the GHr chart in
     ``(ln S, psi, H)`` with ``S`` the length of ``(Gz, C r)`` and ``pi psi`` its direction, both with absolute
     error control ``rtol`` on these coordinates: ``rtol`` is then the relative local accuracy of every root
     gap, of ``S`` (hence of ``Gz`` and ``r`` away from their zeros) and of ``H`` (relative to
@@ -637,6 +634,14 @@ def averaged(
     te_all = None if tau_eval is None else np.atleast_1d(np.asarray(tau_eval, dtype=float))
     if te_all is not None and te_all.size and (te_all.min() < t0 or te_all.max() > t1):
         raise ValueError("tau_eval must lie within tau_span")
+    try:
+        ndim = np.ndim(initial)
+    except ValueError:  # ragged input
+        ndim = 1
+    if ndim >= 2:
+        from ._avgbatch import averaged_batch  # the batch module builds on this one
+
+        return averaged_batch(st, initial, t0, t1, te_all, max_segments)
     try:
         Gz0, H0, r0 = (float(x) for x in initial)
     except (TypeError, ValueError):

@@ -6,11 +6,12 @@ The averaged Lagrange top decays towards the hanging equilibrium: ``r``, ``Gz`` 
 quantities, and ``Gz``, ``r`` computed from the roots through (2.8), lose their relative accuracy. The
 integrations therefore run in
 
-* the **u chart** as ``(atanh u1, atanh u2, theta)``: the two lower roots through their distances to the
+* the **u chart** as ``(atanh u1, atanh u2, q)``: the two lower roots through their distances to the
   ends of ``[-1, 1]``, ``1 + u = 2/(1 + e^{-2x})``, ``1 - u = 2/(1 + e^{2x})``, so an absolute error in
-  ``x`` is a relative error in either gap, and ``u3`` through ``theta = atan2(|Gz - C r|, |Gz + C r|)``, which
-  fixes ``u3 - 1`` relative to the lower gaps and passes smoothly through the branch point ``u3 = 1``
-  (where ``u3 - 1`` vanishes quadratically, a log coordinate would be singular);
+  ``x`` is a relative error in either gap, and ``u3`` through ``q = tan(theta/2)``,
+  ``theta = atan2(|Gz - C r|, |Gz + C r|)`` in ``[0, pi/2]``, which fixes ``u3 - 1`` relative to the lower gaps
+  and passes smoothly through the branch point ``u3 = 1`` (where ``u3 - 1`` vanishes quadratically, a log
+  coordinate would be singular); ``sin theta``, ``cos theta`` are rational in ``q``;
 * the **GHr chart** as ``(ln S, psi, H)`` with ``Gz = S cos(pi psi)``, ``C r = S sin(pi psi)``: the
   magnitude of ``(Gz, C r)`` on a log scale and its direction; the branch points of (2.8) are
   ``psi`` = multiples of 1/4 (``r = 0`` or ``Gz^2 = C^2 r^2``), crossed smoothly.
@@ -27,7 +28,6 @@ call) or :data:`ARRAY` (NumPy, for a batch, elementwise over members), so one fo
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -43,11 +43,16 @@ class _Scalar:
 
     sqrt = staticmethod(math.sqrt)
     exp = staticmethod(math.exp)
+    expm1 = staticmethod(math.expm1)
     log = staticmethod(math.log)
     sinh = staticmethod(math.sinh)
+    cosh = staticmethod(math.cosh)
+    tanh = staticmethod(math.tanh)
     sin = staticmethod(math.sin)
     cos = staticmethod(math.cos)
     acos = staticmethod(math.acos)
+    atan2 = staticmethod(math.atan2)
+    copysign = staticmethod(math.copysign)
     abs = staticmethod(abs)
     minimum = staticmethod(min)
     maximum = staticmethod(max)
@@ -76,11 +81,16 @@ class _Array:
 
     sqrt = staticmethod(np.sqrt)
     exp = staticmethod(np.exp)
+    expm1 = staticmethod(np.expm1)
     log = staticmethod(np.log)
     sinh = staticmethod(np.sinh)
+    cosh = staticmethod(np.cosh)
+    tanh = staticmethod(np.tanh)
     sin = staticmethod(np.sin)
     cos = staticmethod(np.cos)
     acos = staticmethod(np.arccos)
+    atan2 = staticmethod(np.arctan2)
+    copysign = staticmethod(np.copysign)
     abs = staticmethod(np.abs)
     minimum = staticmethod(np.minimum)
     maximum = staticmethod(np.maximum)
@@ -117,23 +127,29 @@ def sn2_excess(xp: Any, k2: Any, mc: Any) -> Any:
     ``1 - E/K = sum_{n>=0} 2^{n-1} c_n^2`` (Abramowitz & Stegun 17.6.3-17.6.4); with ``q_n = c_n^2/k^2`` the
     sum divided by ``k^2`` is ``1/2 + sum_{n>=1} 2^{n-1} q_n``, every term positive. Exact in ``mc``.
     """
-    a = 1.0 + 0.0 * mc
+    a = 1.0
     b = xp.sqrt(mc)
-    q = 1.0 + 0.0 * k2
-    c2 = k2
-    p = 0.5
-    total = 0.0 * k2
-    for _ in range(40):
-        a_new = 0.5 * (a + b)
-        b = xp.sqrt(a * b)
-        a = a_new
-        q = q * c2 / (16.0 * a * a)
-        c2 = c2 * c2 / (16.0 * a * a)
-        p *= 2.0
+    q = 1.0  # q_n = c_n^2/k^2
+    p = 1.0  # 2^(n-1)
+    total = 0.0
+    if xp.array:
+        # the AGM converges quadratically: with c_1 = k^2/(2(1 + k')) <= 1/2 and c_{n+1} = c_n^2/(4 a_{n+1}),
+        # a_{n+1} >= sqrt(mc), the iterations needed for the terms to drop below 1e-17 follow from the smallest
+        # complementary parameter of the batch
+        mcmin = max(float(np.min(mc)), 0.0) if np.size(mc) else 1.0
+        c, n_it = (1.0 - mcmin) / (2.0 * (1.0 + math.sqrt(mcmin))), 1
+        while c * c > 1e-17 and n_it < 40:
+            c, n_it = c * c / (4.0 * max(math.sqrt(mcmin), 1e-300)) if c > 0.0 else 0.0, n_it + 1
+    else:
+        n_it = 40
+    for _ in range(n_it):
+        a, b = 0.5 * (a + b), xp.sqrt(a * b)
+        q = q * q * k2 / (16.0 * a * a)
         term = p * q
         total = total + term
-        if not xp.any(term > 1e-17 * (0.5 + total)):
+        if not xp.array and term <= 1e-17 * (0.5 + total):
             break
+        p *= 2.0
     return total
 
 
@@ -141,15 +157,23 @@ def sn2_excess(xp: Any, k2: Any, mc: Any) -> Any:
 # the u chart
 # ---------------------------------------------------------------------------------------------------
 def _side(xp: Any, x: Any) -> tuple[Any, Any, Any, Any]:
-    """``u = tanh x`` and its gaps ``1 + u``, ``1 - u``, plus ``t = exp(-2|x|)``."""
-    t = xp.exp(-2.0 * xp.abs(x))
-    big = 2.0 / (1.0 + t)
-    small = 2.0 * t / (1.0 + t)
-    pos = x >= 0.0
-    w = xp.where(pos, big, small)
-    z = xp.where(pos, small, big)
-    u = xp.where(pos, 1.0, -1.0) * (1.0 - t) / (1.0 + t)
-    return u, w, z, t
+    """``u = tanh x``, its gaps ``1 + u = 2/(1 + E)``, ``1 - u = 2E/(1 + E)`` and ``E = e^{-2x}`` (the gaps to a
+    few ulp; ``u`` itself only absolutely near 0, where that is all it needs)."""
+    E = xp.exp(-2.0 * x)
+    w = 2.0 / (1.0 + E)
+    return 0.5 * w * (1.0 - E), w, w * E, E
+
+
+def _trig_q(q: Any) -> tuple[Any, Any]:
+    """``(sin theta, cos theta)`` of ``q = tan(theta/2)``."""
+    t = 1.0 / (1.0 + q * q)
+    return 2.0 * q * t, (1.0 - q) * (1.0 + q) * t
+
+
+def _d21(xp: Any, x1: Any, x2: Any, w1: Any, w2: Any, E2: Any) -> Any:
+    """``u2 - u1 = tanh x2 - tanh x1 = (1+u1)(1+u2) e^{-2 x2} (e^{2(x2 - x1)} - 1)/2``, exact for nearly equal
+    roots."""
+    return 0.5 * w1 * w2 * E2 * xp.expm1(2.0 * (x2 - x1))
 
 
 def gaps_to_x(xp: Any, w1: Any, z1: Any, w2: Any, z2: Any) -> tuple[Any, Any]:
@@ -161,7 +185,7 @@ class UState:
     """Everything the u-chart right-hand sides need at one state (attributes; scalars or arrays)."""
 
     __slots__ = ("Cr", "Gz", "H", "K", "Sm", "Sp", "c", "cth", "d21", "d31", "d32", "gm", "gp", "k2", "mc", "pim",
-                 "pip", "r", "sth", "u1", "u2", "u3", "w1", "w2", "z1", "z2")
+                 "pip", "q", "r", "sth", "u1", "u2", "u3", "w1", "w2", "z1", "z2")
 
     Cr: Any
     Gz: Any
@@ -180,6 +204,7 @@ class UState:
     mc: Any
     pim: Any
     pip: Any
+    q: Any
     r: Any
     sth: Any
     u1: Any
@@ -191,22 +216,21 @@ class UState:
     z2: Any
 
 
-def decode_u(xp: Any, A: float, C: float, mgl: float, x1: Any, x2: Any, th: Any, d1: Any, d2: Any) -> UState:
-    """Roots, gaps and (Gz, H, r) by (2.8) at the u-chart point ``(x1, x2, theta)`` with signs ``delta1, delta2``.
+def decode_u(xp: Any, A: float, C: float, mgl: float, x1: Any, x2: Any, q: Any, d1: Any, d2: Any) -> UState:
+    """Roots, gaps and (Gz, H, r) by (2.8) at the u-chart point ``(x1, x2, q)`` with signs ``delta1, delta2``.
 
     ``tan^2 theta = Pi-/Pi+ = (1-u1)(1-u2)(u3-1)/((1+u1)(1+u2)(1+u3))`` gives
     ``u3 - 1 = 2 T w1 w2/(z1 z2 - T w1 w2)`` (``T = tan^2 theta``, ``w = 1 + u``, ``z = 1 - u``).
     """
     s = UState()
-    u1, w1, z1, t1 = _side(xp, x1)
-    u2, w2, z2, t2 = _side(xp, x2)
-    sn, cs = xp.sin(th), xp.cos(th)
+    u1, w1, z1, _ = _side(xp, x1)
+    u2, w2, z2, E2 = _side(xp, x2)
+    sn, cs = _trig_q(q)
     ww = w1 * w2 * sn * sn
     c = 2.0 * ww / (z1 * z2 * cs * cs - ww)
-    s.sth, s.cth = sn, cs
+    s.sth, s.cth, s.q = sn, cs, q
     s.u1, s.w1, s.z1, s.u2, s.w2, s.z2, s.c, s.u3 = u1, w1, z1, u2, w2, z2, c, 1.0 + c
-    # u2 - u1 = tanh x2 - tanh x1 = sinh(x2 - x1)/(cosh x1 cosh x2), exact for nearly equal roots
-    s.d21 = 4.0 * xp.sinh(x2 - x1) * xp.exp(-(xp.abs(x1) + xp.abs(x2))) / ((1.0 + t1) * (1.0 + t2))
+    s.d21 = _d21(xp, x1, x2, w1, w2, E2)
     s.d32 = c + z2
     s.d31 = c + z1
     s.k2 = s.d21 / s.d31
@@ -218,12 +242,13 @@ def decode_u(xp: Any, A: float, C: float, mgl: float, x1: Any, x2: Any, th: Any,
     Sp = xp.sqrt(amg2 * pip)  # |Gz + C r|
     Sm = xp.sqrt(amg2 * pim)  # |Gz - C r|
     s.Sp, s.Sm = Sp, Sm
-    sg = xp.where(pip >= pim, d2, -d2)
-    neg = d1 < 0.0
-    Gz = xp.where(neg, d2 * (Sp - Sm), sg * (Sp + Sm)) * 0.5
-    Cr = xp.where(neg, d2 * (Sp + Sm), sg * (Sp - Sm)) * 0.5
-    s.gp = xp.where(neg, d2, sg) * Sp  # Gz + C r
-    s.gm = xp.where(neg, -d2, sg) * Sm  # Gz - C r
+    # the signs of Gz +- C r by (2.8): delta1 = -1: (delta2, -delta2); delta1 = +1: both sign(Gz) =
+    # delta2 sign(1 + s2), 1 + s2 = (Pi+ - Pi-)/2
+    sgp = xp.where(d1 < 0.0, d2, xp.where(pip >= pim, d2, -d2))
+    s.gp = sgp * Sp  # Gz + C r
+    s.gm = (sgp * d1) * Sm  # Gz - C r
+    Gz = 0.5 * (s.gp + s.gm)
+    Cr = 0.5 * (s.gp - s.gm)
     s.Gz, s.Cr, s.r = Gz, Cr, Cr / C
     # K = H + mgl - C r^2/2 = mgl (u1 + u2 + u3 + 1) - C^2 r^2/(2A)  (from s1 of (1.6))
     s.K = mgl * (w1 + w2 + c) - Cr * Cr / (2.0 * A)
@@ -243,7 +268,7 @@ def drag_means(xp: Any, A: float, C: float, mgl: float, a: float, b: float, s: U
     v = s.u1 + lo
     onepv = s.w1 + lo  # 1 + v
     onemv = s.z2 + hi  # 1 - v
-    gv = xp.where(v <= 0.0, s.gp - s.Cr * onepv, s.gm + s.Cr * onemv)  # Gz - C r v
+    gv = 0.5 * (s.gp * onemv + s.gm * onepv)  # Gz - C r v, exact at v = -1 and v = +1
     kin = mgl * (s.w1 + s.c + hi) - s.Cr * s.Cr / (2.0 * A)  # K - mgl (1 + v)
     r = s.r
     F1 = -a * gv / A - b * r * v
@@ -259,27 +284,28 @@ def u_chart_rates(
 
     ``V_i1 = N1_i/(A mgl D_i)``, ``V_i2 = (u_i^2 - 1)/(mgl D_i)``, ``V_i3 = C N3_i/(mgl D_i)`` with
     ``N1_i = Gz - C r u_i``, ``N3_i = (C/A - 1) r u_i^2 - Gz u_i/A + r``, ``D_i = (u_i - u_j)(u_i - u_k)``;
-    ``N1, N3`` are expanded about the nearer end of the range of ``u_i`` (they vanish with ``Gz +- C r`` there),
-    and the factor ``u_i^2 - 1`` of ``V_i2`` cancels the chart's ``1/(1 - u_i^2)``.
+    ``N1, N3`` are written through their values at ``u = -1`` and ``u = +1`` (``Gz + C r`` and ``Gz - C r``,
+    small near the ends where the chart divides by ``1 - u^2``), and the factor ``u_i^2 - 1`` of ``V_i2``
+    cancels the chart's ``1/(1 - u_i^2)``.
     """
-    kA = C / A - 1.0
-    Gz, Cr, r = s.Gz, s.Cr, s.r
+    # N1 = Gz - C r u = ((Gz + C r)(1 - u) + (Gz - C r)(1 + u))/2 and N3, the quadratic through its values
+    # (Gz + C r)/A at u = -1 and -(Gz - C r)/A at u = +1: N3 = ((Gz + C r)(1 - u) - (Gz - C r)(1 + u))/(2A)
+    # - (C/A - 1) r (1 + u)(1 - u); both exact at either end of the range of u
+    kr = (C / A - 1.0) * s.r
     gp, gm = s.gp, s.gm
+    iA = 1.0 / A
+    CF3 = C * F3
     out = []
-    for u, w, z in ((s.u1, s.w1, s.z1), (s.u2, s.w2, s.z2)):
-        lower = u <= 0.0
-        N1 = xp.where(lower, gp - Cr * w, gm + Cr * z)
-        N3 = xp.where(lower, gp / A - w * (2.0 * kA * r + Gz / A) + kA * r * w * w,
-                      -gm / A + z * (Gz / A - 2.0 * kA * r) + kA * r * z * z)
-        out.append((N1 * F1 / A + C * N3 * F3) / (w * z))
+    for w, z in ((s.w1, s.z1), (s.w2, s.z2)):
+        N1 = 0.5 * (gp * z + gm * w)
+        N3 = (0.5 * iA) * (gp * z - gm * w) - kr * w * z
+        out.append((N1 * F1 * iA + N3 * CF3) / (w * z))
     dx1 = (out[0] - F2) / (mgl * s.d21 * s.d31)
     dx2 = (out[1] - F2) / (-mgl * s.d21 * s.d32)
-    # theta = atan2(|Gz - C r|, |Gz + C r|): d|Gz +- C r| = sign(Gz +- C r) (F1 +- C F3)
-    sgp = xp.where(gp >= 0.0, 1.0, -1.0)
-    sgm = xp.where(gm >= 0.0, 1.0, -1.0)
-    CF3 = C * F3
-    dth = (s.Sp * sgm * (F1 - CF3) - s.Sm * sgp * (F1 + CF3)) / (s.Sp * s.Sp + s.Sm * s.Sm)
-    return dx1, dx2, dth
+    # theta = atan2(|Gz - C r|, |Gz + C r|): d|Gz +- C r| = sign(Gz +- C r) (F1 +- C F3); dq = (1 + q^2) dtheta/2
+    dth = (s.Sp * xp.copysign(1.0, gm) * (F1 - CF3) - s.Sm * xp.copysign(1.0, gp) * (F1 + CF3)) / (
+        s.Sp * s.Sp + s.Sm * s.Sm)
+    return dx1, dx2, 0.5 * (1.0 + s.q * s.q) * dth
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -288,8 +314,8 @@ def u_chart_rates(
 class GState:
     """Slow variables and roots at a GHr-chart point (attributes; scalars or arrays)."""
 
-    __slots__ = ("Cr", "Gz", "H", "K", "S", "cs", "d21", "gm", "gp", "half", "k2", "mc", "msum", "ok", "r", "s1",
-                 "s2", "s3", "sn", "spread", "u1", "u2", "u3")
+    __slots__ = ("Cr", "Gz", "H", "K", "S", "cs", "d21", "gm", "gp", "half", "inside", "k2", "mc", "msum", "ok", "r",
+                 "s1", "s2", "s3", "sn", "spread", "u1", "u2", "u3")
 
     Cr: Any
     Gz: Any
@@ -301,6 +327,7 @@ class GState:
     gm: Any
     gp: Any
     half: Any
+    inside: Any
     k2: Any
     mc: Any
     msum: Any
@@ -363,6 +390,7 @@ def decode_g(xp: Any, A: float, C: float, mgl: float, sigma: Any, psi: Any, H: A
     half = xp.sqrt(xp.maximum(h2, 0.0))
     g.msum = xp.where(inside, msum, c_lo)
     g.half = half
+    g.inside = inside
     u1 = g.msum - half
     u2 = g.msum + half
     g.u1 = xp.clip(u1, -1.0, 1.0)
@@ -399,125 +427,71 @@ def slow_to_polar(xp: Any, C: float, Gz: Any, H: Any, r: Any) -> tuple[Any, Any,
     """``(ln S, psi, H)`` of ``(Gz, H, r)`` (``S > 0``)."""
     Cr = C * r
     S = xp.sqrt(Gz * Gz + Cr * Cr)
-    psi = np.arctan2(Cr, Gz) / math.pi if xp.array else math.atan2(Cr, Gz) / math.pi
-    return xp.log(S), psi, H
+    return xp.log(S), xp.atan2(Cr, Gz) / math.pi, H
 
 
 # ---------------------------------------------------------------------------------------------------
-# one-run fast path: the u chart under linear drag as one math-scalar function
+# the u chart under linear drag in one function (the hot path of single runs and batches)
 # ---------------------------------------------------------------------------------------------------
-def u_drag_rates_scalar_factory(
-    A: float, C: float, mgl: float, a: float, b: float
-) -> Callable[[float, float, float, float, float], tuple[float, float, float]]:
-    """``f(x1, x2, theta, delta1, delta2) -> d(x1, x2, theta)/dtau`` of the u chart under linear drag.
+def drag_constants(A: float, C: float, mgl: float, a: float, b: float) -> tuple[float, ...]:
+    """The parameter combinations :func:`u_drag_rates` uses, computed once per run."""
+    return (2.0 * A * mgl, 1.0 / A, 1.0 / C, 0.5 / A, C / A - 1.0, a / A, b / C, 2.0 * a / A, mgl, b)
 
-    :func:`decode_u`, :func:`drag_means` and :func:`u_chart_rates` fused for floats: the same formulas,
-    evaluated with ``math``, branches instead of selections and the parameters' combinations computed once
-    (tests compare the two).
+
+def u_drag_rates(xp: Any, k: tuple[float, ...], x1: Any, x2: Any, q: Any, d1: Any, d2: Any) -> tuple[Any, Any, Any]:
+    """``d(x1, x2, theta)/dtau`` of the u chart under linear drag: :func:`decode_u`, :func:`drag_means` and
+    :func:`u_chart_rates` in one pass, computing only what the rates need (tests compare the two routes).
+
+    ``k`` is :func:`drag_constants`; works on floats (``xp = SCALAR``) and on arrays of members (``ARRAY``).
     """
-    sqrt, exp, sin, cos, sinh = math.sqrt, math.exp, math.sin, math.cos, math.sinh
-    amg2 = 2.0 * A * mgl
-    iA, iC, i2A = 1.0 / A, 1.0 / C, 0.5 / A
-    kA = C / A - 1.0
-    aA, bC = a / A, b / C
-    two_a_A = 2.0 * a / A
-
-    def rates(x1: float, x2: float, th: float, d1: float, d2: float) -> tuple[float, float, float]:
-        ax1 = x1 if x1 >= 0.0 else -x1
-        ax2 = x2 if x2 >= 0.0 else -x2
-        t1 = exp(-2.0 * ax1)
-        t2 = exp(-2.0 * ax2)
-        i1 = 1.0 / (1.0 + t1)
-        i2 = 1.0 / (1.0 + t2)
-        if x1 >= 0.0:
-            w1, z1, u1 = 2.0 * i1, 2.0 * t1 * i1, (1.0 - t1) * i1
-        else:
-            w1, z1, u1 = 2.0 * t1 * i1, 2.0 * i1, (t1 - 1.0) * i1
-        if x2 >= 0.0:
-            w2, z2, u2 = 2.0 * i2, 2.0 * t2 * i2, (1.0 - t2) * i2
-        else:
-            w2, z2, u2 = 2.0 * t2 * i2, 2.0 * i2, (t2 - 1.0) * i2
-        sn = sin(th)
-        cs = cos(th)
-        ww = w1 * w2 * sn * sn
-        c = 2.0 * ww / (z1 * z2 * cs * cs - ww)
-        d21 = 4.0 * sinh(x2 - x1) * exp(-(ax1 + ax2)) * i1 * i2
-        d32 = c + z2
-        d31 = c + z1
-        pip = w1 * w2 * (2.0 + c)
-        pim = z1 * z2 * c
-        Sp = sqrt(amg2 * pip)
-        Sm = sqrt(amg2 * pim)
-        if d1 < 0.0:
-            gp, gm = d2 * Sp, -d2 * Sm
-        elif pip >= pim:
-            gp, gm = d2 * Sp, d2 * Sm
-        else:
-            gp, gm = -d2 * Sp, -d2 * Sm
-        Gz = 0.5 * (gp + gm)
-        Cr = 0.5 * (gp - gm)
-        r = Cr * iC
-        # <sn^2> - 1/2 by the AGM series (sn2_excess)
-        aa, bb, q, cc, p, sx = 1.0, sqrt(d32 / d31), 1.0, d21 / d31, 1.0, 0.0
-        while True:
-            aa, bb = 0.5 * (aa + bb), sqrt(aa * bb)
-            f = cc / (16.0 * aa * aa)
-            q *= f
-            cc *= f
-            pq = p * q
-            sx += pq
-            if pq <= 1e-17 * (0.5 + sx):
-                break
-            p *= 2.0
-        lo = d21 * (0.5 + sx)
-        hi = d21 * (0.5 - sx)
-        v = u1 + lo
-        gv = gp - Cr * (w1 + lo) if v <= 0.0 else gm + Cr * (z2 + hi)
-        brv = b * r
-        F1 = -aA * gv - brv * v
-        F2 = -two_a_A * (mgl * (w1 + c + hi) - Cr * Cr * i2A) - brv * r
-        CF3 = -bC * Cr
-        GA = Gz * iA
-        kr = kA * r
-        if u1 <= 0.0:
-            N1 = gp - Cr * w1
-            N3 = gp * iA - w1 * (2.0 * kr + GA) + kr * w1 * w1
-        else:
-            N1 = gm + Cr * z1
-            N3 = -gm * iA + z1 * (GA - 2.0 * kr) + kr * z1 * z1
-        P1 = (N1 * F1 * iA + N3 * CF3) / (w1 * z1)
-        if u2 <= 0.0:
-            N1 = gp - Cr * w2
-            N3 = gp * iA - w2 * (2.0 * kr + GA) + kr * w2 * w2
-        else:
-            N1 = gm + Cr * z2
-            N3 = -gm * iA + z2 * (GA - 2.0 * kr) + kr * z2 * z2
-        P2 = (N1 * F1 * iA + N3 * CF3) / (w2 * z2)
-        sgm = 1.0 if gm >= 0.0 else -1.0
-        sgp = 1.0 if gp >= 0.0 else -1.0
-        dth = (Sp * (F1 - CF3) * sgm - Sm * (F1 + CF3) * sgp) / (Sp * Sp + Sm * Sm)
-        md = mgl * d21
-        return (P1 - F2) / (md * d31), (F2 - P2) / (md * d32), dth
-
-    return rates
+    amg2, iA, iC, i2A, kA, aA, bC, two_a_A, mgl, b = k
+    E1 = xp.exp(-2.0 * x1)
+    E2 = xp.exp(-2.0 * x2)
+    w1 = 2.0 / (1.0 + E1)
+    w2 = 2.0 / (1.0 + E2)
+    z1 = w1 * E1
+    z2 = w2 * E2
+    sn, cs = _trig_q(q)
+    ww = w1 * w2 * sn * sn
+    c = 2.0 * ww / (z1 * z2 * cs * cs - ww)
+    d21 = _d21(xp, x1, x2, w1, w2, E2)
+    d32 = c + z2
+    d31 = c + z1
+    pip = w1 * w2 * (2.0 + c)
+    pim = z1 * z2 * c
+    Sp = xp.sqrt(amg2 * pip)
+    Sm = xp.sqrt(amg2 * pim)
+    sgp = xp.where((d1 < 0.0) | (pip >= pim), d2, -d2)
+    gp = sgp * Sp
+    gm = sgp * d1 * Sm
+    Cr = 0.5 * (gp - gm)
+    r = Cr * iC
+    sx = sn2_excess(xp, d21 / d31, d32 / d31)
+    lo = d21 * (0.5 + sx)
+    hi = d21 * (0.5 - sx)
+    v = 0.5 * w1 * (1.0 - E1) + lo
+    brv = b * r
+    F1 = -aA * 0.5 * (gp * (z2 + hi) + gm * (w1 + lo)) - brv * v
+    F2 = -two_a_A * (mgl * (w1 + c + hi) - Cr * Cr * i2A) - brv * r
+    CF3 = -bC * Cr
+    kr = kA * r
+    F1A = F1 * iA
+    P1 = (0.5 * (gp * z1 + gm * w1) * F1A + (i2A * (gp * z1 - gm * w1) - kr * w1 * z1) * CF3) / (w1 * z1)
+    P2 = (0.5 * (gp * z2 + gm * w2) * F1A + (i2A * (gp * z2 - gm * w2) - kr * w2 * z2) * CF3) / (w2 * z2)
+    dth = (Sp * xp.copysign(1.0, gm) * (F1 - CF3) - Sm * xp.copysign(1.0, gp) * (F1 + CF3)) / (Sp * Sp + Sm * Sm)
+    md = mgl * d21
+    return (P1 - F2) / (md * d31), (F2 - P2) / (md * d32), 0.5 * (1.0 + q * q) * dth
 
 
-def u_event_values_scalar(x1: float, x2: float, th: float, d1: float) -> tuple[float, float, float]:
+def u_event_values(xp: Any, x1: Any, x2: Any, q: Any, d1: Any) -> tuple[Any, Any, Any]:
     """``(k^2, mc, min(b1, b2))`` at a u-chart point: the modulus (1.4), its complement and the distance from
     the branch points of (2.8), ``b1 = |Gz^2 - C^2 r^2|/(Gz^2 + C^2 r^2) = sin 2 theta`` and
     ``b2 = C^2 r^2/(Gz^2 + C^2 r^2) = (1 - delta1 sin 2 theta)/2`` (from ``tan theta = |Gz - C r|/|Gz + C r|``)."""
-    ax1 = x1 if x1 >= 0.0 else -x1
-    ax2 = x2 if x2 >= 0.0 else -x2
-    t1 = math.exp(-2.0 * ax1)
-    t2 = math.exp(-2.0 * ax2)
-    i1 = 1.0 / (1.0 + t1)
-    i2 = 1.0 / (1.0 + t2)
-    w1, z1 = (2.0 * i1, 2.0 * t1 * i1) if x1 >= 0.0 else (2.0 * t1 * i1, 2.0 * i1)
-    w2, z2 = (2.0 * i2, 2.0 * t2 * i2) if x2 >= 0.0 else (2.0 * t2 * i2, 2.0 * i2)
-    sn, cs = math.sin(th), math.cos(th)
+    _, w1, z1, _ = _side(xp, x1)
+    _, w2, z2, E2 = _side(xp, x2)
+    sn, cs = _trig_q(q)
     ww = w1 * w2 * sn * sn
     c = 2.0 * ww / (z1 * z2 * cs * cs - ww)
-    d21 = 4.0 * math.sinh(x2 - x1) * math.exp(-(ax1 + ax2)) * i1 * i2
     d31 = c + z1
     b1 = 2.0 * sn * cs
-    return d21 / d31, (c + z2) / d31, min(b1, 0.5 * (1.0 - d1 * b1))
+    return _d21(xp, x1, x2, w1, w2, E2) / d31, (c + z2) / d31, xp.minimum(b1, 0.5 * (1.0 - d1 * b1))
