@@ -260,7 +260,7 @@ def averaged_batch(st: _Setup, initial: Any, t0: float, t1: float, te: np.ndarra
             f["chart"] = np.ones((ip.size, nt))
             merge(ip, sol.y, f)
             hnext[ip] = sol.last_step
-            for j, mm in enumerate(ip):
+            for j, mm in enumerate(ip.tolist()):
                 tev["delta1_flip"][mm].extend(sol.t_events["delta1_flip"][j].tolist())
                 tev["delta2_flip"][mm].extend(sol.t_events["delta2_flip"][j].tolist())
             lv = (sol.status == 1) & (sol.event == "leave_branch")

@@ -136,7 +136,7 @@ class _Setup:
         return float(np.mean(F[0])), float(np.mean(F[1])), float(np.mean(F[2]))
 
     def rhs_x(self, xp: Any, x1: Any, x2: Any, x3: Any, d1: Any, d2: Any) -> tuple[Any, Any, Any]:
-        if self.drag is not None:
+        if self.kd is not None:
             return _k.u_drag_rates(xp, self.kd, x1, x2, x3, d1, d2)
         s = _k.decode_u(xp, self.A, self.C, self.mgl, x1, x2, x3, d1, d2)
         F = self.means_u(xp, s)
