@@ -229,7 +229,7 @@ def averaged_batch(st: _Setup, initial: Any, t0: float, t1: float, te: np.ndarra
             merge(iu, sol.y, f)
             hnext[iu] = sol.last_step
             sw_k = (sol.status == 1) & (sol.event == "branch_point") & (chart_mode == "auto")
-            for j in np.nonzero(~sw_k)[0]:
+            for j in np.nonzero(~sw_k)[0].tolist():
                 end_member(int(iu[j]), int(j), sol)
             if np.any(sw_k):
                 ks = np.nonzero(sw_k)[0]
@@ -264,7 +264,7 @@ def averaged_batch(st: _Setup, initial: Any, t0: float, t1: float, te: np.ndarra
                 tev["delta1_flip"][mm].extend(sol.t_events["delta1_flip"][j].tolist())
                 tev["delta2_flip"][mm].extend(sol.t_events["delta2_flip"][j].tolist())
             lv = (sol.status == 1) & (sol.event == "leave_branch")
-            for j in np.nonzero(~lv)[0]:
+            for j in np.nonzero(~lv)[0].tolist():
                 end_member(int(ip[j]), int(j), sol)
             if np.any(lv):
                 ks = np.nonzero(lv)[0]
