@@ -107,12 +107,14 @@ def _locate(
     a, b = ta.copy(), tb.copy()
     fa = ga.copy()
     fb = np.asarray(ev.fun(b, dense(b, rows), *args_rows), dtype=float).reshape(-1)
+    ta_val, tb_val = fa.copy(), fb.copy()  # the event's values at a and b (fa, fb are Illinois-weighted)
     side = np.zeros(a.size)
     root = np.where(fb == 0.0, b, np.where(fa == 0.0, a, 0.5 * (a + b)))
     todo = (fa != 0.0) & (fb != 0.0)
     # converged when an estimate moves by less than 4 ulp of t or 1e-12 of the step: far below the integration
     # error of the state at the event (the event function's own rounding would stall a tighter criterion)
     tol_all = np.maximum(4.0 * _EPS * np.maximum(np.abs(ta), np.abs(tb)), 1e-12 * (tb - ta))
+    small_all = 1e-10 * np.maximum(np.abs(fa), np.abs(fb))
     for _ in range(100):
         idx = np.nonzero(todo)[0]
         if not idx.size:
@@ -120,7 +122,20 @@ def _locate(
         ai, bi, fai, fbi = a[idx], b[idx], fa[idx], fb[idx]
         with np.errstate(all="ignore"):
             c = bi - fbi * (bi - ai) / (fbi - fai)
-        c = np.where(~np.isfinite(c) | (c <= ai) | (c >= bi), 0.5 * (ai + bi), c)
+        # a secant estimate on (or, by rounding, beyond) an end whose event value is already negligible: that end
+        # is the root; on an end otherwise (the Illinois weights at work), or not finite: bisect
+        small = small_all[idx]
+        hit_a = (c <= ai) & (np.abs(ta_val[idx]) <= small)
+        hit_b = (c >= bi) & (np.abs(tb_val[idx]) <= small)
+        done_end = hit_a | hit_b
+        if done_end.any():
+            root[idx[done_end]] = np.where(hit_a, ai, bi)[done_end]
+            todo[idx[done_end]] = False
+            keep = ~done_end
+            idx, ai, bi, fai, fbi, c = idx[keep], ai[keep], bi[keep], fai[keep], fbi[keep], c[keep]
+            if not idx.size:
+                break
+        c = np.where(np.isfinite(c) & (c > ai) & (c < bi), c, 0.5 * (ai + bi))
         sub_args = tuple(x[idx] for x in args_rows)
         fc = np.asarray(ev.fun(c, dense(c, rows[idx]), *sub_args), dtype=float).reshape(-1)
         tol = tol_all[idx]
@@ -133,8 +148,10 @@ def _locate(
         fa[idx] = np.where(~keep_a & (si == 1), 0.5 * fai, fai)
         a[idx] = np.where(keep_a, c, ai)
         fa[idx] = np.where(keep_a, fc, fa[idx])
+        ta_val[idx] = np.where(keep_a, fc, ta_val[idx])
         b[idx] = np.where(keep_a, bi, c)
         fb[idx] = np.where(keep_a, fb[idx], fc)
+        tb_val[idx] = np.where(keep_a, tb_val[idx], fc)
         side[idx] = np.where(keep_a, -1, 1)
         todo[idx] = ~conv
     # never report a root outside the step
