@@ -164,7 +164,7 @@ def integrate_batch(
     y0: Any,
     *,
     t_eval: Any = None,
-    rtol: float = 1e-10,
+    rtol: Any = 1e-10,
     atol: Any = 1e-12,
     events: Iterable[Event] = (),
     args: tuple[Any, ...] = (),
@@ -191,8 +191,8 @@ def integrate_batch(
         Common increasing output grid (default: 101 points spanning ``[min t0, max t1]``). A member
         contributes the samples that lie in its own ``[t0, t_end]`` and NaN elsewhere.
     rtol, atol : float
-        Tolerances as in :func:`scipy.integrate.solve_ivp` (``atol`` may be an array of shape ``(n,)``, or
-        ``batch_shape + (n,)`` for per-member absolute tolerances).
+        Tolerances as in :func:`scipy.integrate.solve_ivp`; ``rtol`` may be an array of shape ``(n,)`` (per
+        component), ``atol`` of shape ``(n,)`` or ``batch_shape + (n,)`` (per member and component).
     events : iterable of Event
         Named events; ``Event.fun(t, y, *args)`` is vectorised like ``fun`` and returns shape ``(m,)``.
         A terminal event ends its member (``status = 1``, ``event`` its name).
@@ -244,10 +244,10 @@ def integrate_batch(
         raise ValueError("t_span must be finite")
     if np.any(T1 < T0):
         raise ValueError("t_span must run forward (t1 >= t0) for every member")
-    rtol = float(rtol)
-    if not (np.isfinite(rtol) and rtol > 0.0):
-        raise ValueError(f"rtol must be finite and > 0, got {rtol!r}")
-    rtol = max(rtol, 100.0 * _EPS)  # SciPy's floor (without its warning)
+    rtol_a = np.asarray(rtol, dtype=float)
+    if rtol_a.shape not in ((), (n,)) or not (np.all(np.isfinite(rtol_a)) and np.all(rtol_a > 0.0)):
+        raise ValueError(f"rtol must be finite and > 0, a scalar or of shape ({n},), got {rtol!r}")
+    rtol = np.maximum(rtol_a, 100.0 * _EPS)  # SciPy's floor (without its warning)
     atol_a = np.asarray(atol, dtype=float)
     if atol_a.shape in ((*batch_shape, n), (B, n)) and atol_a.ndim >= 2:
         atol_a = atol_a.reshape(B, n)  # per member

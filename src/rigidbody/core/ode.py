@@ -308,14 +308,14 @@ def _rms(v: list[float]) -> float:
 
 
 def _solve_small(
-    fun: Callable[..., Any], t0: float, t1: float, y0: list[float], t_eval: np.ndarray | None, rtol: float,
+    fun: Callable[..., Any], t0: float, t1: float, y0: list[float], t_eval: np.ndarray | None, rtol: list[float],
     atol: list[float], events: list[tuple[Callable[..., float], bool, float]], args: tuple, max_step: float,
     first_step: float | None = None,
 ) -> dict[str, Any]:
     """DOP853 on one system of floats; returns what :func:`integrate` reads from a solve_ivp result."""
     n = len(y0)
     step, dense_coeffs, interp = _dop853_code(n)
-    rtol = max(rtol, 100.0 * _EPS)
+    rtol = [max(v, 100.0 * _EPS) for v in rtol]
     y = list(y0)
     f = [float(v) for v in fun(t0, y, *args)]
     nfev = 1
@@ -327,7 +327,7 @@ def _solve_small(
     elif first_step is not None:
         h_abs = min(first_step, span, max_step)
     else:
-        scale = [a + abs(v) * rtol for a, v in zip(atol, y)]
+        scale = [a + abs(v) * rt for a, v, rt in zip(atol, y, rtol)]
         d0 = _rms([v / s for v, s in zip(y, scale)])
         d1 = _rms([v / s for v, s in zip(f, scale)])
         h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
@@ -378,7 +378,7 @@ def _solve_small(
             nfev += 12
             y_new = [float(v) for v in y_new]
             f_new = [float(v) for v in f_new]
-            scale = [a + max(abs(p), abs(q)) * rtol for a, p, q in zip(atol, y, y_new)]
+            scale = [a + max(abs(p), abs(q)) * rt for a, p, q, rt in zip(atol, y, y_new, rtol)]
             e5n = sum((e / s) ** 2 for e, s in zip(e5, scale))
             e3n = sum((e / s) ** 2 for e, s in zip(e3, scale))
             if e5n == 0.0 and e3n == 0.0:
@@ -547,7 +547,8 @@ def integrate(
 
         ev_small = [(ev.fun, ev.terminal, ev.direction) for ev in evs] + [(_finite, True, 0.0)]
         with np.errstate(all="ignore"):
-            out = _solve_small(fun, t0, t1, y0a.tolist(), te_arr, float(rtol), atol_l, ev_small, tuple(args or ()),
+            rtol_l = np.broadcast_to(np.asarray(rtol, dtype=float), (n,)).tolist()
+            out = _solve_small(fun, t0, t1, y0a.tolist(), te_arr, rtol_l, atol_l, ev_small, tuple(args or ()),
                                float(max_step), first_step)
         res: Any = SimpleNamespace(**out, sol=None)  # what integrate reads from a solve_ivp result
     else:

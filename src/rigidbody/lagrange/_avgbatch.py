@@ -11,7 +11,6 @@ and step-size hand-over.
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
@@ -20,11 +19,13 @@ from ..core.batch import integrate_batch
 from ..core.ode import Event, Solution
 from . import _kernel as _k
 from ._avgrun import (
+    _KAPPA_FLOOR,
     _MSG_BRANCH,
     _MSG_DEG,
     _MSG_END,
     _MSG_SEP,
     _MSG_TRIPLE,
+    _PSI_FLOOR,
     _RTOL_FLOOR,
     _TRIPLE_TOL,
     _Setup,
@@ -90,7 +91,7 @@ def averaged_batch(st: _Setup, initial: Any, t0: float, t1: float, te: np.ndarra
         finite = np.isfinite(init).all(axis=1)
         Cr0 = st.C * r0
         S2 = Gz0 * Gz0 + Cr0 * Cr0
-        g0 = _k.decode_g(_AX, st.A, st.C, st.mgl, *_k.slow_to_polar(_AX, st.C, Gz0, H0, r0))
+        g0 = _k.decode_g(_AX, st.A, st.C, st.mgl, *_k.slow_to_polar(_AX, st.C, Gz0, H0, r0, st.mgl))
         u1, u2, u3 = g0.u1, g0.u2, g0.u3
         D1[:] = np.where(Gz0 * Gz0 - Cr0 * Cr0 >= 0.0, 1.0, -1.0)
         D2[:] = np.where(r0 >= 0.0, 1.0, -1.0)
@@ -139,7 +140,7 @@ def averaged_batch(st: _Setup, initial: Any, t0: float, t1: float, te: np.ndarra
                                            *st.roots_g(_AX, Gz0[iu0], H0[iu0], r0[iu0])), axis=1)
         cur[iu0] = "u"
     if ip0.size:
-        X[ip0] = np.stack(_k.slow_to_polar(_AX, st.C, Gz0[ip0], H0[ip0], r0[ip0]), axis=1)
+        X[ip0] = np.stack(_k.slow_to_polar(_AX, st.C, Gz0[ip0], H0[ip0], r0[ip0], st.mgl), axis=1)
         cur[ip0] = "p"
 
     # ---- vectorised right-hand sides and events ----------------------------------------------------------
@@ -151,8 +152,9 @@ def averaged_batch(st: _Setup, initial: Any, t0: float, t1: float, te: np.ndarra
             d[bad] = np.nan  # a stage with the root order violated is rejected
         return d
 
-    def rhs_p(t: np.ndarray, y: np.ndarray) -> np.ndarray:
-        return np.stack(st.rhs_p(_AX, *_cols(y)), axis=1)
+    # the GHr chart integrates psi - n per member (see the single run); n rides along as an argument
+    def rhs_p(t: np.ndarray, y: np.ndarray, n_off: np.ndarray) -> np.ndarray:
+        return np.stack(st.rhs_p(_AX, y[:, 0], y[:, 1] + n_off, y[:, 2]), axis=1)
 
     # the three u-chart events are evaluated in turn on the same arrays: one evaluation serves them (the cache
     # holds the arrays themselves, so their ids cannot be reused while cached)
@@ -172,20 +174,20 @@ def averaged_batch(st: _Setup, initial: Any, t0: float, t1: float, te: np.ndarra
     def ev_branch(t: np.ndarray, y: np.ndarray, d1: np.ndarray, d2: np.ndarray) -> np.ndarray:
         return u_events(t, y, d1)[2]
 
-    def ev_w(t: np.ndarray, y: np.ndarray) -> np.ndarray:
-        return st.ev_w(_AX, y[:, 1])
+    def ev_w(t: np.ndarray, y: np.ndarray, n_off: np.ndarray) -> np.ndarray:
+        return st.ev_w(_AX, y[:, 1] + n_off)
 
-    def ev_r(t: np.ndarray, y: np.ndarray) -> np.ndarray:
-        return st.ev_r(_AX, y[:, 1])
+    def ev_r(t: np.ndarray, y: np.ndarray, n_off: np.ndarray) -> np.ndarray:
+        return st.ev_r(_AX, y[:, 1] + n_off)
 
-    def ev_sep_p(t: np.ndarray, y: np.ndarray) -> np.ndarray:
-        return st.ev_roots_g(_AX, *_cols(y))[0]
+    def ev_sep_p(t: np.ndarray, y: np.ndarray, n_off: np.ndarray) -> np.ndarray:
+        return st.ev_roots_g(_AX, y[:, 0], y[:, 1] + n_off, y[:, 2])[0]
 
-    def ev_triple(t: np.ndarray, y: np.ndarray) -> np.ndarray:
-        return st.ev_roots_g(_AX, *_cols(y))[1]
+    def ev_triple(t: np.ndarray, y: np.ndarray, n_off: np.ndarray) -> np.ndarray:
+        return st.ev_roots_g(_AX, y[:, 0], y[:, 1] + n_off, y[:, 2])[1]
 
-    def ev_leave(t: np.ndarray, y: np.ndarray) -> np.ndarray:
-        return st.ev_leave(_AX, y[:, 1])
+    def ev_leave(t: np.ndarray, y: np.ndarray, n_off: np.ndarray) -> np.ndarray:
+        return st.ev_leave(_AX, y[:, 1] + n_off)
 
     def merge(idx: np.ndarray, Y: np.ndarray, f: dict[str, np.ndarray]) -> None:
         mask = np.all(np.isfinite(Y), axis=1)
@@ -237,7 +239,7 @@ def averaged_batch(st: _Setup, initial: Any, t0: float, t1: float, te: np.ndarra
                 t_sw = np.array([sol.t_events["branch_point"][j][-1] for j in ks])
                 ye = np.array([sol.y_events["branch_point"][j][-1] for j in ks])
                 s = _k.decode_u(_AX, st.A, st.C, st.mgl, ye[:, 0], ye[:, 1], ye[:, 2], D1[isw], D2[isw])
-                X[isw] = np.stack(_k.slow_to_polar(_AX, st.C, s.Gz, s.H, s.r), axis=1)
+                X[isw] = np.stack(_k.slow_to_polar(_AX, st.C, s.Gz, s.H, s.r, st.mgl), axis=1)
                 tau[isw] = t_sw
                 for i, tsw in zip(isw, t_sw):
                     tev["chart_switch"][i].append(float(tsw))
@@ -251,12 +253,15 @@ def averaged_batch(st: _Setup, initial: Any, t0: float, t1: float, te: np.ndarra
                    Event(ev_triple, "triple_root", True, -1.0, _MSG_TRIPLE)]
             if chart_mode == "auto":
                 evs.append(Event(ev_leave, "leave_branch", True, 1.0))
-            atol = np.stack([np.full(ip.size, st.rtol), np.full(ip.size, st.rtol / math.pi),
-                             st.rtol * np.maximum(np.abs(X[ip, 2]), st.mgl)], axis=1)
-            sol = integrate_batch(rhs_p, (tau[ip], t1), X[ip], t_eval=te, rtol=_RTOL_FLOOR, atol=atol,
-                                  events=evs, time_name="tau", first_step=hnext[ip])
+            n_off = np.rint(X[ip, 1])
+            Y0 = X[ip] - np.stack([np.zeros(ip.size), n_off, np.zeros(ip.size)], axis=1)
+            rtol_p, _ = st.polar_tolerances(1.0, "python")
+            atol = np.stack([np.full(ip.size, st.rtol), np.full(ip.size, st.rtol * _PSI_FLOOR),
+                             st.rtol * np.maximum(np.abs(X[ip, 2]), _KAPPA_FLOOR)], axis=1)
+            sol = integrate_batch(rhs_p, (tau[ip], t1), Y0, t_eval=te, rtol=rtol_p, atol=atol,
+                                  events=evs, args=(n_off,), time_name="tau", first_step=hnext[ip])
             nfev[ip] += sol.nfev
-            f = st.fields_p(sol.y)
+            f = st.fields_p(sol.y + np.stack([np.zeros(ip.size), n_off, np.zeros(ip.size)], axis=1)[:, :, None])
             f["chart"] = np.ones((ip.size, nt))
             merge(ip, sol.y, f)
             hnext[ip] = sol.last_step
@@ -272,7 +277,7 @@ def averaged_batch(st: _Setup, initial: Any, t0: float, t1: float, te: np.ndarra
                 t_sw = np.array([sol.t_events["leave_branch"][j][-1] for j in ks])
                 ye = np.array([sol.y_events["leave_branch"][j][-1] for j in ks])
                 with np.errstate(all="ignore"):
-                    g = _k.decode_g(_AX, st.A, st.C, st.mgl, ye[:, 0], ye[:, 1], ye[:, 2])
+                    g = _k.decode_g(_AX, st.A, st.C, st.mgl, ye[:, 0], ye[:, 1] + n_off[ks], ye[:, 2])
                     D1[ilv] = np.where(g.Gz * g.Gz - g.Cr * g.Cr >= 0.0, 1.0, -1.0)
                     D2[ilv] = np.where(g.r >= 0.0, 1.0, -1.0)
                     v1, v2, v3 = st.roots_g(_AX, g.Gz, g.H, g.r)

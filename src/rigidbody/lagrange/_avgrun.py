@@ -32,6 +32,11 @@ _CHARTS = ("auto", "u", "GHr")
 _TRIPLE_TOL = 1e-3
 #: the smallest rtol SciPy accepts without a warning; the charts' coordinates are controlled through atol
 _RTOL_FLOOR = 100.0 * np.finfo(float).eps
+#: kappa = K/S below which the GHr chart's absolute tolerance on kappa stops shrinking with it (K -> 0 only
+#: for a top hanging at rest about its spin, where K = 0 exactly stays 0)
+_KAPPA_FLOOR = 1e-2
+#: |psi - n| below which the GHr chart controls psi absolutely (relative accuracy of r down to r ~ 1e-3 S)
+_PSI_FLOOR = 1e-3
 #: a sign-change function below this fraction of its scale counts as zero (no flip): integration noise
 _FLIP_NOISE = 1e-10
 
@@ -142,8 +147,8 @@ class _Setup:
         F = self.means_u(xp, s)
         return _k.u_chart_rates(xp, self.A, self.C, self.mgl, s, *F)
 
-    def rhs_p(self, xp: Any, sig: Any, psi: Any, H: Any) -> tuple[Any, Any, Any]:
-        g = _k.decode_g(xp, self.A, self.C, self.mgl, sig, psi, H)
+    def rhs_p(self, xp: Any, sig: Any, psi: Any, kap: Any) -> tuple[Any, Any, Any]:
+        g = _k.decode_g(xp, self.A, self.C, self.mgl, sig, psi, kap)
         F = self.means_g(xp, g)
         d = _k.g_chart_rates(xp, self.C, g, *F)
         if xp.array:
@@ -155,8 +160,19 @@ class _Setup:
         """Roots of (1.5) at (Gz, H, r) with ``Gz^2 + C^2 r^2 > 0`` by :func:`_kernel.decode_g` (the largest by
         Newton from the trigonometric formula, the pair by (1.6)); the chart switches of one run and of a batch
         use this same routine."""
-        g = _k.decode_g(xp, self.A, self.C, self.mgl, *_k.slow_to_polar(xp, self.C, Gz, H, r))
+        g = _k.decode_g(xp, self.A, self.C, self.mgl, *_k.slow_to_polar(xp, self.C, Gz, H, r, self.mgl))
         return g.u1, g.u2, g.u3
+
+    def polar_tolerances(self, kap0: float, engine: str) -> tuple[Any, np.ndarray]:
+        """``(rtol, atol)`` of the GHr chart's ``(ln S, psi - n, kappa)``: ``ln S`` absolutely (``rtol`` is the
+        relative accuracy of ``S``), ``psi - n`` relatively down to 1e-3 (so ``sin(pi psi)``, hence ``r`` near
+        its zero, keeps its relative accuracy), ``kappa`` absolutely on its own scale (``rtol`` relative accuracy
+        of the energy ``K``). SciPy's solvers take one ``rtol``: there ``psi`` is controlled absolutely."""
+        atol = np.array([self.rtol, self.rtol * _PSI_FLOOR, self.rtol * max(abs(kap0), _KAPPA_FLOOR)])
+        if engine == "python":
+            return np.array([_RTOL_FLOOR, self.rtol, _RTOL_FLOOR]), atol
+        atol[1] = self.rtol / math.pi
+        return _RTOL_FLOOR, atol
 
     def u_events(self, xp: Any, x1: Any, x2: Any, th: Any, d1: Any) -> tuple[Any, Any, Any]:
         """The u-chart events: ``k^2 - degenerate_tol`` (regular precession), ``mc - degenerate_tol``
@@ -175,10 +191,10 @@ class _Setup:
         s, _ = _k.sincospi(xp, psi)
         return xp.where(s != 0.0, s, 1e-300)
 
-    def ev_roots_g(self, xp: Any, sig: Any, psi: Any, H: Any) -> tuple[Any, Any]:
+    def ev_roots_g(self, xp: Any, sig: Any, psi: Any, kap: Any) -> tuple[Any, Any]:
         """The separatrix event ``mc - degenerate_tol`` and the triple-root event (root spread
         ``sqrt(s1^2 - 3 s2) = sqrt(((u1-u2)^2 + (u1-u3)^2 + (u2-u3)^2)/2)`` minus 1e-3, smooth in (Gz, H, r))."""
-        g = _k.decode_g(xp, self.A, self.C, self.mgl, sig, psi, H)
+        g = _k.decode_g(xp, self.A, self.C, self.mgl, sig, psi, kap)
         return xp.where(g.u3 - g.u1 > 0.0, g.mc - self.deg, -1.0), g.spread - _TRIPLE_TOL
 
     def ev_leave(self, xp: Any, psi: Any) -> Any:
@@ -302,10 +318,12 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
         except (ZeroDivisionError, OverflowError, ValueError):
             return nan3
 
-    def rhs_p(tau: float, y: Any) -> Any:
-        sig, psi, H = y
+    # the GHr chart integrates psi - n (n the integer nearest psi at the segment's start, so that psi - n is
+    # small when r is, and relative control of it keeps r's relative accuracy); n rides along as an argument
+    def rhs_p(tau: float, y: Any, n_off: float) -> Any:
+        sig, psi, kap = y
         try:
-            return list(st.rhs_p(SC, sig, psi, H))
+            return list(st.rhs_p(SC, sig, psi + n_off, kap))
         except (ZeroDivisionError, OverflowError, ValueError):
             return nan3
 
@@ -345,30 +363,30 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
     # the five GHr-chart events at one state share one decoding
     gcache: dict[str, Any] = {"key": None, "val": (math.nan, math.nan)}
 
-    def g_roots(y: Any) -> tuple[float, ...]:
-        key = tuple(y)
+    def g_roots(y: Any, n_off: float) -> tuple[float, ...]:
+        key = (*y, n_off)
         if gcache["key"] != key:
             try:
-                gcache["val"] = tuple(float(v) for v in st.ev_roots_g(SC, *key))
+                gcache["val"] = tuple(float(v) for v in st.ev_roots_g(SC, key[0], key[1] + n_off, key[2]))
             except (ZeroDivisionError, OverflowError, ValueError):
                 gcache["val"] = (math.nan, math.nan)
             gcache["key"] = key
         return gcache["val"]
 
-    def ev_w(tau: float, y: Any) -> float:
-        return float(st.ev_w(SC, y[1]))
+    def ev_w(tau: float, y: Any, n_off: float) -> float:
+        return float(st.ev_w(SC, y[1] + n_off))
 
-    def ev_r(tau: float, y: Any) -> float:
-        return float(st.ev_r(SC, y[1]))
+    def ev_r(tau: float, y: Any, n_off: float) -> float:
+        return float(st.ev_r(SC, y[1] + n_off))
 
-    def ev_sep_p(tau: float, y: Any) -> float:
-        return g_roots(y)[0]
+    def ev_sep_p(tau: float, y: Any, n_off: float) -> float:
+        return g_roots(y, n_off)[0]
 
-    def ev_triple(tau: float, y: Any) -> float:
-        return g_roots(y)[1]
+    def ev_triple(tau: float, y: Any, n_off: float) -> float:
+        return g_roots(y, n_off)[1]
 
-    def ev_leave(tau: float, y: Any) -> float:
-        return float(st.ev_leave(SC, y[1]))
+    def ev_leave(tau: float, y: Any, n_off: float) -> float:
+        return float(st.ev_leave(SC, y[1] + n_off))
 
     # the (Gz, H, r) chart in plain variables, for Gz = r = 0 (no direction in the (Gz, C r) plane)
     def evp_w(tau: float, y: Any) -> float:
@@ -442,15 +460,17 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
         # ---- chart GHr ----
         polar = Gz != 0.0 or r != 0.0
         if polar:
-            y0 = np.array(_k.slow_to_polar(_k.SCALAR, st.C, Gz, H, r))
-            atol_p = np.array([st.rtol, st.rtol / math.pi, st.rtol * max(abs(H), st.mgl)])
+            y0 = np.array(_k.slow_to_polar(_k.SCALAR, st.C, Gz, H, r, st.mgl))
+            n_off = float(round(y0[1]))
+            y0[1] -= n_off
+            rtol_p, atol_p = st.polar_tolerances(y0[2], engine)
             evs = [Event(ev_w, "delta1_flip", False, 0.0), Event(ev_r, "delta2_flip", False, 0.0),
                    Event(ev_sep_p, "separatrix", True, -1.0, _MSG_SEP),
                    Event(ev_triple, "triple_root", True, -1.0, _MSG_TRIPLE)]
             if chart == "auto":
                 evs.append(Event(ev_leave, "leave_branch", True, 1.0))
-            sol = integrate(rhs_p, (tau, t1), y0, t_eval=tev, rtol=_RTOL_FLOOR, atol=atol_p, method=method,
-                            events=evs, time_name="tau", engine=engine, first_step=h_next)
+            sol = integrate(rhs_p, (tau, t1), y0, t_eval=tev, rtol=rtol_p, atol=atol_p, method=method,
+                            events=evs, time_name="tau", engine=engine, first_step=h_next, args=(n_off,))
         else:
             evs = [Event(evp_w, "delta1_flip", False, 0.0), Event(evp_r, "delta2_flip", False, 0.0),
                    Event(evp_sep, "separatrix", True, -1.0, _MSG_SEP),
@@ -465,7 +485,7 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
         t_events["delta2_flip"].extend(sol.t_events["delta2_flip"].tolist())
         if sol.tau.size:
             if polar:
-                f = st.fields_p(sol.y)
+                f = st.fields_p(sol.y + np.array([[0.0], [n_off], [0.0]]))
             else:
                 yy = sol.y
                 U = np.array([_roots_or_double(st.top, *yy[:, j]) for j in range(sol.tau.size)]).T
@@ -482,7 +502,7 @@ def _single(st: _Setup, Gz0: float, H0: float, r0: float, t0: float, t1: float, 
             te = float(sol.t_events["leave_branch"][-1])
             ye = sol.y_events["leave_branch"][-1]
             if polar:
-                g = _k.decode_g(_k.SCALAR, st.A, st.C, st.mgl, *ye.tolist())
+                g = _k.decode_g(_k.SCALAR, st.A, st.C, st.mgl, float(ye[0]), float(ye[1]) + n_off, float(ye[2]))
                 Gz, H, r = g.Gz, g.H, g.r
             else:
                 Gz, H, r = (float(v) for v in ye)
@@ -609,16 +629,16 @@ def averaged(
 
     Notes
     -----
-    *What the tolerance controls.* The slow variables of a decaying top (``r``, ``Gz``, the gaps
-    ``1 + u1``, ``1 + u2``, ``u3 - 1``) shrink by many orders. The u chart is therefore integrated in
-    ``(atanh u1, atanh u2, q)``, ``q = tan(theta/2)``, ``tan theta = |Gz - C r|/|Gz + C r|``, and the GHr chart in
-    ``(ln S, psi, H)`` with ``S`` the length of ``(Gz, C r)`` and ``pi psi`` its direction, both with absolute
+    *What the tolerance controls.* The slow variables of a decaying top (``r``, ``Gz``, the energy above
+    the hanging state ``H + mgl``, the gaps ``1 + u1``, ``1 + u2``, ``u3 - 1``) shrink by many orders. The u
+    chart is therefore integrated in ``(atanh u1, atanh u2, q)``, ``q = tan(theta/2)``,
+    ``tan theta = |Gz - C r|/|Gz + C r|``, and the GHr chart in ``(ln S, psi, kappa)`` with ``S`` the length
+    of ``(Gz, C r)``, ``pi psi`` its direction and ``kappa = (H + mgl - C r^2/2)/S``, both with absolute
     error control ``rtol`` on these coordinates: ``rtol`` is then the relative local accuracy of every root
-    gap, of ``S`` (hence of ``Gz`` and ``r`` away from their zeros) and of ``H`` (relative to
-    ``max(|H|, mgl)``), however far they decay. In
-    the u chart ``r`` and ``Gz`` follow from the roots by (2.8), evaluated without cancellation; the
+    gap, of ``S`` (hence of ``Gz`` and ``r`` away from their zeros) and of the energy, however far they decay.
+    In the u chart ``r`` and ``Gz`` follow from the roots by (2.8), evaluated without cancellation; the
     smaller of ``|Gz|``, ``|C r|`` inherits the gaps' error times their ratio (at most ``1/switch_tol``
-    before the chart switches).
+    before the chart switches). ``atol`` is used only where no relative scale exists (``Gz = r = 0``).
 
     *Batches.* ``top``, ``torque`` and the options are shared by all members. Members in the same chart
     are integrated together by :func:`rigidbody.core.batch.integrate_batch` (vectorised right-hand sides

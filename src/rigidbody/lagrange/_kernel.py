@@ -12,9 +12,10 @@ integrations therefore run in
   ``theta = atan2(|Gz - C r|, |Gz + C r|)`` in ``[0, pi/2]``, which fixes ``u3 - 1`` relative to the lower gaps
   and passes smoothly through the branch point ``u3 = 1`` (where ``u3 - 1`` vanishes quadratically, a log
   coordinate would be singular); ``sin theta``, ``cos theta`` are rational in ``q``;
-* the **GHr chart** as ``(ln S, psi, H)`` with ``Gz = S cos(pi psi)``, ``C r = S sin(pi psi)``: the
-  magnitude of ``(Gz, C r)`` on a log scale and its direction; the branch points of (2.8) are
-  ``psi`` = multiples of 1/4 (``r = 0`` or ``Gz^2 = C^2 r^2``), crossed smoothly.
+* the **GHr chart** as ``(ln S, psi, kappa)`` with ``Gz = S cos(pi psi)``, ``C r = S sin(pi psi)`` and
+  ``kappa = K/S``, ``K = H + mgl - C r^2/2`` (the energy above the lowest state of the given spin, >= 0): the
+  magnitude of ``(Gz, C r)`` on a log scale, its direction, and the energy in units of it; the branch points of
+  (2.8) are ``psi`` = multiples of 1/4 (``r = 0`` or ``Gz^2 = C^2 r^2``), crossed smoothly.
 
 The map (2.8) from the roots to ``(Gz, H, r)`` is evaluated without cancellation through the two products
 ``Pi+ = (1+u1)(1+u2)(1+u3) = (Gz + C r)^2/(2 A mgl)`` and ``Pi- = (1-u1)(1-u2)(u3-1) = (Gz - C r)^2/(2 A mgl)``
@@ -343,8 +344,8 @@ class GState:
     u3: Any
 
 
-def decode_g(xp: Any, A: float, C: float, mgl: float, sigma: Any, psi: Any, H: Any) -> GState:
-    """(Gz, H, r) and the roots of (1.5) at ``(ln S, psi, H)``.
+def decode_g(xp: Any, A: float, C: float, mgl: float, sigma: Any, psi: Any, kap: Any) -> GState:
+    """(Gz, H, r) and the roots of (1.5) at ``(ln S, psi, kappa)``, ``kappa = K/S``, ``K = H + mgl - C r^2/2``.
 
     The largest root ``u3`` (simple) by two Newton steps from the trigonometric formula; ``u1 + u2`` and
     ``u1 u2`` by (1.6). A point a hair outside the admissible set next to a regular precession (Runge-Kutta
@@ -358,11 +359,11 @@ def decode_g(xp: Any, A: float, C: float, mgl: float, sigma: Any, psi: Any, H: A
     g.S, g.sn, g.cs = S, sn, cs
     Gz = S * cs
     Cr = S * sn
-    g.Gz, g.Cr, g.r, g.H = Gz, Cr, Cr / C, H
+    K = kap * S
+    H = K - mgl + Cr * Cr / (2.0 * C)
+    g.Gz, g.Cr, g.r, g.H, g.K = Gz, Cr, Cr / C, H, K
     g.gp = _SQRT2 * S * sq  # Gz + C r
     g.gm = _SQRT2 * S * cq  # Gz - C r
-    K = H + mgl - Cr * Cr / (2.0 * C)
-    g.K = K
     amg = A * mgl
     s1 = K / mgl - 1.0 + Cr * Cr / (2.0 * amg)
     s2 = Gz * Cr / amg - 1.0
@@ -416,18 +417,20 @@ def drag_means_g(xp: Any, A: float, C: float, mgl: float, a: float, b: float, g:
 
 
 def g_chart_rates(xp: Any, C: float, g: GState, F1: Any, F2: Any, F3: Any) -> tuple[Any, Any, Any]:
-    """``d(ln S, psi, H)/dtau`` from ``<F>``: ``S^2 = Gz^2 + C^2 r^2``, ``pi psi = atan2(C r, Gz)``."""
+    """``d(ln S, psi, kappa)/dtau`` from ``<F>``: ``S^2 = Gz^2 + C^2 r^2``, ``pi psi = atan2(C r, Gz)``,
+    ``kappa = K/S`` with ``K' = H' - C r r' = F2 - C r F3``."""
     CF3 = C * F3
     dsig = (g.cs * F1 + g.sn * CF3) / g.S
     dpsi = (g.cs * CF3 - g.sn * F1) / (math.pi * g.S)
-    return dsig, dpsi, F2
+    dkap = (F2 - g.Cr * F3) / g.S - (g.K / g.S) * dsig
+    return dsig, dpsi, dkap
 
 
-def slow_to_polar(xp: Any, C: float, Gz: Any, H: Any, r: Any) -> tuple[Any, Any, Any]:
-    """``(ln S, psi, H)`` of ``(Gz, H, r)`` (``S > 0``)."""
+def slow_to_polar(xp: Any, C: float, Gz: Any, H: Any, r: Any, mgl: float) -> tuple[Any, Any, Any]:
+    """``(ln S, psi, kappa)`` of ``(Gz, H, r)`` (``S > 0``)."""
     Cr = C * r
     S = xp.sqrt(Gz * Gz + Cr * Cr)
-    return xp.log(S), xp.atan2(Cr, Gz) / math.pi, H
+    return xp.log(S), xp.atan2(Cr, Gz) / math.pi, (H + mgl - Cr * Cr / (2.0 * C)) / S
 
 
 # ---------------------------------------------------------------------------------------------------
