@@ -21,7 +21,7 @@ TOP, DRAG = L.PAPER_TOP, L.PAPER_DRAG
 A, C, MGL = TOP.A, TOP.C, TOP.mgl
 
 
-def spun(theta_deg, r0=math.sqrt(3.0)):
+def spun(theta_deg, r0=L.PAPER_R0):
     return L.integrals(TOP, 0.0, 0.0, r0, 0.0, math.radians(theta_deg))
 
 
