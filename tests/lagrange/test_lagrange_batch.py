@@ -215,3 +215,50 @@ def test_batch_with_the_general_engine():
         one = L.averaged(TOP, motor, ini[i], (0.0, 3.0), tau_eval=te, rtol=1e-10)
         np.testing.assert_allclose(b[i].r, one.r, rtol=1e-9, atol=0)  # as in the drag batch test
         np.testing.assert_allclose(b[i].Gz, one.Gz, rtol=1e-9, atol=0)
+
+
+# ----------------------------------------------------------------------------------------------- simulate
+def test_simulate_batch_members_equal_single_runs():
+    # initial states and eps per member (eps broadcast over a (2, 3) batch); the same DOP853 on the same
+    # equations: agreement to rounding, far below the rtol-1e-10 global error
+    rng = np.random.default_rng(11)
+    st = np.zeros((2, 3, 6))
+    st[..., 0] = rng.uniform(-0.2, 0.2, (2, 3))
+    st[..., 2] = rng.uniform(1.0, 2.5, (2, 3))
+    st[..., 4] = rng.uniform(0.2, 2.9, (2, 3))
+    st[0, 0, [0, 4]] = 0.0, math.pi  # spun and hanging at the pole: exact solution, theta stays pi
+    eps = np.array([0.02, 0.05, 0.0])
+    te = np.linspace(0.0, 30.0, 16)
+    b = L.simulate(TOP, DRAG, eps, st, (0.0, 30.0), t_eval=te)
+    assert b.batch_shape == (2, 3) and b.theta.shape == (2, 3, 16) and b.quat.shape == (2, 3, 4, 16)
+    assert np.all(b.status == 0)
+    for idx in np.ndindex(2, 3):
+        one = L.simulate(TOP, DRAG, float(eps[idx[1]]), tuple(st[idx]), (0.0, 30.0), t_eval=te)
+        m = b[idx]
+        for name in ("p", "q", "r", "Gz", "H", "u"):
+            np.testing.assert_allclose(m[name], one[name], rtol=0, atol=1e-11)
+        np.testing.assert_allclose(m.tau, one.tau, rtol=1e-15, atol=0)
+    assert np.all(b.theta[0, 0] == math.pi)
+    np.testing.assert_allclose(b.H[:, 2], b.H[:, 2, :1], rtol=0, atol=1e-9)  # eps = 0: energy conserved
+
+
+def test_simulate_batch_with_user_torque_functions():
+    # class (2.4) with user functions of (Gz, H, r, theta): in a batch they receive arrays of members
+    calls = []
+
+    def f(G, H, r, th):
+        calls.append(np.ndim(th))
+        return -0.1 * (1 + 0.3 * np.cos(th))
+
+    torque = L.ProportionalTorque(f=f, M3=lambda G, H, r, th: 0.05 - 0.1 * r)
+    st = np.array([[0.1, 0.0, 1.5, 0.0, 1.0, 0.0], [0.0, 0.2, 2.0, 0.3, 2.0, 0.1]])
+    te = np.linspace(0.0, 10.0, 6)
+    b = L.simulate(TOP, torque, 0.05, st, (0.0, 10.0), t_eval=te)
+    assert max(calls) == 1  # vectorised calls happened
+    for i in range(2):
+        one = L.simulate(TOP, torque, 0.05, tuple(st[i]), (0.0, 10.0), t_eval=te)
+        np.testing.assert_allclose(b[i].r, one.r, rtol=0, atol=1e-11)  # rounding apart (see above)
+    with pytest.raises(ValueError, match="broadcast"):
+        L.simulate(TOP, DRAG, np.ones(3) * 0.01, np.zeros((2, 6)), (0.0, 1.0))
+    with pytest.raises(ValueError, match="eps"):
+        L.simulate(TOP, DRAG, np.array([0.01, -1.0]), np.zeros((2, 6)), (0.0, 1.0))
