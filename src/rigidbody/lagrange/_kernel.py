@@ -171,6 +171,13 @@ def _trig_q(q: Any) -> tuple[Any, Any]:
     return 2.0 * q * t, (1.0 - q) * (1.0 + q) * t
 
 
+def _gap3(w1: Any, z1: Any, w2: Any, z2: Any, q: Any) -> Any:
+    """``u3 - 1 = 2 T w1 w2/(z1 z2 - T w1 w2)``, ``T = tan^2 theta = 4 q^2/(1 - q^2)^2`` (from ``Pi-/Pi+``)."""
+    q2 = q * q
+    ww = 4.0 * q2 * w1 * w2
+    return 2.0 * ww / (z1 * z2 * (1.0 - q2) ** 2 - ww)
+
+
 def _d21(xp: Any, x1: Any, x2: Any, w1: Any, w2: Any, E2: Any) -> Any:
     """``u2 - u1 = tanh x2 - tanh x1 = (1+u1)(1+u2) e^{-2 x2} (e^{2(x2 - x1)} - 1)/2``, exact for nearly equal
     roots."""
@@ -185,8 +192,8 @@ def gaps_to_x(xp: Any, w1: Any, z1: Any, w2: Any, z2: Any) -> tuple[Any, Any]:
 class UState:
     """Everything the u-chart right-hand sides need at one state (attributes; scalars or arrays)."""
 
-    __slots__ = ("Cr", "Gz", "H", "K", "Sm", "Sp", "c", "cth", "d21", "d31", "d32", "gm", "gp", "k2", "mc", "pim",
-                 "pip", "q", "r", "sth", "u1", "u2", "u3", "w1", "w2", "z1", "z2")
+    __slots__ = ("Cr", "Gz", "H", "K", "Sm", "Sp", "c", "cth", "d1", "d21", "d31", "d32", "gm", "gp", "k2", "mc",
+                 "pim", "pip", "q", "r", "sth", "u1", "u2", "u3", "w1", "w2", "z1", "z2")
 
     Cr: Any
     Gz: Any
@@ -196,6 +203,7 @@ class UState:
     Sp: Any
     c: Any
     cth: Any
+    d1: Any
     d21: Any
     d31: Any
     d32: Any
@@ -227,8 +235,7 @@ def decode_u(xp: Any, A: float, C: float, mgl: float, x1: Any, x2: Any, q: Any, 
     u1, w1, z1, _ = _side(xp, x1)
     u2, w2, z2, E2 = _side(xp, x2)
     sn, cs = _trig_q(q)
-    ww = w1 * w2 * sn * sn
-    c = 2.0 * ww / (z1 * z2 * cs * cs - ww)
+    c = _gap3(w1, z1, w2, z2, q)
     s.sth, s.cth, s.q = sn, cs, q
     s.u1, s.w1, s.z1, s.u2, s.w2, s.z2, s.c, s.u3 = u1, w1, z1, u2, w2, z2, c, 1.0 + c
     s.d21 = _d21(xp, x1, x2, w1, w2, E2)
@@ -241,13 +248,16 @@ def decode_u(xp: Any, A: float, C: float, mgl: float, x1: Any, x2: Any, q: Any, 
     s.pip, s.pim = pip, pim
     amg2 = 2.0 * A * mgl
     Sp = xp.sqrt(amg2 * pip)  # |Gz + C r|
-    Sm = xp.sqrt(amg2 * pim)  # |Gz - C r|
+    # |Gz - C r| = Sp tan(theta), signed with q: the chart continues smoothly through the branch point q = 0
+    # (where Gz - C r changes sign and delta1 flips), so that a step reaching past it stays accurate up to it
+    Sm = Sp * 2.0 * q / ((1.0 - q) * (1.0 + q))
     s.Sp, s.Sm = Sp, Sm
     # the signs of Gz +- C r by (2.8): delta1 = -1: (delta2, -delta2); delta1 = +1: both sign(Gz) =
     # delta2 sign(1 + s2), 1 + s2 = (Pi+ - Pi-)/2
     sgp = xp.where(d1 < 0.0, d2, xp.where(pip >= pim, d2, -d2))
     s.gp = sgp * Sp  # Gz + C r
     s.gm = (sgp * d1) * Sm  # Gz - C r
+    s.d1 = d1
     Gz = 0.5 * (s.gp + s.gm)
     Cr = 0.5 * (s.gp - s.gm)
     s.Gz, s.Cr, s.r = Gz, Cr, Cr / C
@@ -303,9 +313,10 @@ def u_chart_rates(
         out.append((N1 * F1 * iA + N3 * CF3) / (w * z))
     dx1 = (out[0] - F2) / (mgl * s.d21 * s.d31)
     dx2 = (out[1] - F2) / (-mgl * s.d21 * s.d32)
-    # theta = atan2(|Gz - C r|, |Gz + C r|): d|Gz +- C r| = sign(Gz +- C r) (F1 +- C F3); dq = (1 + q^2) dtheta/2
-    dth = (s.Sp * xp.copysign(1.0, gm) * (F1 - CF3) - s.Sm * xp.copysign(1.0, gp) * (F1 + CF3)) / (
-        s.Sp * s.Sp + s.Sm * s.Sm)
+    # tan(theta) = Sm/Sp with Gz + C r = sgp Sp, Gz - C r = sgp delta1 Sm: d Sp = sgp (F1 + C F3),
+    # d Sm = sgp delta1 (F1 - C F3); dq = (1 + q^2) dtheta/2
+    sgp = xp.copysign(1.0, gp)
+    dth = sgp * (s.Sp * s.d1 * (F1 - CF3) - s.Sm * (F1 + CF3)) / (s.Sp * s.Sp + s.Sm * s.Sm)
     return dx1, dx2, 0.5 * (1.0 + s.q * s.q) * dth
 
 
@@ -454,16 +465,14 @@ def u_drag_rates(xp: Any, k: tuple[float, ...], x1: Any, x2: Any, q: Any, d1: An
     w2 = 2.0 / (1.0 + E2)
     z1 = w1 * E1
     z2 = w2 * E2
-    sn, cs = _trig_q(q)
-    ww = w1 * w2 * sn * sn
-    c = 2.0 * ww / (z1 * z2 * cs * cs - ww)
+    c = _gap3(w1, z1, w2, z2, q)
     d21 = _d21(xp, x1, x2, w1, w2, E2)
     d32 = c + z2
     d31 = c + z1
     pip = w1 * w2 * (2.0 + c)
     pim = z1 * z2 * c
     Sp = xp.sqrt(amg2 * pip)
-    Sm = xp.sqrt(amg2 * pim)
+    Sm = Sp * 2.0 * q / ((1.0 - q) * (1.0 + q))  # |Gz - C r|, signed with q (see decode_u)
     sgp = xp.where((d1 < 0.0) | (pip >= pim), d2, -d2)
     gp = sgp * Sp
     gm = sgp * d1 * Sm
@@ -481,7 +490,7 @@ def u_drag_rates(xp: Any, k: tuple[float, ...], x1: Any, x2: Any, q: Any, d1: An
     F1A = F1 * iA
     P1 = (0.5 * (gp * z1 + gm * w1) * F1A + (i2A * (gp * z1 - gm * w1) - kr * w1 * z1) * CF3) / (w1 * z1)
     P2 = (0.5 * (gp * z2 + gm * w2) * F1A + (i2A * (gp * z2 - gm * w2) - kr * w2 * z2) * CF3) / (w2 * z2)
-    dth = (Sp * xp.copysign(1.0, gm) * (F1 - CF3) - Sm * xp.copysign(1.0, gp) * (F1 + CF3)) / (Sp * Sp + Sm * Sm)
+    dth = sgp * (Sp * d1 * (F1 - CF3) - Sm * (F1 + CF3)) / (Sp * Sp + Sm * Sm)
     md = mgl * d21
     return (P1 - F2) / (md * d31), (F2 - P2) / (md * d32), 0.5 * (1.0 + q * q) * dth
 
@@ -492,9 +501,8 @@ def u_event_values(xp: Any, x1: Any, x2: Any, q: Any, d1: Any) -> tuple[Any, Any
     ``b2 = C^2 r^2/(Gz^2 + C^2 r^2) = (1 - delta1 sin 2 theta)/2`` (from ``tan theta = |Gz - C r|/|Gz + C r|``)."""
     _, w1, z1, _ = _side(xp, x1)
     _, w2, z2, E2 = _side(xp, x2)
-    sn, cs = _trig_q(q)
-    ww = w1 * w2 * sn * sn
-    c = 2.0 * ww / (z1 * z2 * cs * cs - ww)
+    c = _gap3(w1, z1, w2, z2, q)
     d31 = c + z1
-    b1 = 2.0 * sn * cs
+    q2 = q * q
+    b1 = 4.0 * q * (1.0 - q2) / (1.0 + q2) ** 2  # sin 2 theta
     return _d21(xp, x1, x2, w1, w2, E2) / d31, (c + z2) / d31, xp.minimum(b1, 0.5 * (1.0 - d1 * b1))
