@@ -186,8 +186,8 @@ def bench_averaged_vs_full(eps: float = 1e-3, tau_end: float = 5.0) -> None:
         print("  no tolerance in the sweep resolved the difference")
         return
     print(f"RATIO lagrange.simulate vs lagrange.averaged (eps {eps:g}, tau in [0, {tau_end:g}], each resolving the "
-          f"O(eps) difference {d:.1e} to a tenth): {full[1] / avg[1]:.0f}x (full rtol {full[0]:.0e} error {full[2]:.1e}; "
-          f"averaged rtol {avg[0]:.0e} error {avg[2]:.1e})")
+          f"O(eps) difference {d:.1e} to a tenth): {full[1] / avg[1]:.0f}x (full rtol {full[0]:.0e} error "
+          f"{full[2]:.1e}; averaged rtol {avg[0]:.0e} error {avg[2]:.1e})")
 
 
 if __name__ == "__main__":
