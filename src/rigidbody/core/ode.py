@@ -12,6 +12,11 @@
 
 Status codes are SciPy's: ``-1`` failure (including a non-finite state), ``0`` the end of ``t_span``
 was reached, ``1`` a terminal event ended the run (``sol.event`` names it).
+
+``integrate(..., engine='python')`` runs SciPy's DOP853 itself on lists of floats (the same coefficients,
+error norm, step-size control, dense output and event location), for the small systems of the analyses where
+``solve_ivp``'s per-step NumPy overhead costs more than the right-hand side; it also accepts a per-component
+``rtol``. A :class:`Solution` describes one run or a batch of runs (:mod:`rigidbody.core.batch`).
 """
 
 from __future__ import annotations
