@@ -192,3 +192,96 @@ def test_F_inverts_am(k, x):
     u = x * ell.K(k)
     a = ell.am(u, k)
     assert ell.F(a, k) == pytest.approx(u, abs=1e-12 * (1 + abs(u)))
+
+
+@settings(max_examples=60)
+@given(lmc=st.floats(-20.0, 0.0))
+def test_E_to_a_few_ulp_from_k_and_from_mc(lmc):
+    # E = ellipe(m) (cephes: a rational approximation in 1 - m, to ~1 ulp). From mc, m = 1 - mc is rounded by
+    # <= eps/4 and |dE/dm| = (K - E)/(2m) <= 10 for mc >= 1e-20: <= 2.5 eps more, so 4 ulp in all.
+    mc = 10.0**lmc
+    ulp = 2.0**-52
+    with mp.workdps(40):
+        ref = mp.ellipe(1 - mp.mpf(mc))
+        assert abs(ell.E(mc=mc) - ref) <= 4 * ulp * ref
+        k = math.sqrt(1.0 - mc)
+        ref_k = mp.ellipe(mp.mpf(k) ** 2)  # the modulus as given: m = k**2 exactly
+        assert abs(ell.E(k) - ref_k) <= 2 * ulp * ref_k
+        assert abs(ell.E(np.array([k, k]))[1] - ref_k) <= 2 * ulp * ref_k
+
+
+def test_dn_where_cn_vanishes():
+    """At u = (2j+1)K, where cn = 0 and dn = k', SciPy's dn = cn / cos(phi - phi_1) is a quotient of two small
+    numbers (relative error ~eps / |cn| nearby); dn^2 = mc + m cn^2 is a sum of positives and keeps 1e-15."""
+    for mc in (0.5, 0.1, 0.02, 0.0101):
+        k = math.sqrt(1 - mc)
+        KK = ell.K(k)
+        u = np.array([1, 3, -1, 7], dtype=float) * KK + np.array([0.0, 1e-9, -1e-7, 1e-12])
+        d = ell.dn(u, k)
+        with mp.workdps(40):
+            ref = np.array([float(mp.ellipfun("dn", float(x), m=mp.mpf(k) ** 2)) for x in u])
+        # the argument u = (2j+1) K + small carries an absolute rounding error ~ |u| eps, which moves dn by
+        # k^2 |sn cn| |u| eps ~ 1e-15 |u| cn: far below the bound
+        assert np.max(np.abs(d - ref) / ref) < 4e-15
+
+
+@settings(max_examples=25)
+@given(lmc=st.lists(st.floats(-12.0, 0.0), min_size=8, max_size=8), x=st.floats(-5.0, 5.0))
+def test_array_calls_equal_scalar_calls_across_both_routes(lmc, x):
+    """One array call mixing regular moduli (SciPy directly) and near-separatrix ones (period-reduced,
+    own AGM below 1e-9) equals the scalar calls, element by element, to rounding; and near the separatrix
+    the array route meets the same mpmath bound as the scalar one."""
+    mc = np.array([10.0**v for v in lmc] + [0.0])
+    u = x * np.minimum(ell.K(mc=np.maximum(mc, 1e-12)), 30.0)
+    s, c, d, a = ell.jacobi(u, mc=mc)
+    for i in range(mc.size):
+        si, ci, di, ai = ell.jacobi(float(u[i]), mc=float(mc[i]))
+        # the same algorithm in numpy and in Python floats: libm and numpy's sin/arcsin may differ by an ulp
+        assert abs(s[i] - si) < 1e-14 and abs(c[i] - ci) < 1e-14 and abs(d[i] - di) < 1e-14 * di
+        assert abs(a[i] - ai) < 1e-14 * (1 + abs(ai))
+        if 0.0 < mc[i] < 1e-3:
+            es, ec, ed = _mp_jacobi(float(u[i]), 1 - mp.mpf(float(mc[i])))
+            slack = abs(u[i]) * 1e-15
+            assert abs(s[i] - float(es)) < TOL_SEPARATRIX + slack
+            assert abs(d[i] - float(ed)) <= TOL_SEPARATRIX * float(ed) + slack
+
+
+def test_scalar_fast_paths_return_python_floats_and_validate():
+    for val in (ell.K(0.5), ell.E(0.5), ell.K(mc=0.75), ell.E(mc=0.75), ell.K(np.float64(0.5)), ell.E(1),
+                *ell.jacobi(0.3, 0.5), *ell.jacobi(0.3, mc=1e-6), *ell.jacobi(2, 1), *ell.jacobi(np.float64(0.3), 0.5)):
+        assert type(val) is float
+    assert ell.K(0.5) == ell.K(np.array([0.5]))[0] and ell.E(mc=0.75) == ell.E(mc=np.array([0.75]))[0]
+    assert ell.jacobi(0.3, 0.5) == tuple(float(v[0]) for v in ell.jacobi(np.array([0.3]), 0.5))
+    for bad in (-0.1, 1.5, math.nan, math.inf):
+        with pytest.raises(ValueError, match=r"\[0, 1\]|finite"):
+            ell.K(bad)
+        with pytest.raises(ValueError, match=r"\[0, 1\]|finite"):
+            ell.E(mc=bad)
+        with pytest.raises(ValueError, match=r"\[0, 1\]|finite"):
+            ell.jacobi(0.3, bad)
+    with pytest.raises(ValueError, match="u must be finite"):
+        ell.jacobi(math.inf, 0.5)
+    with pytest.raises(ValueError, match="u must be finite"):
+        ell.jacobi(np.array([0.0, math.nan]), 0.5)
+    with pytest.raises(ValueError, match="must lie in"):
+        ell.E(np.array([0.2, 1.2]))
+    # no NaN for valid input, even where SciPy's phase 2^n a u overflows (the digits are gone, not the value)
+    for u in (1.7e308, -1e305, np.array([1.7e308, 0.3])):
+        for v in (*ell.jacobi(u, 0.5), *ell.jacobi(u, mc=1e-6)):
+            assert np.all(np.isfinite(v))
+
+
+@settings(max_examples=80)
+@given(lmc=st.floats(-4.0, 0.0), x=st.floats(-5.0, 5.0))
+def test_jacobi_from_mc_to_the_rounding_of_u(lmc, x):
+    """From the exact complementary parameter, 1 - k^2 >= 1e-4: sn, cn to the rounding of the argument
+    (|u| eps, times the derivative, <= 1) plus a few ulp, dn to 1e-14 relative. Where 1 - k^2 is small,
+    only the period-reduced route with the exact mc meets this: SciPy's ellipj on m = 1 - mc sees mc rounded
+    by eps/2 and so a period wrong by ~eps/mc (2e-13 at mc = 1e-4 over five quarter periods)."""
+    mc = 10.0**lmc
+    u = x * ell.K(mc=mc)
+    s, c, d, _ = ell.jacobi(u, mc=mc)
+    es, ec, ed = (float(v) for v in _mp_jacobi(u, 1 - mp.mpf(mc)))
+    bound = 4 * (1e-16 + abs(u) * 2.2e-16)
+    assert abs(s - es) <= bound and abs(c - ec) <= bound
+    assert abs(d - ed) <= 1e-14 * ed

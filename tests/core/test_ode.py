@@ -57,3 +57,59 @@ def test_rhs_turning_nan_mid_run_ends_with_failure_status():
     assert sol.status == -1
     assert np.all(np.isfinite(sol.y))
     assert sol.t[-1] <= 0.5 + 1e-9
+
+
+# ---------------------------------------------------------------------------------- engine='python'
+def _pendulum_run(engine, **kw):
+    evs = [Event(lambda t, y: y[0], "zero", terminal=False),
+           Event(lambda t, y: y[1] - 0.3, "w", terminal=True, direction=1.0, message="speed 0.3")]
+    return integrate(lambda t, y: [y[1], -math.sin(y[0])], (0.0, 20.0), [1.0, 0.0], t_eval=np.linspace(0, 20, 41),
+                     rtol=1e-10, atol=1e-12, engine=engine, events=evs, **kw)
+
+
+def test_python_engine_is_scipys_dop853():
+    # the same method, error norm, controller, dense output and event location on floats: the two runs agree
+    # to rounding (far below the rtol-1e-10 global error), with the same step count
+    a, b = _pendulum_run("scipy"), _pendulum_run("python")
+    assert a.status == b.status == 1 and a.event == b.event == "w" and a.message == b.message
+    np.testing.assert_array_equal(a.t, b.t)
+    np.testing.assert_allclose(b.y, a.y, rtol=0, atol=1e-13)
+    for name in ("zero", "w"):
+        np.testing.assert_allclose(b.t_events[name], a.t_events[name], rtol=0, atol=1e-13)
+        np.testing.assert_allclose(b.y_events[name], a.y_events[name], rtol=0, atol=1e-13)
+    # SciPy also builds the dense output of the first step for the sample at t0: 3 evaluations
+    assert a.nfev - b.nfev == 3
+
+
+def test_python_engine_steps_and_failures():
+    # solver steps as output (no t_eval), a blow-up ending with status -1, a NaN right-hand side mid-run
+    # (where the first tiny steps' error estimates are at the rounding level the two step sequences may part; the
+    # controller then brings both to the same step sizes: the counts agree to a step or two)
+    pend = lambda t, y: [y[1], -math.sin(y[0])]  # noqa: E731
+    sol = integrate(pend, (0.0, 10.0), [2.0, 0.0], rtol=1e-9, atol=1e-12, engine="python")
+    ref = integrate(pend, (0.0, 10.0), [2.0, 0.0], rtol=1e-9, atol=1e-12)
+    assert abs(sol.t.size - ref.t.size) <= 2 and sol.t[-1] == 10.0
+    energy = 0.5 * sol.y[1] ** 2 - np.cos(sol.y[0])
+    np.testing.assert_allclose(energy, -math.cos(2.0), rtol=0, atol=1e-8)  # rtol 1e-9 over ~1.3 periods
+    assert sol.last_step > 0.0
+    blow = integrate(lambda t, y: [y[0] * y[0]], (0.0, 2.0), [1.0], rtol=1e-8, engine="python")
+    assert blow.status == -1 and blow.t[-1] < 1.0 + 1e-6 and np.all(np.isfinite(blow.y))
+
+    def f(t, y):
+        return [math.nan if t > 0.5 else -y[0]]
+
+    sol = integrate(f, (0.0, 1.0), [1.0], rtol=1e-6, engine="python")
+    assert sol.status == -1 and sol.t[-1] <= 0.5 + 1e-9
+
+
+def test_python_engine_per_component_rtol_and_first_step():
+    # y1 = exp(-t) relative to 1e-12, y2 = 1e6 exp(-t) with only an absolute tolerance: the loose component
+    # does not drive the step; a given first step is taken
+    f = lambda t, y: [-y[0], -y[1]]  # noqa: E731
+    sol = integrate(f, (0.0, 3.0), [1.0, 1e6], rtol=np.array([1e-12, 2.3e-14]), atol=np.array([1e-300, 1.0]),
+                    engine="python", t_eval=[3.0], first_step=0.01)
+    assert sol.y[0, -1] == pytest.approx(math.exp(-3.0), rel=1e-11, abs=0)
+    with pytest.raises(ValueError, match="engine"):
+        integrate(f, (0.0, 1.0), [1.0, 1.0], engine="fortran")
+    with pytest.raises(ValueError, match="forward"):
+        integrate(f, (1.0, 0.0), [1.0, 1.0], engine="python")

@@ -28,6 +28,9 @@ MODULES = [
     "rigidbody.paperfigs.euler_poinsot",
     "rigidbody.paperfigs.gyrostat",
     "rigidbody.paperfigs.viscous",
+    "rigidbody.paperfigs.studies",
+    "rigidbody.sweep",
+    "rigidbody.studies",
 ] + [f"rigidbody.core.{name}" for name in importlib.import_module("rigidbody.core").__all__]
 
 

@@ -20,8 +20,8 @@ from rigidbody.paperfigs import PAPER_FIGURE, registry
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples"
 SCRIPTS = sorted(EXAMPLES.rglob("*.py"))
-# only the figure sets of the four papers have gallery folders named after them
-SETS = ("lagrange", "euler_poinsot", "gyrostat", "viscous")
+# every figure set has a gallery folder named after it
+SETS = ("lagrange", "euler_poinsot", "gyrostat", "viscous", "studies")
 
 
 def _paper_scripts() -> set[str]:

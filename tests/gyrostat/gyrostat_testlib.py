@@ -129,7 +129,7 @@ class MPMotion:
             self.k = om * S0 + k2 * cp + k3 * sp
             self.lam = M * R0**2 * om**2 * mpmath.sin(kap)
             self.point = [R0, kap, mpmath.mpf(0), sp, mpmath.mpf(0), -mpmath.sin(th)]
-            self.k2, self.k3, self.kappa0, self.omega0 = k2, k3, kap, om
+            self.k2, self.k3, self.kappa0, self.omega0, self.theta0 = k2, k3, kap, om, th
             self.M, self.A1, self.A2, self.A3, self.mu = M, A1, A2, A3, mu
         self.branch = m.branch
 
@@ -145,14 +145,34 @@ class MPMotion:
         chi = b1 * g1 + b2 * g2 + b3 * g3 - mpmath.sin(kap)
         return K**2 / (2 * S) - U + self.lam * chi
 
-    def hessian(self):
+    def hessian(self, *, as_mp: bool = False):
+        """The 6x6 Hessian of W1 at the motion: float64 (default) or an mpmath matrix at DPS digits."""
         n = 6
-        H = np.empty((n, n))
         with mpmath.workdps(DPS):
+            H = mpmath.matrix(n, n)
             for i in range(n):
                 for j in range(i, n):
                     nn = [0] * n
                     nn[i] += 1
                     nn[j] += 1
-                    H[i, j] = H[j, i] = float(mpmath.diff(self.W1, self.point, tuple(nn)))
-        return H
+                    H[i, j] = H[j, i] = mpmath.diff(self.W1, self.point, tuple(nn))
+        if as_mp:
+            return H
+        return np.array([[float(H[i, j]) for j in range(n)] for i in range(n)])
+
+    def constrained_form(self):
+        """delta^2 W1 on the tangent space of chi = 0 (2.1), at DPS digits, in the order
+        (gamma1, beta1, R, kappa, beta3): delta gamma2 = cos th delta kappa - cos th / cos(th + ka) delta beta3
+        eliminated with the 50-digit kappa0 (an mpmath matrix, 5x5)."""
+        H = self.hessian(as_mp=True)
+        with mpmath.workdps(DPS):
+            ct, cp = mpmath.cos(self.theta0), mpmath.cos(self.theta0 + self.kappa0)
+            T = mpmath.zeros(6, 5)
+            T[4, 0] = 1  # gamma1
+            T[2, 1] = 1  # beta1
+            T[0, 2] = 1  # R
+            T[1, 3] = 1  # kappa
+            T[5, 3] = ct
+            T[3, 4] = 1  # beta3
+            T[5, 4] = -ct / cp
+            return T.T * H * T

@@ -285,3 +285,80 @@ def test_map_matches_scalar_calls_on_random_points(units):
             assert np.isclose(mp.s3[i], st.s3, rtol=1e-12, atol=0)
             assert np.isclose(mp.kappa0[i], m.kappa0, rtol=1e-13, atol=0)
         assert seen == {"stable", "unstable", "undecided"}
+
+
+def _on_boundary(sat, R0, th, minor):
+    """k2 (float) where the 50-digit constrained second variation of the independent W1 (MPMotion) has
+    ``minor`` = s2 (the (gamma1, beta1) block) or s3 (the (R, kappa, beta3) block) equal to zero at theta0
+    = ``th``, and the motion there.  Secant through k2 = 0 and k2 = Abar n0: exact if s2, s3 are linear in
+    k2 (as the printed entries say); the caller checks the eigenvalues at the result instead of relying
+    on that."""
+    import mpmath
+
+    def s(k2):
+        C = MPMotion(gyrostat.stationary_motion(sat, R0, th, k2=k2), given="k2").constrained_form()
+        with mpmath.workdps(50):
+            return C[0, 0] * C[1, 1] - C[0, 1] ** 2 if minor == "s2" else mpmath.det(C[2:, 2:])
+
+    ka, kb = 0.0, sat.Abar * math.sqrt(sat.mu / R0**3)
+    with mpmath.workdps(50):
+        sa, sb = s(ka), s(kb)
+        return float(ka - sa * (kb - ka) / (sb - sa))
+
+
+def _mp_eigenvalues(sat, R0, th, k2):
+    import mpmath
+
+    C = MPMotion(gyrostat.stationary_motion(sat, R0, th, k2=k2), given="k2").constrained_form()
+    with mpmath.workdps(50):
+        # congruence with diag(|C_ii|^-1/2): the inertia is unchanged and the units (SI entries span
+        # ~14 decades) drop out, so "zero relative to the largest eigenvalue" means something
+        d = [1 / mpmath.sqrt(abs(C[i, i])) for i in range(5)]
+        Cs = mpmath.matrix(5, 5)
+        for i in range(5):
+            for j in range(5):
+                Cs[i, j] = C[i, j] * d[i] * d[j]
+        return sorted(float(e) for e in mpmath.eigsy(Cs, eigvals_only=True))
+
+
+@pytest.mark.parametrize("units", ["nondimensional", "SI"])
+def test_degenerate_second_variation_is_undecided_never_stable(units):
+    """Section 2 (2.5): on the boundary s2 = 0 or s3 = 0 of a stability region the constrained second
+    variation is positive SEMIdefinite with nullity 1.  Routh's theorem needs a definite form, so the
+    verdict there is 'undecided', in the vectorised map as in the scalar call (and 'stable' just inside).
+    The boundary points come from the 50-digit Hessian of W1 transcribed anew (MPMotion), not from the
+    library; their eigenvalues are checked at 50 digits: one is zero to the float64 rounding of k2
+    (~1e-16 relative), the others positive."""
+    if units == "SI":
+        sat, R0 = gyrostat.Satellite(M=1000.0, A1=1200.0, A2=1000.0, A3=800.0, mu=3.986e14), 7e6
+        # no s3 point in SI: there s3 = 0 lies where a33 ~ a23^2 / a22 ~ 1e-16 (a22 ~ M R0^2 n0^2), a
+        # difference of terms ~ omega0^2 (A2 - A3) ~ 1e-4, so the rounding of k2 alone moves the zero
+        # eigenvalue of the scaled form to ~1e-4: no float64 k2 puts the motion on that boundary
+        points = [(0.3, "s2"), (-0.5, "s2"), (1.0, "s2"), (-0.9, "s2")]
+    else:
+        sat, R0 = gyrostat.Satellite(M=1.0, A1=0.03, A2=0.02, A3=0.012), 1.0
+        points = [(0.3, "s2"), (-0.5, "s2"), (1.2, "s3"), (-1.3, "s3")]
+    th = np.array([p[0] for p in points])
+    k2 = np.array([_on_boundary(sat, R0, t, minor) for t, minor in points])
+    for t, kb in zip(th, k2):
+        ev = _mp_eigenvalues(sat, R0, float(t), float(kb))
+        big = max(abs(e) for e in ev)
+        # one eigenvalue vanishes to the float64 rounding of k2 (relative 1e-16, amplified by the
+        # conditioning of the block: 1e-13 is far below the library's zero threshold rtol = 1e-12)
+        assert abs(ev[0]) < 1e-13 * big
+        assert all(e > 1e-6 * big for e in ev[1:])
+    # stable just inside the region: which side is inside is read off the 50-digit eigenvalues
+    inside = np.empty_like(k2)
+    for i, (t, kb) in enumerate(zip(th, k2)):
+        step = 1e-6 * abs(kb)
+        up = _mp_eigenvalues(sat, R0, float(t), float(kb + step))
+        inside[i] = kb + step if up[0] > 0 else kb - step
+        assert min(_mp_eigenvalues(sat, R0, float(t), float(inside[i]))) > 0
+    near = gyrostat.stability_map(sat, R0, th, k2=inside, grid=False)
+    assert list(near.verdict) == ["stable"] * len(points)
+    on = gyrostat.stability_map(sat, R0, th, k2=k2, grid=False)
+    assert list(on.verdict) == ["undecided"] * len(points)
+    assert np.all(on.degree == 0)  # positive semidefinite: no negative eigenvalue, one zero
+    for t, kb in zip(th, k2):
+        st = gyrostat.stability(sat, gyrostat.stationary_motion(sat, R0, float(t), k2=float(kb)))
+        assert (st.verdict, st.degree, st.nullity) == ("undecided", 0, 1)

@@ -7,7 +7,11 @@
 :mod:`rigidbody.core.averaging`
     Spectrally convergent period averages over motions written in Jacobi functions.
 :mod:`rigidbody.core.ode`
-    ``solve_ivp`` wrapper returning named trajectories with a clear status.
+    ``solve_ivp`` wrapper returning named trajectories with a clear status; the :class:`~.ode.Solution`
+    result, for one run or a batch.
+:mod:`rigidbody.core.batch`
+    Many independent systems integrated together (vectorised DOP853 with per-member step control,
+    events and status).
 :mod:`rigidbody.core.quadform`
     Quadratic forms: inertia-preserving scaling, leading minors, inertia (degree of instability),
     constrained (null-space) forms, finite-difference Hessians, complex-step gradients.
@@ -15,6 +19,6 @@
     Validation of scalar user input (clear ``TypeError``/``ValueError`` naming the parameter).
 """
 
-from . import averaging, elliptic, euler, ode, quadform, validate
+from . import averaging, batch, elliptic, euler, ode, quadform, validate
 
-__all__ = ["averaging", "elliptic", "euler", "ode", "quadform", "validate"]
+__all__ = ["averaging", "batch", "elliptic", "euler", "ode", "quadform", "validate"]

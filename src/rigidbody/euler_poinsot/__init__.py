@@ -101,18 +101,29 @@ from ._separatrix import (
     separatrix_crossing,
     separatrix_limits,
 )
-from ._torques import FunctionTorque, GravityGradient, LinearDrag, Torque, TorqueSum
+from ._torques import (
+    ConstantTorque,
+    FunctionTorque,
+    GravityGradient,
+    LinearDrag,
+    MagneticDipole,
+    Torque,
+    TorqueSum,
+    ViscousCavity,
+)
 
 __all__ = [
     "ARCS",
     "KINDS",
     "REGIONS",
     "Body",
+    "ConstantTorque",
     "Drag",
     "EulerPoinsot",
     "FunctionTorque",
     "GravityGradient",
     "LinearDrag",
+    "MagneticDipole",
     "N_star",
     "N_time",
     "Orbit",
@@ -123,6 +134,7 @@ __all__ = [
     "Torque",
     "TorqueAverage",
     "TorqueSum",
+    "ViscousCavity",
     "average_torque",
     "averaged",
     "averaged_branches",

@@ -29,6 +29,17 @@ evolves :math:`(G, k^2, \Lambda)` with :math:`\dot\Lambda = \tfrac34(1-e^2)^{-3/
 :math:`\lambda = \lambda_0 + \Lambda\cos\delta_0`: as :math:`G \to 0` the precession accelerates like
 :math:`1/G`, and a smooth :math:`\Lambda` costs no extra steps where resolving the turns of
 :math:`\mathbf n` would.
+
+Any torque
+----------
+With a torque object (``rigidbody.euler_poinsot.LinearDrag``, ..., or a plain function) the integrator evolves
+:math:`(G, k^2, \mathbf n)` with :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle` and the
+:math:`k^2` rate of :mod:`._engine`, the means from the closed forms of the torque's parts where they exist
+and from the averaging engine otherwise (its grid chosen once, at the start). ``_integrate_kind`` integrates
+one kind of motion from given :math:`(G, k^2, \mathbf n)`: a run that reaches the separatrix can be
+restarted in the other kind with :math:`G`, :math:`T`, :math:`\mathbf n` continuous. With
+:math:`\varepsilon > 0` the run checks the drift per Euler--Poinsot period (event) and the resonances
+between the precession and the Euler--Poinsot frequency (predicted jumps, after the integration).
 """
 
 from __future__ import annotations
@@ -866,10 +877,11 @@ def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
                        res.sol, res.nfev)
         resonances = [r for r in resonances if r["tau"] <= cut["tau"]]
     out = _finish(res, tau_eval, make_fields, lam0, nvec)
-    # the quadrature error along the run (relative to the size of the averaged torque), at up to 9 states
+    # the quadrature error along the run (relative to the size of the averaged torque), at the first and the
+    # last state (each estimate costs a few right-hand sides on the calibration grid)
     qerr = 0.0
     if setup.averager.rest is not None and res.time.size:
-        for t in np.linspace(res.time[0], res.time[-1], min(9, res.time.size)):
+        for t in np.unique([res.time[0], res.time[-1]]):
             st = _state_of(setup, seg.kind, seg.sigma, float(t), res.sol(t), seg.tau0, seg.nu0)
             m, e = setup.averager.report(st)
             size = float(np.abs(m.L).max()) + abs(m.dT) / max(st.T, 1e-300) * st.G + 1e-300

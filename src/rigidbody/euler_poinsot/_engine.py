@@ -115,15 +115,27 @@ def frame(n: np.ndarray) -> np.ndarray:
     return np.array([[n3 * c, -s, n1], [n3 * s, c, n2], [-h, 0.0, n3]])
 
 
+def amplitudes(st: _State) -> tuple[float, float, float]:
+    r"""The amplitudes of the Euler--Poinsot motion in the labelled axes (sec. 2):
+    :math:`\omega = (\sigma c_{dn}\operatorname{dn}, -\sigma k c_{sn}\operatorname{sn}, k c_{cn}\operatorname{cn})`."""
+    a1, a2, a3 = st.a
+    R = a1 * (a2 - a3) + a3 * (a1 - a2) * st.k2
+    G = st.G
+    return (G * math.sqrt((a2 - a3) / (a1 * R)), G * math.sqrt((a1 - a3) / (a2 * R)),
+            G * math.sqrt((a1 - a2) / (a3 * R)))
+
+
 def _symmetric_phase(n: int, mc: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """sn, cn, dn on ``n`` (a multiple of 4) uniform nodes of 4K, exactly symmetric: the first quarter
     period from the core, the rest by sn(2K - s) = sn s, cn(2K - s) = -cn s, f(s + 2K) = (-sn, -cn, dn).
     Parts of a mean that are odd under these symmetries of the motion then cancel to rounding of the
     products, not of the Jacobi functions."""
-    _, sn, cn, dn = avg.phase_grid(n=n, mc=mc, period="4K")
     q = n // 4
     h = n // 2
-    sn[q + 1:h + 1], cn[q + 1:h + 1], dn[q + 1:h + 1] = sn[q - 1::-1], -cn[q - 1::-1], dn[q - 1::-1]
+    _, s2, c2, d2 = avg.phase_grid(n=h, mc=mc, period="2K")  # the first half of the nodes of 4K
+    sn, cn, dn = np.empty(n), np.empty(n), np.empty(n)
+    sn[:q + 1], cn[:q + 1], dn[:q + 1] = s2[:q + 1], c2[:q + 1], d2[:q + 1]
+    sn[q + 1:h], cn[q + 1:h], dn[q + 1:h] = sn[q - 1:0:-1], -cn[q - 1:0:-1], dn[q - 1:0:-1]
     sn[h:], cn[h:], dn[h:] = -sn[:h], -cn[:h], dn[:h]
     return sn, cn, dn
 
@@ -132,12 +144,8 @@ def motion_nodes(st: _State, n_u: int) -> tuple[np.ndarray, np.ndarray]:
     r"""Body angular velocity ``(n_u, 3)`` and direction cosines :math:`\alpha_0` ``(n_u, 3, 3)`` at
     :math:`\psi = 0` on ``n_u`` uniform nodes of the period :math:`4K` (the closed form of sec. 2)."""
     b = st.body
-    a1, a2, a3 = st.a
     k2, G, s = st.k2, st.G, st.sigma
-    R = a1 * (a2 - a3) + a3 * (a1 - a2) * k2
-    c_dn = G * math.sqrt((a2 - a3) / (a1 * R))
-    c_sn = G * math.sqrt((a1 - a3) / (a2 * R))
-    c_cn = G * math.sqrt((a1 - a2) / (a3 * R))
+    c_dn, c_sn, c_cn = amplitudes(st)
     sn, cn, dn = _symmetric_phase(n_u, st.mc)
     k = math.sqrt(k2)
     omega = np.empty((n_u, 3))
@@ -149,9 +157,11 @@ def motion_nodes(st: _State, n_u: int) -> tuple[np.ndarray, np.ndarray]:
     g = omega * b.A
     # alpha_0 = dcm(0, theta, phi): rows (cos phi, -sin phi, 0), (cos th sin phi, cos th cos phi, -sin th), g/G
     h = np.hypot(g[:, 0], g[:, 1])
-    safe = np.where(h > 0.0, h, 1.0)
-    sp = np.where(h > 0.0, g[:, 0] / safe, 0.0)
-    cp = np.where(h > 0.0, g[:, 1] / safe, 1.0)
+    if h.min() > 0.0:
+        sp, cp = g[:, 0] / h, g[:, 1] / h
+    else:  # g along z3 (kind 'min' at k = 0): phi is undefined there, take phi = 0
+        safe = np.where(h > 0.0, h, 1.0)
+        sp, cp = np.where(h > 0.0, g[:, 0] / safe, 0.0), np.where(h > 0.0, g[:, 1] / safe, 1.0)
     ct, stt = g[:, 2] / G, h / G
     al = np.empty((n_u, 3, 3))
     al[:, 0, 0], al[:, 0, 1], al[:, 0, 2] = cp, -sp, 0.0
@@ -194,10 +204,17 @@ class Grid:
         return max(4, n + (-n) % 4)
 
 
-def torque_grid(torque: Any, st: _State, grid: Grid) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+def torque_grid(torque: Any, st: _State, grid: Grid, compact: bool = False,
+                ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The torque at every node: ``M`` of shape ``(n_nu, n_psi, n_u, 3)`` (``n_nu = 1`` when nu is held),
     the orbit weights ``w``, and the body angular velocity ``(n_u, 3)`` and attitudes ``C`` ``(n_psi, n_u,
-    3, 3)`` of the grid (C does not depend on nu)."""
+    3, 3)`` of the grid (C does not depend on nu).
+
+    ``compact=True`` passes the torque arrays whose leading axes only broadcast against each other (omega
+    ``(1, 1, n_u, 3)``, C ``(1, n_psi, n_u, 3, 3)``, nu ``(n_nu, 1, 1)``), so that a torque that does not
+    depend on the attitude or on nu is evaluated once per phase node; :func:`adaptive` checks on the first
+    grid that the torque gives the same values this way and otherwise passes full arrays.
+    """
     n_u = grid.n_u(st.mc)
     omega, al = motion_nodes(st, n_u)
     Y = frame(st.n)
@@ -212,8 +229,12 @@ def torque_grid(torque: Any, st: _State, grid: Grid) -> tuple[np.ndarray, np.nda
     else:
         nu, w = np.array([st.nu]), np.ones(1)
     shape = (nu.size, grid.n_psi, n_u)
-    M = np.asarray(torque(np.broadcast_to(omega, (*shape, 3)), np.broadcast_to(C, (*shape, 3, 3)),
-                          np.broadcast_to(nu[:, None, None], shape)), dtype=float)
+    if compact:
+        M = torque(omega[None, None], C[None], nu[:, None, None])
+    else:
+        M = torque(np.broadcast_to(omega, (*shape, 3)), np.broadcast_to(C, (*shape, 3, 3)),
+                   np.broadcast_to(nu[:, None, None], shape))
+    M = np.asarray(M, dtype=float)
     return (M if M.shape == (*shape, 3) else np.broadcast_to(M, (*shape, 3))), w, omega, C
 
 
@@ -233,14 +254,28 @@ def quantities(st: _State, omega: np.ndarray, C: np.ndarray, M: np.ndarray) -> n
 
 
 def _nu_mean(M: np.ndarray, w: np.ndarray, step: int = 1) -> np.ndarray:
+    if M.strides[0] == 0:  # the torque does not depend on nu (compact evaluation)
+        return M[0]
     ws = w[::step]
-    return np.tensordot(ws / ws.sum(), M[::step], axes=(0, 0))
+    Ms = M[::step]
+    return ((ws / ws.sum()) @ Ms.reshape(Ms.shape[0], -1)).reshape(Ms.shape[1:])
 
 
-def lean_mean(torque: Any, st: _State, grid: Grid) -> np.ndarray:
-    """The six means on one grid, no error estimate (the integrators' right-hand sides)."""
-    M, w, omega, C = torque_grid(torque, st, grid)
-    return quantities(st, omega, C, _nu_mean(M, w)).mean(axis=(0, 1))
+def lean_mean(torque: Any, st: _State, grid: Grid, compact: bool = False) -> np.ndarray:
+    """The six means on one grid, no error estimate (the integrators' right-hand sides): only the means of
+    C M and of the products omega_i M_i are formed (the rest is linear in them)."""
+    M, w, omega, C = torque_grid(torque, st, grid, compact)
+    Mn = _nu_mean(M, w)
+    N = Mn.shape[0] * Mn.shape[1]
+    out = np.empty(_NQ)
+    out[0:3] = np.einsum("puij,puj->i", C, Mn) / N
+    om = np.einsum("ui,pui->i", omega, Mn) / N  # <omega_i M_i>
+    a1, a2, a3 = st.a
+    l1, l2, l3 = st.lab
+    out[3] = om.sum()
+    out[4] = 2.0 * ((a1 - a2) * om[l2] + (a1 - a3) * om[l3])
+    out[5] = 2.0 * ((a1 - a3) * om[l1] + (a2 - a3) * om[l2])
+    return out
 
 
 def _sub(V: np.ndarray, axis: int, step: int) -> np.ndarray:
@@ -285,15 +320,24 @@ class Quadrature:
     lean: Grid
     converged: bool
     convergence: dict[str, float]
+    compact: bool
 
 
-def adaptive(torque: Any, st: _State, tol: float, grid: Grid | None = None, refine: bool = True) -> Quadrature:
+def adaptive(torque: Any, st: _State, tol: float, grid: Grid | None = None, refine: bool = True,
+             compact: bool | None = None) -> Quadrature:
     """Mean of the six quantities with an error estimate; the grid is doubled along axes until ``tol``."""
     g = Grid() if grid is None else Grid(grid.n_psi, grid.m_u, grid.n_nu)
     if st.nu is not None:
         g.n_nu = 1
+    if compact is None:  # may the torque be called with broadcastable (not equal) leading axes?
+        full = torque_grid(torque, st, g)[0]
+        try:
+            small = torque_grid(torque, st, g, compact=True)[0]
+            compact = bool(np.array_equal(small, full))
+        except (ValueError, TypeError, IndexError):
+            compact = False
     while True:
-        M, w, omega, C = torque_grid(torque, st, g)
+        M, w, omega, C = torque_grid(torque, st, g, compact)
         steps = (1, 2, 4) if g.n_nu >= 4 and g.n_nu % 4 == 0 else ((1, 2) if g.n_nu % 2 == 0 else (1,))
         Vs = [quantities(st, omega, C, _nu_mean(M, w, k)) for k in steps]
         V = Vs[0]
@@ -334,7 +378,7 @@ def adaptive(torque: Any, st: _State, tol: float, grid: Grid | None = None, refi
             d2 = float(np.max(np.abs(ms[1] - ms[0]) / S))
             d1 = float(np.max(np.abs(ms[2] - ms[1]) / S))
             conv[k] = d2 / d1 if d1 > 0 else 0.0
-    return Quadrature(m, err, S, g, lean, ok, conv)
+    return Quadrature(m, err, S, g, lean, ok, conv, compact)
 
 
 def _scale(Vabs: np.ndarray) -> np.ndarray:
@@ -441,7 +485,8 @@ class Averager:
             total = m if total is None else total + m
         if self.rest is not None:
             assert self.grid is not None
-            m = mean_of(lean_mean(self.rest, st, self.grid), st)
+            assert self.first is not None
+            m = mean_of(lean_mean(self.rest, st, self.grid, self.first.compact), st)
             total = m if total is None else total + m
         assert total is not None
         return total
@@ -456,8 +501,8 @@ class Averager:
         err = _Mean(np.zeros(3), 0.0, 0.0)
         if self.rest is not None:
             assert self.first is not None and self.grid is not None
-            q = adaptive(self.rest, st, self.tol, grid=self.first.grid, refine=False)
-            lean = lean_mean(self.rest, st, self.grid)
+            q = adaptive(self.rest, st, self.tol, grid=self.first.grid, refine=False, compact=self.first.compact)
+            lean = lean_mean(self.rest, st, self.grid, self.first.compact)
             total = total + mean_of(lean, st)
             err = error_of(np.abs(lean - q.mean) + q.error, st)
         return total, err

@@ -2,20 +2,31 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 
 from ..core.validate import positive
 from ._model import Satellite
-from ._stability import VERDICTS, a_matrix, hessian_entries, restricted_conditions, stability_arrays
+from ._stability import (
+    VERDICTS,
+    a_matrix,
+    hessian_entries,
+    restricted_conditions,
+    second_variation_side,
+    verdicts,
+)
 from ._stationary import (
     SINGULAR_TOL,
     broadcast_shape,
     check_fits,
     check_omega_sign,
     family_arrays,
+    family_momentum,
+    family_side,
     float_arrays,
 )
 
@@ -32,8 +43,9 @@ class StabilityMap:
     ``code``: 0 stable, 1 unstable (odd degree), 2 undecided, -1 invalid (no motion of the family,
     singular chart, k2 ill-conditioned (abs(sin(theta0 + kappa0)) <= 1e-6 with k3 given), a non-physical
     body, or one that does not fit inside its orbit, ``R0^2 <= (A1 + A2 + A3) / (2 M)``);
-    :attr:`verdict` gives the strings.  ``r1, r2, r3`` are the restricted-problem quantities and
-    ``restricted_stable`` their conjunction.
+    :attr:`verdict` gives the strings.  ``minors`` (the five leading minors of the constrained second
+    variation, see :class:`Stability`), ``r1, r2, r3`` (the restricted-problem quantities) and
+    ``restricted_stable`` (their conjunction) are computed on first access.
     """
 
     params: dict[str, np.ndarray]
@@ -44,12 +56,47 @@ class StabilityMap:
     s1: np.ndarray
     s2: np.ndarray
     s3: np.ndarray
-    minors: np.ndarray
     degree: np.ndarray
     code: np.ndarray
-    r1: np.ndarray
-    r2: np.ndarray
-    r3: np.ndarray
+    #: what the lazy minors recompute a11 and a11 a22 - a12^2 from: the side parameters, omega_sign, rtol
+    _parts: dict[str, Any] = field(repr=False, compare=False)
+
+    @cached_property
+    def minors(self) -> np.ndarray:
+        """The leading minors ``s1, s2, s2 a11, s2 (a11 a22 - a12^2), s2 s3`` (NaN at invalid points)."""
+        s2 = self.s2
+        with np.errstate(all="ignore"):  # a11 and a11 a22 - a12^2 do not involve k2: per theta0 on a grid
+            _, d = _side(self._parts["side"], self._parts["omega_sign"], self._parts["rtol"])
+        out = np.empty((*self.shape, 5))
+        out[..., 0] = self.s1
+        out[..., 1] = s2
+        with np.errstate(over="ignore", invalid="ignore"):
+            np.multiply(s2, d["a11"], out=out[..., 2])
+            np.multiply(s2, d["C"], out=out[..., 3])
+            np.multiply(s2, self.s3, out=out[..., 4])
+        out[self.code == -1] = np.nan
+        return out
+
+    @cached_property
+    def _restricted(self) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        P = self.params
+        r1, r2, r3 = restricted_conditions(P["A1"], P["A2"], P["A3"], P["theta0"], self.k2, self.omega0)
+        return np.broadcast_to(r1, self.shape), np.broadcast_to(r2, self.shape), np.broadcast_to(r3, self.shape)
+
+    @property
+    def r1(self) -> np.ndarray:
+        """``A1 - A2 sin^2 theta0 - A3 cos^2 theta0`` (see :func:`~rigidbody.gyrostat.restricted_conditions`)."""
+        return self._restricted[0]
+
+    @property
+    def r2(self) -> np.ndarray:
+        """``A2 - A3 + k2 / (4 omega0 cos^3 theta0)``."""
+        return self._restricted[1]
+
+    @property
+    def r3(self) -> np.ndarray:
+        """``r1 (A2 - A1 + k2 / (omega0 cos theta0)) + 3 (A1 - A2)(A2 - A3) sin^2 theta0``."""
+        return self._restricted[2]
 
     @property
     def verdict(self) -> np.ndarray:
@@ -133,36 +180,124 @@ def stability_map(
         axes = [n for n in _MAP_ORDER if n in arrs and arrs[n].ndim == 1 and arrs[n].size != 1]
         if any(arrs[n].ndim > 1 for n in arrs):
             raise ValueError("with grid=True pass 1-D arrays (or use grid=False and broadcastable arrays)")
-        # sparse: trigonometry runs on the 1-D axes, broadcasting does the rest
+        # sparse: the per-theta0 work runs on the 1-D axes, broadcasting does the rest
         mesh = np.meshgrid(*[arrs[n] for n in axes], indexing="ij", sparse=True) if axes else []
         for n, m in zip(axes, mesh):
             arrs[n] = m
     shape = broadcast_shape(arrs)
-    P = {n: np.broadcast_to(v, shape) for n, v in arrs.items()}
-    M, A1, A2, A3, mu, Rv = arrs["M"], arrs["A1"], arrs["A2"], arrs["A3"], arrs["mu"], arrs["R0"]
-    physical = (
-        (M > 0) & (A1 > 0) & (A2 > 0) & (A3 > 0) & (mu > 0) & (Rv > 0)
-        & (A1 <= (A2 + A3) * (1 + 1e-12)) & (A2 <= (A1 + A3) * (1 + 1e-12)) & (A3 <= (A1 + A2) * (1 + 1e-12))
-    )
-    with np.errstate(all="ignore"):  # the body fits inside its orbit (see _stationary.check_fits)
-        physical = physical & (Rv**2 > (A1 + A2 + A3) / (2 * M))
-    with np.errstate(invalid="ignore", divide="ignore"):
-        f = family_arrays(M, A1, A2, A3, mu, Rv, arrs["theta0"], k2=arrs.get("k2"), k3=arrs.get("k3"),
-                          omega_sign=omega_sign)
-        f = {key: np.broadcast_to(v, shape) if key in ("exists", "sin_tk", "cos_tk", "cos_t", "sin_t") else v
-             for key, v in f.items()}
-        f["exists"] = f["exists"] & physical
-        if "k3" in arrs:  # k2 from k3 divides by sin(theta0 + kappa0): ill-conditioned near theta0 = 0, pi
-            f["exists"] = f["exists"] & (np.abs(f["sin_tk"]) > SINGULAR_TOL)
-        d = stability_arrays(f, M, A1, A2, A3, mu, Rv, rtol=rtol)
-        r1, r2, r3 = restricted_conditions(A1, A2, A3, f["theta0"], f["k2"], f["omega0"])
-    def full(x: Any) -> np.ndarray:
+    kname = "k2" if "k2" in arrs else "k3"
+    return _evaluate(arrs, shape, kname, omega_sign, rtol)
+
+
+#: points per block of the evaluation: its temporaries stay in the CPU cache (2**14 doubles = 128 kB)
+_BLOCK = 1 << 14
+
+_SIDE_NAMES = ("M", "A1", "A2", "A3", "mu", "R0", "theta0")
+
+
+def _physical(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any) -> Any:
+    """A body (positive masses, triangle inequalities) that fits inside its orbit (_stationary.check_fits)."""
+    with np.errstate(all="ignore"):
+        return (
+            (M > 0) & (A1 > 0) & (A2 > 0) & (A3 > 0) & (mu > 0) & (R0 > 0)
+            & (A1 <= (A2 + A3) * (1 + 1e-12)) & (A2 <= (A1 + A3) * (1 + 1e-12)) & (A3 <= (A1 + A2) * (1 + 1e-12))
+            & (R0**2 > (A1 + A2 + A3) / (2 * M))
+        )
+
+
+def _side(p: dict[str, np.ndarray], omega_sign: int, rtol: float) -> tuple[dict, dict]:
+    f = family_side(p["M"], p["A1"], p["A2"], p["A3"], p["mu"], p["R0"], p["theta0"], omega_sign)
+    return f, second_variation_side(f, p["M"], p["A1"], p["A2"], p["A3"], p["mu"], p["R0"], rtol=rtol)
+
+
+def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, omega_sign: int,
+              rtol: float) -> StabilityMap:
+    """stability_map on broadcastable parameter arrays, block by block along the longest axis.
+
+    Per block: the k2-free part of the family (2.4) and of the second variation on the shape of the
+    parameters other than k2 / k3 (once per theta0 on a (theta0, k2) grid), then the few operations that
+    involve k2 on the block.
+    """
+    nd = len(shape)
+    pad = {n: a.reshape((1,) * (nd - a.ndim) + a.shape) for n, a in arrs.items()}
+    side_shape = np.broadcast_shapes(*(pad[n].shape for n in _SIDE_NAMES))
+    ax = int(np.argmax(shape)) if nd else 0
+    n_ax = shape[ax] if nd else 1
+    per = math.prod(shape) // max(n_ax, 1)
+    step = max(1, _BLOCK // max(per, 1))
+    side_cut = nd > 0 and side_shape[ax] == n_ax  # the side quantities vary along the blocked axis
+    body = [pad[n] for n in ("M", "A1", "A2", "A3", "mu", "R0")]
+    physical_all = _physical(*body) if all(b.size == 1 for b in body) else None  # once for a fixed body
+
+    kfull = "k3" if kname == "k2" else "k2"  # the computed component; the given one is returned as a view
+    full = {n: np.empty(shape) for n in (kfull, "s2", "s3")}
+    degree = np.empty(shape, dtype=np.int64)
+    code = np.empty(shape, dtype=np.int8)
+    side = {n: np.empty(side_shape) for n in ("kappa0", "omega0", "s1")}
+
+    def cut(a: np.ndarray, sl: slice) -> np.ndarray:
+        if nd == 0 or a.shape[ax] != n_ax or n_ax == 1:
+            return a
+        return a[(slice(None),) * ax + (sl,)]
+
+    def side_part(p: dict[str, np.ndarray]) -> tuple[dict, dict, np.ndarray]:
+        f, d = _side(p, omega_sign, rtol)
+        if physical_all is None:
+            valid = d["valid"] & _physical(*(p[n] for n in ("M", "A1", "A2", "A3", "mu", "R0")))
+        else:
+            valid = d["valid"] if physical_all else np.zeros_like(d["valid"])
+        return f, d, valid
+
+    if not side_cut:  # the side quantities do not vary along the blocked axis: compute them once
+        with np.errstate(all="ignore"):
+            shared = side_part(pad)
+    for i0 in range(0, n_ax, step):
+        sl = slice(i0, i0 + step)
+        p = {n: cut(pad[n], sl) for n in pad}
+        with np.errstate(all="ignore"):
+            f, d, valid = side_part(p) if side_cut else shared
+            if kname == "k2":
+                k2 = p["k2"]
+                # k3 by the first relation (2.4) (NaN where cos(theta0 + kappa0) = 0, see below)
+                kc = k2 * (f["sin_tk"] * f["icp"]) + f["rest"] * f["icp"] / f["omega0"]
+            else:
+                # k2 from k3 divides by sin(theta0 + kappa0): ill-conditioned near theta0 = 0, pi
+                k2, _, _ = family_momentum(f, k3=p["k3"])
+                kc = k2
+                valid = valid & (np.abs(f["sin_tk"]) > SINGULAR_TOL)
+            # (a k2 or k3 that is not finite makes s2, s3 non-finite: verdicts() marks the point invalid)
+            v = verdicts(d, k2, valid, rtol=rtol)
+            blk = (slice(None),) * ax + (sl,) if nd else ()
+            full[kfull][blk] = kc
+            full["s2"][blk] = v["s2"]
+            full["s3"][blk] = v["s3"]
+            degree[blk] = v["n_neg"]
+            code[blk] = v["code"]
+            bad = ~v["valid"]
+            if np.any(bad):  # invalid points: NaN quantities, degree -1
+                if kname == "k2":
+                    full[kfull][blk][bad & (f["cos_tk"] == 0)] = np.nan
+                full["s2"][blk][bad] = np.nan
+                full["s3"][blk][bad] = np.nan
+                degree[blk][bad] = -1
+            if side_cut or i0 == 0:
+                sblk = blk if side_cut else (slice(None),) * nd
+                side["kappa0"][sblk] = f["kappa0"]
+                side["omega0"][sblk] = f["omega0"]
+                side["s1"][sblk] = d["g1g1"]
+
+    def b(x: np.ndarray) -> np.ndarray:
         return np.broadcast_to(x, shape)
 
+    s1 = b(side["s1"])
+    if np.any(code == -1):
+        s1 = np.where(code == -1, np.nan, s1)
+    P = {n: np.broadcast_to(v, shape) for n, v in arrs.items()}
+    ks = {kname: P[kname], kfull: full[kfull]}
+    parts = {"side": {n: pad[n] for n in _SIDE_NAMES}, "omega_sign": omega_sign, "rtol": rtol}
     return StabilityMap(
-        params=P, kappa0=full(f["kappa0"]), omega0=full(f["omega0"]), k2=full(f["k2"]), k3=full(f["k3"]),
-        s1=full(d["s1"]), s2=full(d["s2"]), s3=full(d["s3"]), minors=d["minors"], degree=full(d["n_neg"]),
-        code=full(d["code"]), r1=full(r1), r2=full(r2), r3=full(r3),
+        params=P, kappa0=b(side["kappa0"]), omega0=b(side["omega0"]), k2=ks["k2"], k3=ks["k3"],
+        s1=s1, s2=full["s2"], s3=full["s3"], degree=degree, code=code, _parts=parts,
     )
 
 

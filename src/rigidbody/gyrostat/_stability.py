@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -9,7 +10,7 @@ import numpy as np
 
 from ..core.quadform import inertia
 from ._model import Satellite
-from ._stationary import SINGULAR_TOL, StationaryMotion
+from ._stationary import SINGULAR_TOL, StationaryMotion, family_side
 
 __all__ = [
     "VERDICTS",
@@ -18,7 +19,8 @@ __all__ = [
     "hessian_W1",
     "hessian_W1_numerical",
     "restricted_conditions",
-    "stability_arrays",
+    "second_variation_side",
+    "verdicts",
 ]
 
 #: verdict codes used by the vectorised routines; -1 marks "no motion / singular chart"
@@ -58,40 +60,70 @@ def hessian_entries(
         np.asarray(v, dtype=float) for v in (M, A1, A2, A3, mu, R0, theta0, kappa0, omega0, k2, S0)
     )
     with np.errstate(divide="ignore", invalid="ignore"):
-        n0 = mu / R**3
-        ck, sk = np.cos(kap), np.sin(kap)
-        s2k = np.sin(2 * kap)
-        st, ct = np.sin(th), np.cos(th)
+        st, ct, sk, ck = np.sin(th), np.cos(th), np.sin(kap), np.cos(kap)
         sp, cp = np.sin(th + kap), np.cos(th + kap)
-        MR2 = M * R**2
-        L = MR2 * om**2 * sk  # = lambda0
-        Q = MR2 * s2k / (2 * cp) - (A2 - A3) * sp
-        e = {}
-        e["RR"] = (
-            (4 * MR2 * ck**2 - S) / S * M * om**2 * ck**2
-            - 2 * M * n0
-            + 18 * n0 / R**2 * ((A2 - A3) * st**2 + (2 * A3 - A1 - A2) / 3)
-        )
-        e["kk"] = MR2 / S * om**2 * (S * ck**2 + MR2 * s2k**2)
-        e["b1b1"] = L * st / cp + (A2 - A1) * om**2 + om * k2 / cp
-        e["b3b3"] = L * st / cp**3 + (A2 - A3) * om**2 + om * k2 / cp**3 + om**2 / S * Q**2
+        b = {"st": st, "ct": ct, "c2t": np.cos(2 * th), "sk": sk, "ck": ck, "tk": sk / ck, "sp": sp, "cp": cp,
+             "om": om, "om2": om * om, "S": S, "st2": st * st, "stct": st * ct, "ct2": ct * ct, "icp": 1.0 / cp,
+             "ck2": ck * ck}
+        b["n2"] = b["om2"] * b["ck2"]
+        e = _entries(b, M, A1, A2, A3, mu, R, form)
+        e["b1b1"] = e["b1b1"] + om * k2 / cp
+        e["b3b3"] = e["b3b3"] + om * k2 / cp**3
+    return e
+
+
+def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R: Any,
+             form: str = "stable", gamma2: bool = True) -> dict[str, np.ndarray]:
+    """The entries of :func:`hessian_entries` WITHOUT the gyrostatic terms ``omega0 k2 / cos(theta0 + kappa0)``
+    of W_b1b1 and ``omega0 k2 / cos^3(theta0 + kappa0)`` of W_b3b3 (the only places k2 enters).
+
+    ``b`` holds ``st, ct, sk, ck, sp, cp``: sines and cosines of theta0, kappa0, theta0 + kappa0; ``c2t =
+    cos 2 theta0`` (evaluated directly: ``ct^2 - st^2`` has no correct digit at theta0 = pi/4); ``tk = tan
+    kappa0``, ``om = omega0``, ``om2 = omega0^2``, ``n2 = omega0^2 cos^2 kappa0``, ``S = S0``, ``st2 = st^2``,
+    ``stct = st ct``, ``ct2 = ct^2``, ``ck2 = ck^2``, ``icp = 1 / cp``.  The printed expressions, with the
+    factors that are the same at every point of a map (the body, mu, R0) grouped first, so that array
+    operations are spent only on what varies, and shared subexpressions computed once.  Also returns
+    ``Q`` (the bracket of W_b3b3, W_Rb3, W_kb3), ``L`` (lambda0) and ``om2iS = omega0^2 / S0``.
+    ``gamma2=False`` leaves out W_g2g2, W_b3g2, W_b3b3 and W_Rg2 (:func:`second_variation_side` uses the
+    a_ij they combine into, in closed form).
+    """
+    st, ct, sk, ck, sp = b["st"], b["ct"], b["sk"], b["ck"], b["sp"]
+    om2, S, ck2, icp, stct = b["om2"], b["S"], b["ck2"], b["icp"], b["stct"]
+    n0 = mu / R**3
+    MR2 = M * R**2
+    iS = 1.0 / S
+    s2k = (2 * sk) * ck
+    Q = (0.5 * MR2) * (s2k * icp) - (A2 - A3) * sp  # M R0^2 sin 2 kappa0 / (2 cos(theta0 + kappa0)) - (A2 - A3) sin(..)
+    om2iS = om2 * iS
+    e = {"Q": Q, "om2iS": om2iS}
+    # M omega0^2 cos^2 kappa0 = M n2 (second relation (2.4))
+    e["RR"] = (((4 * MR2) * ck2 - S) * iS * (M * b["n2"]) + (18 * n0 / R**2 * (A2 - A3)) * b["st2"]
+               + (18 * n0 / R**2 * (2 * A3 - A1 - A2) / 3 - 2 * M * n0))
+    e["kk"] = (MR2 * om2iS) * (S * ck2 + MR2 * (s2k * s2k))
+    if form == "stable":
+        G = 3 * n0 * (A2 - A3)
+        L = (G * stct) / ck  # = lambda0 = M R0^2 omega0^2 sin kappa0 by the third relation (2.4)
+        e["g1g1"] = 3 * n0 * (A1 - A3) - G * (st * sp) / ck
+        if gamma2:
+            e["g2g2"] = G * (b["c2t"] - stct * b["tk"]) / b["ct2"]
+    else:
+        L = (MR2 * om2) * sk
         e["g1g1"] = -L * sp / ct + 3 * n0 * (A1 - A3)
-        e["g2g2"] = -L * sp / ct**3 + 3 * n0 * (A2 - A3)
-        e["b3g2"] = -MR2 * om**2 * sk**2 / (ct * cp)
-        e["b1g1"] = L + 0 * om
-        if form == "stable":
-            G = 3 * n0 * (A2 - A3)
-            Ls = G * st * ct / ck  # = lambda0 by the third relation (2.4)
-            e["b1b1"] = Ls * st / cp + (A2 - A1) * om**2 + om * k2 / cp
-            e["b3b3"] = Ls * st / cp**3 + (A2 - A3) * om**2 + om * k2 / cp**3 + om**2 / S * Q**2
-            e["g1g1"] = 3 * n0 * (A1 - A3) - G * st * sp / ck
-            e["g2g2"] = G * (np.cos(2 * th) - 0.5 * np.sin(2 * th) * np.tan(kap)) / ct**2
-            e["b3g2"] = -Ls * sk / (ct * cp)
-            e["b1g1"] = Ls + 0 * om
-        e["Rk"] = -(2 * MR2 * ck**2 - S) / S * M * R * om**2 * s2k
-        e["Rb3"] = 2 * M * R * om**2 * ck**2 / S * Q
-        e["kb3"] = -MR2 * om**2 * s2k / S * Q
-        e["Rg2"] = 9 * mu * (A2 - A3) * st / R**4
+        if gamma2:
+            e["g2g2"] = -L * sp / (b["ct2"] * ct) + 3 * n0 * (A2 - A3)
+    e["L"] = L
+    e["Lsticp"] = L * st * icp
+    e["b1b1"] = e["Lsticp"] + (A2 - A1) * om2
+    if gamma2:
+        e["b3b3"] = e["Lsticp"] * (icp * icp) + (A2 - A3) * om2 + om2iS * (Q * Q)
+        e["b3g2"] = (L * sk) * icp / -ct
+    e["b1g1"] = L
+    MRom2s2k = (M * R) * (om2 * s2k)
+    e["Rk"] = (S - (2 * MR2) * ck2) * iS * MRom2s2k
+    e["Rb3"] = (2 * M * R) * (om2iS * ck2) * Q
+    e["kb3"] = (-R) * iS * MRom2s2k * Q
+    if gamma2:
+        e["Rg2"] = (9 * mu * (A2 - A3) / R**4) * st
     return e
 
 
@@ -151,49 +183,131 @@ def _verdict_codes(n_neg: np.ndarray, n_zero: np.ndarray) -> np.ndarray:
     return code
 
 
-def stability_arrays(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any,
-                     rtol: float = 1e-12) -> dict[str, np.ndarray]:
-    """Vectorised stability data for stationary motions given by :func:`family_arrays` output ``f``.
+def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any,
+                          rtol: float = 1e-12) -> dict[str, np.ndarray]:
+    """The parts of the second variation (2.5) that do not depend on k2, for :func:`family_side` output ``f``.
 
-    Invalid points (no motion, or the chart singular: abs(cos theta0) or abs(cos(theta0 + kappa0)) <= 1e-6)
-    get code -1 and NaN quantities.
+    k2 enters the second variation only through W_b1b1 (as ``omega0 k2 / cos(theta0 + kappa0)``) and
+    W_b3b3 (``omega0 k2 / cos^3``), i.e. through ``b1b1 = b1b1_0 + w1 k2`` and ``a33 = a33_0 + w3 k2``:
+    s2 and s3 = det a = a33 C + D0 are linear in k2 (C = a11 a22 - a12^2).  Over a map in which theta0
+    and the body vary on fewer points than k2 (a grid), everything here is computed once per theta0.
+
+    Also returns the k2-free parts of the certainty test of :func:`verdicts` and ``valid``: the motion
+    exists and the chart (beta1, beta3, gamma1, gamma2) is regular (abs(cos theta0) and abs(cos(theta0 +
+    kappa0)) > 1e-6).
     """
-    e = hessian_entries(M, A1, A2, A3, mu, R0, f["theta0"], f["kappa0"], f["omega0"], f["k2"], f["S0"])
-    a = a_matrix(e, f["theta0"], f["kappa0"])
-    # the chart (beta1, beta3, gamma1, gamma2) is singular at cos theta0 = 0 or cos(theta0 + kappa0) = 0
-    valid = f["exists"] & (np.abs(f["cos_t"]) > SINGULAR_TOL) & (np.abs(f["cos_tk"]) > SINGULAR_TOL)
-    for v in e.values():
-        valid = valid & np.isfinite(v)
-    valid = valid & np.all(np.isfinite(a), axis=(-1, -2))
-    shape = np.broadcast_shapes(valid.shape, a.shape[:-2], *(np.shape(v) for v in e.values()))
+    icp = f["icp"]
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        e = _entries(f, M, A1, A2, A3, mu, R0, gamma2=False)
+        # (2.5) in closed form with the stable entries: with h = cos^2 theta0 W_g2g2 = G (cos 2 theta0 - sin
+        # theta0 cos theta0 tan kappa0) and lambda0 sin kappa0 = G sin theta0 cos theta0 tan kappa0 (G =
+        # 3 mu R0^-3 (A2 - A3)), the three a_ij that hold W_g2g2 and W_b3g2 reduce to
+        #   a22 = W_kk + h,  a23 = W_kb3 - G cos 2 theta0 / cos(theta0 + kappa0),
+        #   a33 = W_b3b3 + (h + 2 lambda0 sin kappa0) / cos^2(theta0 + kappa0)   (W_b3b3 written out below)
+        # (checked against a_matrix(hessian_entries(...)) in tests/gyrostat/test_gyrostat_map_evaluation.py)
+        G = 3 * mu / R0**3 * (A2 - A3)
+        Gstct_tk = G * (f["stct"] * f["tk"])
+        Gc2t = G * f["c2t"]
+        icp2 = icp * icp
+        w1 = f["om"] * icp
+        a11 = e["RR"]
+        a22 = e["kk"] + (Gc2t - Gstct_tk)
+        Rg2ct = (9 * mu * (A2 - A3) / R0**4) * f["stct"]  # cos theta0 W_Rg2
+        a12 = e["Rk"] + Rg2ct
+        a13 = e["Rb3"] - Rg2ct * icp
+        a23 = e["kb3"] - Gc2t * icp
+        a33_0 = (icp2 * (e["Lsticp"] + (Gc2t + Gstct_tk)) + (A2 - A3) * f["om2"]
+                 + e["om2iS"] * (e["Q"] * e["Q"]))
+        a12sq, a13sq, a23sq = a12 * a12, a13 * a13, a23 * a23
+        a11a22 = a11 * a22
+        C = a11a22 - a12sq
+        a12a23a13 = (2 * a12) * a23 * a13
+        a11a23sq = a11 * a23sq
+        a22a13sq = a22 * a13sq
+        # certainty of the signs (see verdicts): the rounding error of a determinant expansion is below a
+        # small multiple of eps times the permanent of abs(a); F and E0 are its parts without a33
+        F = np.abs(a11a22) + a12sq
+        g1g1 = e["g1g1"]
+        tol = np.sqrt(rtol)
+        s1neg, a11neg, Cneg = g1g1 < 0, a11 < 0, C < 0
+        d = {
+            "g1g1": g1g1, "b1g1": e["b1g1"], "b1b1_0": e["b1b1"], "w1": w1, "a11": a11, "a22": a22, "a12": a12,
+            "a13": a13, "a23": a23, "a33_0": a33_0, "w3": w1 * icp2, "C": C,
+            "D0": a12a23a13 - a11a23sq - a22a13sq, "b1g1_sq": e["b1g1"] * e["b1g1"], "F": F,
+            "E0": np.abs(a12a23a13) + np.abs(a11a23sq) + np.abs(a22a13sq),
+            "sure_T": (g1g1 * a11 != 0) & (np.abs(C) > tol * F),  # (a product that underflows: not sure)
+            # degree of the leading part: sign changes in (1, s1) and in (1, a11, a11 a22 - a12^2)
+            "neg_T": s1neg.astype(np.int8) + a11neg + (a11neg ^ Cneg), "s1neg": s1neg, "Cneg": Cneg,
+        }
+        tol2 = SINGULAR_TOL**2
+        d["valid"] = f["exists"] & (f["ct2"] > tol2) & (f["cp2"] > tol2)
+    return d
+
+
+#: verdict code of a nondegenerate form by its degree of instability (number of negative eigenvalues, 0..5)
+_CODE_OF_DEGREE = np.array([0, 1, 2, 1, 2, 1], dtype=np.int8)
+
+
+def _take(x: np.ndarray, mask: np.ndarray) -> np.ndarray:
+    return np.broadcast_to(x, mask.shape)[mask]
+
+
+def verdicts(d: dict[str, np.ndarray], k2: np.ndarray, valid: np.ndarray, rtol: float = 1e-12
+             ) -> dict[str, np.ndarray]:
+    """Sylvester quantities (2.5), degree of instability and verdict codes at gyrostatic momenta ``k2``.
+
+    ``d`` from :func:`second_variation_side` (broadcast against ``k2``), ``valid`` the points to classify.
+    The constrained second variation is block diagonal: the (gamma1, beta1) block with leading minors s1,
+    s2 and the a_ij block with a11, a11 a22 - a12^2, s3.  Where every leading minor exceeds sqrt(rtol) times
+    the permanent of the absolute values of its block (the scale of the rounding error of its expansion)
+    its sign is certain, and the degree is the number of sign changes in the sequences of minors (Jacobi's
+    rule).  Elsewhere -- near a boundary, where a minor is within rounding of zero, or where a quantity is
+    not finite -- the inertia of the blocks is computed by :func:`rigidbody.core.quadform.inertia`
+    (equilibration and eigenvalues; ``rtol`` is its zero threshold); non-finite points are invalid.
+    Codes: 0 stable (positive definite), 1 unstable (odd degree, nondegenerate), 2 undecided (even positive
+    degree, or a zero eigenvalue), -1 invalid.
+    """
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        b1b1 = d["b1b1_0"] + d["w1"] * k2
+        a33 = d["a33_0"] + d["w3"] * k2
+        gb = d["g1g1"] * b1b1
+        s2 = gb - d["b1g1_sq"]
+        s3 = d["C"] * a33 + d["D0"]
+        tol = np.sqrt(rtol)
+        sure = np.abs(s2) > tol * (np.abs(gb) + d["b1g1_sq"])
+        sure &= np.abs(s3) > tol * (np.abs(a33) * d["F"] + d["E0"])
+        sure &= d["sure_T"]
+        n_neg = d["neg_T"] + ((s2 < 0) ^ d["s1neg"]) + ((s3 < 0) ^ d["Cneg"])
+    code = _CODE_OF_DEGREE.take(n_neg)
+    if np.ndim(code) == 0:  # one point: a 0-d array, not a numpy scalar
+        code = np.array(code)
+    shape = code.shape
     valid = np.broadcast_to(valid, shape)
-    a = np.broadcast_to(a, (*shape, 3, 3))
-    s1 = np.broadcast_to(e["g1g1"], shape)
-    s2 = np.broadcast_to(e["g1g1"] * e["b1b1"] - e["b1g1"] ** 2, shape)
-    B = np.stack([np.broadcast_to(v, shape) for v in (e["g1g1"], e["b1g1"], e["b1g1"], e["b1b1"])], axis=-1)
-    B = B.reshape(*shape, 2, 2)
-    n_neg = np.zeros(shape, dtype=np.int64)
-    n_zero = np.zeros(shape, dtype=np.int64)
-    if np.any(valid):
-        _, nb, zb = inertia(B[valid], rtol=rtol)
-        _, na, za = inertia(a[valid], rtol=rtol)
-        n_neg[valid] = nb + na
-        n_zero[valid] = zb + za
-    code = _verdict_codes(n_neg, n_zero)
-    code[~valid] = -1
-    with np.errstate(invalid="ignore", over="ignore"):
-        s3 = (a[..., 0, 0] * (a[..., 1, 1] * a[..., 2, 2] - a[..., 1, 2] ** 2)
-              - a[..., 0, 1] * (a[..., 0, 1] * a[..., 2, 2] - a[..., 1, 2] * a[..., 0, 2])
-              + a[..., 0, 2] * (a[..., 0, 1] * a[..., 1, 2] - a[..., 1, 1] * a[..., 0, 2]))
-        a2 = a[..., 0, 0] * a[..., 1, 1] - a[..., 0, 1] ** 2
-        minors = np.stack([s1, s2, s2 * a[..., 0, 0], s2 * a2, s2 * s3], axis=-1)
-        jac = -(np.cos(f["kappa0"]) ** 2 / f["cos_t"] ** 2) * s2 * s3
-    nan = np.where(valid, 1.0, np.nan)
-    return {
-        "e": e, "a": a, "s1": s1 * nan, "s2": s2 * nan, "s3": s3 * nan, "minors": minors * nan[..., None],
-        "n_neg": np.where(valid, n_neg, -1), "n_zero": np.where(valid, n_zero, -1), "code": code,
-        "jacobian": jac * nan, "valid": valid,
-    }
+    n_zero: np.ndarray | None = None
+    slow = valid & ~sure
+    if np.any(slow):
+        B = np.stack([_take(d["g1g1"], slow), _take(d["b1g1"], slow), _take(d["b1g1"], slow), b1b1[slow]],
+                     axis=-1).reshape(-1, 2, 2)
+        a = np.stack([_take(d[n], slow) if n != "a33" else a33[slow]
+                      for n in ("a11", "a12", "a13", "a12", "a22", "a23", "a13", "a23", "a33")],
+                     axis=-1).reshape(-1, 3, 3)
+        fin = np.all(np.isfinite(B), axis=(1, 2)) & np.all(np.isfinite(a), axis=(1, 2))
+        nn = np.full(B.shape[0], -1, dtype=np.int8)
+        nz = np.zeros(B.shape[0], dtype=np.int8)
+        if np.any(fin):
+            _, nb, zb = inertia(B[fin], rtol=rtol)
+            _, na, za = inertia(a[fin], rtol=rtol)
+            nn[fin], nz[fin] = nb + na, zb + za
+        cc = _verdict_codes(nn, nz)
+        cc[~fin] = -1
+        n_neg = np.array(np.broadcast_to(n_neg, shape), dtype=np.int8)
+        n_zero = np.zeros(shape, dtype=np.int8)
+        n_neg[slow], n_zero[slow], code[slow] = nn, nz, cc
+        valid = valid & ~(slow & (code == -1))
+    if not np.all(valid):
+        code[~valid] = -1
+    return {"b1b1": b1b1, "a33": a33, "s2": s2, "s3": s3, "n_neg": n_neg,
+            "n_zero": np.zeros(shape, dtype=np.int8) if n_zero is None else n_zero, "code": code, "valid": valid}
 
 
 def hessian_W1(sat: Satellite, m: StationaryMotion, *, form: str = "stable") -> np.ndarray:
@@ -407,17 +521,23 @@ def stability_triaxial(sat: Satellite, m: StationaryMotion, *, rtol: float = 1e-
             "the chart (beta1, beta3, gamma1, gamma2) is singular at cos(theta0) = 0 or "
             "cos(theta0 + kappa0) = 0 (|cos| < 1e-6 here): the second variation (2.5) is not defined"
         )
-    f = {
-        "theta0": np.asarray(m.theta0), "kappa0": np.asarray(m.kappa0), "omega0": np.asarray(m.omega0),
-        "k2": np.asarray(m.k2), "S0": np.asarray(m.S0), "exists": np.asarray(True),
-        "cos_t": np.cos(np.asarray(m.theta0)), "cos_tk": np.cos(np.asarray(m.theta0 + m.kappa0)),
-    }
-    d = stability_arrays(f, sat.M, sat.A1, sat.A2, sat.A3, sat.mu, m.R0, rtol=rtol)
-    code = int(d["code"])
-    r = restricted_conditions(sat.A1, sat.A2, sat.A3, m.theta0, m.k2, m.omega0)
-    jac = float(d["jacobian"])
+    # the motion's own closed forms, evaluated exactly as stability_map does (same verdict at the same point)
+    f = family_side(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, m.R0, m.theta0, 1.0 if m.omega0 >= 0 else -1.0)
+    d = second_variation_side(f, sat.M, sat.A1, sat.A2, sat.A3, sat.mu, m.R0, rtol=rtol)
+    v = verdicts(d, np.asarray(m.k2), d["valid"], rtol=rtol)
+    code = int(v["code"])
+    s1, s2, s3, a11, C = float(d["g1g1"]), float(v["s2"]), float(v["s3"]), float(d["a11"]), float(d["C"])
+    a = np.array([[d["a11"], d["a12"], d["a13"]], [d["a12"], d["a22"], d["a23"]], [d["a13"], d["a23"], v["a33"]]],
+                 dtype=float)
+    minors = np.array([s1, s2, s2 * a11, s2 * C, s2 * s3])
+    jac = -(float(f["cos_k"]) ** 2 / float(f["cos_t"]) ** 2) * s2 * s3
+    r1, r2, r3 = restricted_conditions(sat.A1, sat.A2, sat.A3, m.theta0, m.k2, f["omega0"])
+    r = (float(r1), float(r2), float(r3))
+    if code == -1:
+        s1 = s2 = s3 = jac = math.nan
+        minors[:] = math.nan
     return Stability(
-        s1=float(d["s1"]), s2=float(d["s2"]), s3=float(d["s3"]), a=d["a"].copy(), minors=d["minors"].copy(),
-        degree=int(d["n_neg"]), nullity=int(d["n_zero"]), verdict=VERDICTS[code], jacobian=jac,
-        unconditionally_stable=(code == 0 and jac != 0.0), restricted=(float(r[0]), float(r[1]), float(r[2])),
+        s1=s1, s2=s2, s3=s3, a=a, minors=minors,
+        degree=int(v["n_neg"]) if code != -1 else -1, nullity=int(v["n_zero"]) if code != -1 else -1,
+        verdict=VERDICTS[code], jacobian=jac, unconditionally_stable=(code == 0 and jac != 0.0), restricted=r,
     )

@@ -75,6 +75,95 @@ def check_fits(sat: Satellite, R0: float) -> None:
         )
 
 
+def sin_cos(theta: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``sin theta, cos theta, cos 2 theta`` to a couple of ulp (relative), from tangents.
+
+    ``np.sin`` and ``np.cos`` of float64 arrays cost several times ``np.tan`` (no SIMD loops), and a map
+    evaluates them at every point.  With ``T = tan theta`` (an ulp even next to pi/2):
+    ``abs(cos theta) = 1 / sqrt(1 + T^2)``, ``sin theta = T cos theta``.  The sign of the cosine is that of
+    ``T tan(theta/2)`` (``tan theta = 2 u / (1 - u^2)`` with ``u = tan(theta/2)``, and ``cos theta`` has the sign
+    of ``1 - u^2``); ``cos 2 theta`` likewise from ``X = tan 2 theta``, with the sign of ``X T``.  Not as
+    ``cos^2 - sin^2``: that has an absolute error of an ulp, so no correct digit at theta = pi/4, where the
+    stable W_g2g2 needs it.  At theta = 0 the product of the tangents is +0 (positive sign).
+    """
+    th = np.asarray(theta, dtype=float)
+    T = np.tan(th)
+    X = np.tan(2 * th)
+    ct = 1.0 / np.sqrt(1.0 + T * T)
+    if th.size and not np.max(np.abs(th)) <= 0.5 * np.pi:  # cos > 0 for abs(theta) <= fl(pi/2) < pi/2
+        ct = np.copysign(ct, T * np.tan(0.5 * th))
+    st = T * ct
+    c2t = np.copysign(1.0 / np.sqrt(1.0 + X * X), X * T)
+    return st, ct, c2t
+
+
+def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any,
+                omega_sign: Any = 1) -> dict[str, np.ndarray]:
+    """The part of the closed-form solution of (2.4) that does not involve the gyrostatic momentum.
+
+    Returns arrays (broadcast over the inputs): ``n0 = mu / R0^3``, ``n2`` (the right-hand side of the second
+    relation (2.4), omega0^2 cos^2 kappa0), ``exists`` (n2 > 0), ``kappa0``, ``omega0``, the sines and cosines
+    ``sin_t, cos_t, cos_2t`` of theta0 and 2 theta0 (:func:`sin_cos`), ``sin_k, cos_k`` of kappa0 and
+    ``sin_tk, cos_tk`` of theta0 + kappa0, ``S0`` and ``rest`` (the terms of the first relation
+    (2.4) free of k2, k3); and the products the second variation needs (see ``gyrostat._stability._entries``).
+
+    ``tan kappa0 = 3/2 (A2 - A3) mu R0^-3 sin 2 theta0 / (M R0^2 n2)`` (third relation divided by the second,
+    kappa0 in (-pi/2, pi/2)), so ``cos kappa0 = 1 / sqrt(1 + tan^2)``, ``sin kappa0 = tan kappa0 cos kappa0``
+    and the angle theta0 + kappa0 by the addition formulas.
+    """
+    with np.errstate(divide="ignore", invalid="ignore"):
+        M, A1, A2, A3, mu, R0 = (np.asarray(v, dtype=float) for v in (M, A1, A2, A3, mu, R0))
+        th = np.asarray(theta0, dtype=float)
+        n0 = mu / R0**3
+        MR2 = M * R0**2
+        st, ct, c2t = sin_cos(th)
+        st2, stct = st * st, st * ct
+        n2 = (4.5 / MR2 * (A2 - A3) * -n0) * st2 + n0 * (1 - 4.5 / MR2 * (2 * A3 - A1 - A2) / 3)
+        exists = n2 > 0
+        n2p = np.where(exists, n2, np.nan)
+        tk = (3 * n0 * (A2 - A3) / MR2) * stct / n2p
+        kap = np.arctan(tk)
+        sec2 = 1.0 + tk * tk
+        ck = 1.0 / np.sqrt(sec2)
+        sk = tk * ck
+        om2 = n2p * sec2
+        om = np.sqrt(om2)
+        if np.any(np.asarray(omega_sign) != 1):
+            om = om * np.asarray(omega_sign, dtype=float)
+        sp, cp = st * ck + ct * sk, ct * ck - st * sk
+        cp2 = cp * cp
+        # gravity moment about y1, exact form 3/2 mu R0^-3 (A2 - A3) sin 2 theta0, and the centrifugal term
+        rest = (A2 - A3) * (om2 * (sp * cp) + (3 * n0) * stct)
+        ck2 = ck * ck
+        S0 = MR2 * ck2 + A2 * cp2 + A3 * (sp * sp)
+    return {"n0": n0, "n2": n2, "exists": exists, "theta0": th, "kappa0": kap, "omega0": om, "sin_t": st,
+            "cos_t": ct, "cos_2t": c2t, "sin_k": sk, "cos_k": ck, "sin_tk": sp, "cos_tk": cp, "S0": S0,
+            "rest": rest,
+            # the same under the short names of the bundle that gyrostat._stability._entries reads
+            "st": st, "ct": ct, "c2t": c2t, "sk": sk, "ck": ck, "tk": tk, "sp": sp, "cp": cp, "om": om, "om2": om2,
+            "S": S0, "st2": st2, "stct": stct, "ct2": ct * ct, "icp": 1.0 / cp, "ck2": ck2, "cp2": cp2}
+
+
+def family_momentum(f: dict[str, np.ndarray], k2: Any = None, k3: Any = None
+                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The gyrostatic component missing from ``k2``/``k3`` by the first relation (2.4), for :func:`family_side`
+    output ``f``; returns ``(k2, k3, ok)`` with ``ok`` False where the denominator cos(theta0 + kappa0) (k2
+    given) or sin(theta0 + kappa0) (k3 given) vanishes (NaN there)."""
+    if (k2 is None) == (k3 is None):
+        raise TypeError("give exactly one of k2 and k3")
+    om, sp, cp, rest = f["omega0"], f["sin_tk"], f["cos_tk"], f["rest"]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        if k3 is None:
+            k2v = np.asarray(k2, dtype=float)
+            ok = cp != 0
+            k3v = np.where(ok, (om * k2v * sp + rest) / (om * np.where(ok, cp, 1.0)), np.nan)
+        else:
+            k3v = np.asarray(k3, dtype=float)
+            ok = sp != 0
+            k2v = np.where(ok, (om * k3v * cp - rest) / (om * np.where(ok, sp, 1.0)), np.nan)
+    return k2v, k3v, ok
+
+
 def family_arrays(
     M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any,
     k2: Any = None, k3: Any = None, omega_sign: Any = 1,
@@ -87,44 +176,25 @@ def family_arrays(
 
     Derivation: dividing the third relation of (2.4) by the second gives
     ``tan kappa0 = 3/2 (A2 - A3) mu R0^-3 sin 2 theta0 / (M R0^2 n2)`` (kappa0 in (-pi/2, pi/2)),
-    then ``omega0 = omega_sign sqrt(n2) / cos kappa0``; the first relation is linear in (k2, k3).
+    then ``omega0 = omega_sign sqrt(n2) / cos kappa0``; the first relation is linear in (k2, k3)
+    (:func:`family_side`, :func:`family_momentum`).
     """
-    with np.errstate(divide="ignore", invalid="ignore"):
-        M, A1, A2, A3, mu, R0, th = (np.asarray(v, dtype=float) for v in (M, A1, A2, A3, mu, R0, theta0))
-        sgn = np.asarray(omega_sign, dtype=float)
-        n0 = mu / R0**3
-        st, ct = np.sin(th), np.cos(th)
-        s2t = 2 * st * ct
-        n2 = n0 * (1 - 4.5 / (M * R0**2) * ((A2 - A3) * st**2 + (2 * A3 - A1 - A2) / 3))
-        exists = n2 > 0
-        n2p = np.where(exists, n2, np.nan)
-        tk = 1.5 * (A2 - A3) * n0 * s2t / (M * R0**2 * n2p)
-        kap = np.arctan(tk)
-        ck = np.cos(kap)
-        om = sgn * np.sqrt(n2p) / ck
-        tp = th + kap
-        sp, cp = np.sin(tp), np.cos(tp)
-        # gravity moment about y1, exact form 3/2 mu R0^-3 (A2 - A3) sin 2 theta0
-        G = 1.5 * n0 * (A2 - A3) * s2t
-        rest = 0.5 * om**2 * (A2 - A3) * 2 * sp * cp + G
-        if (k2 is None) == (k3 is None):
-            raise TypeError("give exactly one of k2 and k3")
-        if k3 is None:
-            k2v = np.asarray(k2, dtype=float) + 0 * om
-            ok = cp != 0
-            k3v = np.where(ok, (om * k2v * sp + rest) / (om * np.where(ok, cp, 1.0)), np.nan)
-        else:
-            k3v = np.asarray(k3, dtype=float) + 0 * om
-            ok = sp != 0
-            k2v = np.where(ok, (om * k3v * cp - rest) / (om * np.where(ok, sp, 1.0)), np.nan)
-        exists = exists & ok
-        S0 = M * R0**2 * ck**2 + A2 * cp**2 + A3 * sp**2
-        k = om * S0 + k2v * cp + k3v * sp
-        lam = M * R0**2 * om**2 * np.sin(kap)
+    if (k2 is None) == (k3 is None):
+        raise TypeError("give exactly one of k2 and k3")
+    f = family_side(M, A1, A2, A3, mu, R0, theta0, omega_sign)
+    k2v, k3v, ok = family_momentum(f, k2, k3)
+    om, sp, cp = f["omega0"], f["sin_tk"], f["cos_tk"]
+    shape = np.broadcast_shapes(om.shape, k2v.shape, k3v.shape)
+
+    def full(x: np.ndarray) -> np.ndarray:
+        return np.array(np.broadcast_to(x, shape))
+
+    lam = np.asarray(M, dtype=float) * np.asarray(R0, dtype=float) ** 2 * f["om2"] * f["sin_k"]  # M R0^2 om0^2 sin ka0
     return {
-        "theta0": th + 0 * om, "n2": n2 + 0 * om, "kappa0": kap, "omega0": om, "k2": k2v, "k3": k3v,
-        "S0": S0, "k": k, "lambda0": lam, "exists": exists,
-        "sin_tk": sp, "cos_tk": cp, "sin_t": st + 0 * om, "cos_t": ct + 0 * om,
+        "theta0": full(f["theta0"]), "n2": full(f["n2"]), "kappa0": full(f["kappa0"]), "omega0": full(om),
+        "k2": full(k2v), "k3": full(k3v), "S0": full(f["S0"]), "k": om * f["S0"] + k2v * cp + k3v * sp,
+        "lambda0": full(lam), "exists": f["exists"] & ok, "sin_tk": full(sp), "cos_tk": full(cp),
+        "sin_t": full(f["sin_t"]), "cos_t": full(f["cos_t"]),
     }
 
 

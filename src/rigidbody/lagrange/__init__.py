@@ -15,7 +15,7 @@ Averaging (Sec. 2-3)
     (2.7)), :func:`drag_rhs` (closed form (3.4)), :func:`nutation_mean`, :func:`modulus`.
 Integration
     :func:`averaged` (slow time tau = eps t, u chart with sign switching), :func:`simulate` (full (1.1),
-    quaternion inside).
+    quaternion inside); both take batches of initial states (integrated together, per-member status).
 Paper cases (Sec. 3, figs 1-3)
     :data:`PAPER_TOP`, :data:`PAPER_DRAG`, :data:`PAPER_TABLE`, :func:`paper_initial_state`,
     :func:`paper_solution`.

@@ -26,6 +26,9 @@ Every torque object accepted by :func:`rigidbody.lagrange.averaged` and
     the body components of ``M`` at a full state, with ``(g1, g2, g3) = (sin th sin phi,
     sin th cos phi, cos th)`` the upward vertical in body axes (direction cosines). Needed only by
     :func:`simulate`; scalars in, floats out.
+``body_moments_batch(top, p, q, r, g1, g2, g3) -> (M1, M2, M3)`` (optional)
+    the same for arrays of batch members (a batch :func:`simulate` calls ``body_moments`` member by member
+    for a torque without it); the ready-made classes have it, their user functions then receive arrays.
 
 Ready-made classes: :class:`ProportionalTorque` (class (2.4): ``M1 = p f, M2 = q f, M3 = M3*``),
 :class:`VerticalPlaneTorque` (class (2.5): ``M1 = F sin phi, M2 = F cos phi, M3 = M3*``),
@@ -53,7 +56,7 @@ __all__ = [
     "VerticalPlaneTorque",
 ]
 
-SlowFunction = Callable[[float, float, float, Any], Any]
+SlowFunction = Callable[[Any, Any, Any, Any], Any]
 
 
 def _sin_theta(u: np.ndarray) -> np.ndarray:
@@ -64,12 +67,13 @@ def _theta(u: np.ndarray) -> np.ndarray:
     return np.arccos(np.clip(u, -1.0, 1.0))
 
 
-def _body_slow(top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float) -> tuple[float, float, float]:
-    """(Gz, H, theta) of a full state: Gz = K . gamma, H by (1.2)."""
+def _body_slow(top: Top, p: Any, q: Any, r: Any, g1: Any, g2: Any, g3: Any) -> tuple[Any, Any, Any]:
+    """(Gz, H, theta) of a full state (floats, or arrays of batch members): Gz = K . gamma, H by (1.2)."""
     Gz = top.A * (p * g1 + q * g2) + top.C * r * g3
     H = 0.5 * (top.A * (p * p + q * q) + top.C * r * r) + top.mgl * g3
-    theta = math.acos(min(1.0, max(-1.0, g3)))
-    return Gz, H, theta
+    if np.ndim(g3):
+        return Gz, H, np.arccos(np.clip(g3, -1.0, 1.0))
+    return Gz, H, math.acos(min(1.0, max(-1.0, g3)))
 
 
 class Torque:
@@ -141,6 +145,14 @@ class ProportionalTorque(Torque):
         f = float(self.f(Gz, H, r, th))
         return p * f, q * f, float(self.M3(Gz, H, r, th))
 
+    def body_moments_batch(
+        self, top: Top, p: np.ndarray, q: np.ndarray, r: np.ndarray, g1: np.ndarray, g2: np.ndarray, g3: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`body_moments` for arrays of batch members."""
+        Gz, H, th = _body_slow(top, p, q, r, g1, g2, g3)
+        f = np.asarray(self.f(Gz, H, r, th), dtype=float)
+        return p * f, q * f, np.broadcast_to(np.asarray(self.M3(Gz, H, r, th), dtype=float), p.shape)
+
 
 class VerticalPlaneTorque(Torque):
     r"""Torque of class (2.5): ``M1 = F sin(phi), M2 = F cos(phi), M3 = M3*``.
@@ -188,6 +200,17 @@ class VerticalPlaneTorque(Torque):
             return 0.0, 0.0, m3
         Fv = float(self.F(Gz, H, r, th))
         return Fv * g1 / st, Fv * g2 / st, m3
+
+    def body_moments_batch(
+        self, top: Top, p: np.ndarray, q: np.ndarray, r: np.ndarray, g1: np.ndarray, g2: np.ndarray, g3: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`body_moments` for arrays of batch members (the equatorial part 0 where ``sin theta = 0``)."""
+        Gz, H, th = _body_slow(top, p, q, r, g1, g2, g3)
+        st = np.hypot(g1, g2)
+        m3 = np.broadcast_to(np.asarray(self.M3(Gz, H, r, th), dtype=float), p.shape)
+        Fv = np.asarray(self.F(Gz, H, r, th), dtype=float) / np.where(st > 0.0, st, 1.0)
+        Fv = np.where(st > 0.0, Fv, 0.0)
+        return Fv * g1, Fv * g2, m3
 
 
 class StarTorque(Torque):
@@ -255,6 +278,12 @@ class LinearDrag(Torque):
     def body_moments(
         self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float
     ) -> tuple[float, float, float]:
+        return -self.a * p, -self.a * q, -self.b * r
+
+    def body_moments_batch(
+        self, top: Top, p: np.ndarray, q: np.ndarray, r: np.ndarray, g1: np.ndarray, g2: np.ndarray, g3: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """:meth:`body_moments` for arrays of batch members."""
         return -self.a * p, -self.a * q, -self.b * r
 
 

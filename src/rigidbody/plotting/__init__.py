@@ -7,7 +7,7 @@ what every module uses (axes creation, the unit sphere, time series). Matplotlib
 modules only; ``import rigidbody`` does not import them.
 """
 
-from . import common, euler_poinsot, gyrostat, lagrange, viscous
+from . import common, euler_poinsot, gyrostat, lagrange, studies, viscous
 from .common import STANDARD_PLOTS, get_ax, plot_solution, standard_plot, time_series, unit_sphere
 from .euler_poinsot import (
     equal_3d,
@@ -22,6 +22,7 @@ from .euler_poinsot import (
 )
 from .gyrostat import VERDICT_COLORS, dumbbell_side_view, normalized_map_plot, plot_satellite_motion, stability_map_plot
 from .lagrange import plot_averaged, plot_integrals, plot_roots, plot_top_motion, slow_time_axis
+from .studies import REGIME_COLORS, averaging_error_plot, scaled_error_map, spin_end_map
 from .viscous import (
     ball_and_rod_sketch,
     look_from,
@@ -32,8 +33,10 @@ from .viscous import (
 )
 
 __all__ = [
+    "REGIME_COLORS",
     "STANDARD_PLOTS",
     "VERDICT_COLORS",
+    "averaging_error_plot",
     "ball_and_rod_sketch",
     "common",
     "dumbbell_side_view",
@@ -57,13 +60,16 @@ __all__ = [
     "plot_solution",
     "plot_top_motion",
     "quasi_coordinate_histories",
+    "scaled_error_map",
     "separatrix_passage",
     "slow_time_axis",
     "slow_variables",
     "sphere_path",
+    "spin_end_map",
     "spiral_axis",
     "stability_map_plot",
     "standard_plot",
+    "studies",
     "time_series",
     "turn_solid_angle",
     "unit_sphere",

@@ -1,0 +1,180 @@
+"""Plotting helpers for the parameter studies of :mod:`rigidbody.studies` (Datasets from a sweep)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .common import get_ax
+
+__all__ = ["REGIME_COLORS", "averaging_error_plot", "scaled_error_map", "spin_end_map"]
+
+#: colours of the regimes of :func:`rigidbody.studies.spin_end` (0, 1, 2)
+REGIME_COLORS = ("#4c72b0", "#55a868", "#c44e52")
+
+
+def _other_dim(ds: Any, var: str, over: str) -> str:
+    others = [d for d in ds[var].dims if d != over]
+    if len(others) != 1:
+        raise ValueError(f"{var!r} must have exactly one dimension besides {over!r}, has {ds[var].dims}")
+    return others[0]
+
+
+def averaging_error_plot(
+    ds: Any, order: float, *, var: str = "error", over: str = "eps", ax: Any = None, label: str | None = None
+) -> list[Any]:
+    r"""The error of averaging against :math:`\varepsilon` (log-log), one line per value of the other axis.
+
+    A dashed line of slope ``order`` (the theory's) through the median of ``error / eps**order`` is drawn
+    for comparison.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep of :func:`rigidbody.studies.averaging_error_euler_poinsot` or
+        :func:`~rigidbody.studies.averaging_error_lagrange` (two dimensions, one of them ``over``).
+    order : float
+        The theory's order (2 for Rachinskaya's (9), 1 for the Lagrange first approximation).
+    var, over : str
+        The error variable and the small-parameter dimension.
+    ax : matplotlib.axes.Axes, optional
+    label : str, optional
+        Name of the other dimension in the legend (default its name).
+
+    Returns
+    -------
+    list
+        The lines drawn (the reference line last).
+    """
+    import matplotlib.pyplot as plt
+
+    ax = get_ax(ax)
+    across = _other_dim(ds, var, over)
+    err = ds[var].transpose(across, over)
+    eps = ds[over].values
+    values = ds[across].values
+    cmap = plt.get_cmap("viridis")
+    lines = []
+    for i, v in enumerate(values):
+        y = err.values[i]
+        ok = np.isfinite(y)
+        (ln,) = ax.loglog(eps[ok], y[ok], "o-", ms=3.5, lw=1.2, color=cmap(i / max(1, len(values) - 1)),
+                          label=f"{label or across} = {v:.3g}")
+        lines.append(ln)
+    ratio = err.values / eps[None, :] ** order
+    c = float(np.nanmedian(ratio))
+    xs = np.geomspace(eps.min(), eps.max(), 50)
+    (ref,) = ax.loglog(xs, c * xs**order, "k--", lw=2.0, label=rf"theory: $\propto\varepsilon^{{{order:g}}}$")
+    lines.append(ref)
+    ax.set_xlabel(r"$\varepsilon$")
+    ax.set_ylabel(f"max |full - averaged| ({var})")
+    ax.legend(fontsize=7, ncol=2)
+    ax.grid(True, which="both", alpha=0.3)
+    return lines
+
+
+def _edges(v: np.ndarray, log: bool) -> np.ndarray:
+    """Cell edges around the (sorted) centres ``v``: arithmetic or geometric midpoints."""
+    w = np.log(v) if log else np.asarray(v, dtype=float)
+    mid = 0.5 * (w[1:] + w[:-1])
+    e = np.concatenate([[w[0] - (mid[0] - w[0])], mid, [w[-1] + (w[-1] - mid[-1])]]) if w.size > 1 else \
+        np.array([w[0] - 0.5, w[0] + 0.5])
+    return np.exp(e) if log else e
+
+
+def scaled_error_map(ds: Any, order: float, *, var: str = "error", over: str = "eps", ax: Any = None,
+                     ylog: bool = False) -> Any:
+    r"""``log10(error / eps**order)`` over the sweep's plane: flat where the theory's order holds.
+
+    Points that failed (the full run refused because the rotation is not fast, a run ended early) are
+    left blank and marked "failed".
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        As for :func:`averaging_error_plot`.
+    order : float
+    var, over : str
+    ax : matplotlib.axes.Axes, optional
+    ylog : bool
+        A logarithmic axis for the other dimension (e.g. the distance ``1 - k2_0`` to the separatrix).
+
+    Returns
+    -------
+    matplotlib.collections.QuadMesh
+    """
+    from matplotlib.ticker import NullFormatter
+
+    ax = get_ax(ax)
+    across = _other_dim(ds, var, over)
+    scaled = (ds[var] / ds[over] ** order).transpose(across, over)
+    order_x, order_y = np.argsort(ds[over].values), np.argsort(ds[across].values)
+    z = np.log10(scaled.values)[np.ix_(order_y, order_x)]
+    x, y = ds[over].values[order_x], ds[across].values[order_y]
+    mesh = ax.pcolormesh(_edges(x, True), _edges(y, ylog), np.ma.masked_invalid(z), cmap="magma")
+    failed = ~np.isfinite(z)
+    for i, j in zip(*np.nonzero(failed)):
+        ax.text(x[j], y[i], "failed", ha="center", va="center", fontsize=7, color="0.3")
+    ax.figure.colorbar(mesh, ax=ax, label=rf"$\log_{{10}}$({var} / $\varepsilon^{{{order:g}}}$)")
+    ax.set_xscale("log")
+    ax.xaxis.set_minor_formatter(NullFormatter())  # a narrow eps range: the minor labels would collide
+    if ylog:
+        ax.set_yscale("log")
+    ax.set_xlabel(r"$\varepsilon$")
+    ax.set_ylabel(across)
+    return mesh
+
+
+def spin_end_map(ds: Any, *, k2_0: float = 0.5, ax: Any = None, cases: dict[str, tuple[float, float]] | None = None
+                 ) -> list[Any]:
+    r"""The final regime of :math:`k^2` over the plane of decay-rate ratios, with the lines of (7)-(8).
+
+    Draws the regimes of :func:`rigidbody.studies.spin_end` (blue: :math:`k^2 \to 0`, green: an interior
+    :math:`k_*^2`, red: the separatrix), the line :math:`\chi = -3` (:func:`rigidbody.studies.chi_minus_3_line`),
+    the line ``r3 = r1`` (below it :math:`k^2` reaches the separatrix) and, where it splits two regimes, the
+    line where ``k2_0`` is an equilibrium (:func:`~rigidbody.studies.equilibrium_line`).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A sweep of :func:`rigidbody.studies.spin_end` over ``r1`` and ``r3``.
+    k2_0 : float
+        The initial :math:`k^2` of that sweep.
+    ax : matplotlib.axes.Axes, optional
+    cases : dict, optional
+        Labelled points ``{label: (r1, r3)}`` to mark (e.g. the paper's drag cases).
+
+    Returns
+    -------
+    list
+        The mesh and the lines drawn.
+    """
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.patches import Patch
+
+    from ..studies import chi_minus_3_line, equilibrium_line
+
+    ax = get_ax(ax)
+    r1, r3 = ds["r1"].values, ds["r3"].values
+    reg = ds["regime"].transpose("r3", "r1").values
+    mesh = ax.pcolormesh(r1, r3, reg, shading="nearest", cmap=ListedColormap(REGIME_COLORS),
+                         norm=BoundaryNorm([-0.5, 0.5, 1.5, 2.5], 3), alpha=0.75)
+    xs = np.linspace(r1.min(), r1.max(), 200)
+    out: list[Any] = [mesh]
+    out += ax.plot(xs, chi_minus_3_line(xs), "k-", lw=2, label=r"$\chi=-3$: $r_3 = 2r_1 - 1$")
+    out += ax.plot(xs, xs, "k--", lw=1.5, label=r"$r_3 = r_1$ ($a_1 = a_3$)")
+    low = xs[xs < 1.0]
+    out += ax.plot(low, equilibrium_line(low, k2_0), "k:", lw=2, label=rf"$k^2_0 = {k2_0:g}$ an equilibrium")
+    for name, (x, y) in (cases or {}).items():
+        out += ax.plot([x], [y], "w*", ms=14, mec="k")
+        ax.annotate(name, (x, y), xytext=(6, 6), textcoords="offset points", fontsize=8)
+    ax.set_xlim(r1.min(), r1.max())
+    ax.set_ylim(r3.min(), r3.max())
+    ax.set_xlabel(r"$r_1 = a_1/a_2$   ($a_i = I_{ii}/A_i$)")
+    ax.set_ylabel(r"$r_3 = a_3/a_2$")
+    patches = [Patch(color=c, alpha=0.75, label=t) for c, t in
+               zip(REGIME_COLORS, (r"$k^2\to 0$", r"$k^2\to k_*^2$ (interior)", r"$k^2\to 1$ (separatrix)"))]
+    handles, _ = ax.get_legend_handles_labels()
+    ax.legend(handles=patches + handles, fontsize=7, loc="upper left")
+    return out

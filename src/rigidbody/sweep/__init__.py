@@ -1,0 +1,25 @@
+r"""Parameter studies at scale: a function over a grid, on local processes or a Dask cluster.
+
+:func:`sweep` evaluates ``func(**point)`` over the outer product of a grid and returns an
+``xarray.Dataset`` (one dimension per grid name, one variable per output, a ``status`` and ``message``
+per point). The same call runs in-process (``executor='serial'``), on local worker processes (the
+default: no server to start) or on a Dask cluster (a ``distributed.Client`` or a scheduler address);
+with ``store=PATH`` finished chunks are written to a Zarr store as they complete and an interrupted sweep
+resumes where it stopped.
+
+:func:`batched`
+    marks a function that takes a whole chunk (1-D arrays) per call.
+:func:`load`
+    the Dataset of a store as it stands (while a sweep writes it, or after an interruption).
+:func:`gyrostat_stability`
+    a batched wrapper of :func:`rigidbody.gyrostat.stability_map`.
+
+Needs the optional dependencies: ``pip install "rigidbody[sweep]"`` (xarray, zarr, dask[distributed],
+tqdm). ``import rigidbody`` does not import any of them. See ``docs/sweeps.md``.
+"""
+
+from ._api import load, sweep
+from ._run import NOT_COMPUTED, OK, RAISED, batched
+from ._wrappers import gyrostat_stability
+
+__all__ = ["NOT_COMPUTED", "OK", "RAISED", "batched", "gyrostat_stability", "load", "sweep"]

@@ -1,0 +1,112 @@
+"""The grid of a sweep: validation, the chunk layout and the points of one chunk."""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass
+from functools import partial
+from typing import Any
+
+import numpy as np
+
+#: names a grid or an output may not take (the Dataset's own variables)
+RESERVED = ("status", "message")
+
+
+def check_grid(grid: Any) -> dict[str, np.ndarray]:
+    """The grid as an ordered dict of 1-D arrays, or a clear TypeError/ValueError."""
+    if not isinstance(grid, Mapping):
+        raise TypeError(f"grid must be a mapping of parameter names to 1-D arrays, got {type(grid).__name__}")
+    if not grid:
+        raise ValueError("grid must name at least one parameter")
+    out: dict[str, np.ndarray] = {}
+    for name, values in grid.items():
+        if not isinstance(name, str) or not name.isidentifier():
+            raise TypeError(f"grid names must be valid Python identifiers (func is called as func(**point)), "
+                            f"got {name!r}")
+        if name in RESERVED:
+            raise ValueError(f"grid name {name!r} is reserved for the sweep's own variables {RESERVED}")
+        a = np.asarray(values)
+        if a.ndim != 1:
+            raise ValueError(f"grid[{name!r}] must be a 1-D array, got shape {a.shape}")
+        if a.size == 0:
+            raise ValueError(f"grid[{name!r}] is empty")
+        if a.dtype.kind not in "biufU":
+            raise TypeError(f"grid[{name!r}] must hold numbers or strings, got dtype {a.dtype}")
+        out[name] = a
+    return out
+
+
+def default_chunk_size(n_points: int, n_workers: int, is_batched: bool) -> int:
+    """At most 100 points (10^4 for a batched function), and about four chunks per worker or more."""
+    base = 10_000 if is_batched else 100
+    return max(1, min(base, math.ceil(n_points / (4 * max(1, n_workers)))))
+
+
+def block_shape(shape: tuple[int, ...], chunk_size: int) -> tuple[int, ...]:
+    """A block of at most ``chunk_size`` grid points, contiguous in C order.
+
+    The trailing dimensions are taken whole while they fit, the next one in part, the leading ones by one.
+    """
+    if isinstance(chunk_size, bool) or not isinstance(chunk_size, (int, np.integer)) or chunk_size < 1:
+        raise ValueError(f"chunk_size must be an integer >= 1, got {chunk_size!r}")
+    block = [1] * len(shape)
+    room = int(chunk_size)
+    for d in range(len(shape) - 1, -1, -1):
+        take = min(shape[d], room)
+        block[d] = take
+        room //= take
+        if take < shape[d] or room <= 1:
+            break
+    return tuple(block)
+
+
+@dataclass(frozen=True)
+class Layout:
+    """The grid cut into blocks: chunk ``c`` (a flat index in C order over the block grid)."""
+
+    shape: tuple[int, ...]
+    block: tuple[int, ...]
+
+    @property
+    def n_chunks_per_dim(self) -> tuple[int, ...]:
+        return tuple(-(-s // b) for s, b in zip(self.shape, self.block))
+
+    @property
+    def n_chunks(self) -> int:
+        return math.prod(self.n_chunks_per_dim)
+
+    def index(self, c: int) -> tuple[int, ...]:
+        return tuple(int(i) for i in np.unravel_index(c, self.n_chunks_per_dim))
+
+    def slices(self, c: int) -> tuple[slice, ...]:
+        return tuple(slice(i * b, min((i + 1) * b, s)) for i, b, s in zip(self.index(c), self.block, self.shape))
+
+    def size(self, c: int) -> int:
+        return math.prod(s.stop - s.start for s in self.slices(c))
+
+
+def chunk_points(coords: list[np.ndarray]) -> list[np.ndarray]:
+    """The points of a block (its coordinate slices, one per dimension) as flat arrays, C order."""
+    mesh = np.meshgrid(*coords, indexing="ij")
+    return [m.ravel() for m in mesh]
+
+
+_ADDRESS = re.compile(r" at 0x[0-9a-fA-F]+")
+
+
+def function_name(func: Any) -> str:
+    """The identity of a sweep's function: its qualified name (a partial: with its bound arguments).
+
+    Memory addresses in the reprs of bound arguments are dropped (they change from run to run).
+    """
+    if isinstance(func, partial):
+        parts = [function_name(func.func)]
+        parts += [repr(a) for a in func.args]
+        parts += [f"{k}={v!r}" for k, v in sorted(func.keywords.items())]
+        return _ADDRESS.sub("", f"functools.partial({', '.join(parts)})")
+    module = getattr(func, "__module__", None) or type(func).__module__
+    qualname = getattr(func, "__qualname__", None) or type(func).__qualname__
+    return f"{module}.{qualname}"

@@ -1,0 +1,37 @@
+"""Shared fixtures of the sweep tests: the helper module and one real Dask cluster per session.
+
+The helper functions live in ``sweep_testlib`` (importable here: the suite uses --import-mode=importlib).
+They are registered with cloudpickle to travel by value, so worker processes need not import the test tree.
+"""
+
+import sys
+from pathlib import Path
+
+import pytest
+
+_here = str(Path(__file__).resolve().parent)
+if _here not in sys.path:
+    sys.path.insert(0, _here)
+
+import cloudpickle  # noqa: E402 - the sweep extra (installed by the test extra) brings it with dask
+import sweep_testlib  # noqa: E402
+
+cloudpickle.register_pickle_by_value(sweep_testlib)
+
+
+@pytest.fixture(scope="session")
+def cluster():
+    """A real distributed.LocalCluster: two single-threaded worker processes on this machine (no mock)."""
+    import distributed
+
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+                                  host="127.0.0.1") as lc:
+        yield lc
+
+
+@pytest.fixture
+def client(cluster):
+    import distributed
+
+    with distributed.Client(cluster, set_as_default=False) as c:
+        yield c
