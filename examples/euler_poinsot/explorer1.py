@@ -14,9 +14,9 @@ removes the part of the angular velocity across G, as internal damping does on a
 direction of G averages out). ``kappa = 3``, ``eps = 0.05``, start ``('min', +1)`` with ``k2 = 0.05``, no
 gravity: our choices, for a figure whose fast motion is still visible. The full equations
 (:func:`rigidbody.euler_poinsot.simulate`) against the averaged ones (:func:`rigidbody.euler_poinsot.averaged`),
-which go through the separatrix and continue about the major axis. The torque is odd in omega, so both
-senses of the final spin are equally likely; which one the full run takes depends on its fast phase at the
-crossing, and the averaged run is continued in the same one (``branch``).
+both asked to go through the separatrix (``k2_max=None``), after which they continue about the major axis.
+The torque is odd in omega, so both senses of the final spin are equally likely; which one the full run takes
+depends on its fast phase at the crossing, and the averaged run is continued in the same one (``branch``).
 
 Left: the energy relative to the separatrix, ``2 T A2 / G^2``; middle: the body components of G/G along the
 minor (``g3``) and major (``g1``) axes, with the range the averaged motion sweeps; right: the path of G in the
@@ -40,7 +40,7 @@ def dissipation(omega, C, nu):
     return -KAPPA * (omega - (omega * g).sum(-1, keepdims=True) * g / (g * g).sum(-1, keepdims=True))
 
 
-start = dict(kind="min", k2_0=0.05, delta0=1.0, lam0=0.3, tau_span=TAU)
+start = dict(kind="min", k2_0=0.05, delta0=1.0, lam0=0.3, tau_span=TAU, k2_max=None)  # go through
 full = ep.simulate(body, dissipation, EPS, tau_eval=np.linspace(*TAU, 4001), **start)
 branch = (str(full.kind[-1]), int(full.sigma[-1]))  # the sense the full run ends in
 avg = ep.averaged(body, dissipation, EPS, tau_eval=np.linspace(*TAU, 401), branch=branch, **start)

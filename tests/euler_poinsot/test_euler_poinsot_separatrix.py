@@ -323,7 +323,8 @@ def test_branch_frequencies_of_simulate_match_the_capture_probabilities():
         k2 = rng.uniform(0.5, 0.6)
         K = ep.EulerPoinsot(BODY, 1.0, k2, "min", 1).K
         s = ep.simulate(BODY, constant(M0), 0.05, kind="min", k2_0=k2, u0=rng.uniform(0, 4 * K),
-                        psi0=rng.uniform(0, 2 * math.pi), tau_span=(0, 2.0), tau_eval=[2.0], min_spin_ratio=0)
+                        psi0=rng.uniform(0, 2 * math.pi), tau_span=(0, 2.0), tau_eval=[2.0], min_spin_ratio=0,
+                        k2_max=None)
         region = (str(s.kind[-1]), int(s.sigma[-1]))
         assert region in (("max", 1), ("min", -1)), region  # the two regions of positive probability only
         hits += region == ("max", 1)

@@ -18,7 +18,8 @@ def near_separatrix_errors(eps, mc, phases, span=0.2):
     K = ep.EulerPoinsot(BODY, 1.0, 1 - mc, mc=mc).K
     errs, crossed = [], 0
     for u0 in np.linspace(0, 4 * K, phases, endpoint=False):
-        s = ep.simulate(BODY, CASE1, eps, k2_0=1 - mc, tau_span=(0, span), tau_eval=te, u0=u0, min_spin_ratio=0)
+        s = ep.simulate(BODY, CASE1, eps, k2_0=1 - mc, tau_span=(0, span), tau_eval=te, u0=u0, min_spin_ratio=0,
+                        k2_max=None)
         assert s.status == 0
         crossed += s.t_events["separatrix"].size > 0
         errs.append([np.abs(getattr(s, f) - getattr(a, f)).max() for f in ("G", "T", "k2", "lam")])
@@ -47,7 +48,7 @@ def test_averaging_error_next_to_the_separatrix_does_not_grow_with_the_period():
 
 # ------------------------------------------------------------------ averaged through the separatrix vs full
 I_DISS = np.diag([0.1, 0.1, 1.0])  # drag mostly on the minor axis: a minor-axis spin decays to the separatrix
-START = dict(kind="min", k2_0=0.6, delta0=1.0, lam0=0.3, min_spin_ratio=0)
+START = dict(kind="min", k2_0=0.6, delta0=1.0, lam0=0.3, min_spin_ratio=0, k2_max=None)  # through the separatrix
 
 
 def crossing_errors(eps, tau1=1.6):
@@ -111,7 +112,7 @@ def test_averaged_crossing_with_the_engine_against_the_full_motion(eps):
     # a plain-function torque (no closed form: the averaging engine) through the separatrix, from 'min' to
     # 'max' at constant G: T before and after, and the crossing time, against simulate
     te = np.linspace(0, 3, 31)
-    kw = dict(kind="min", k2_0=0.2, delta0=1.0, lam0=0.3, tau_span=(0, 3), tau_eval=te)
+    kw = dict(kind="min", k2_0=0.2, delta0=1.0, lam0=0.3, tau_span=(0, 3), tau_eval=te, k2_max=None)
     a = ep.averaged(BODY, dissipation(3.0), eps, **kw)
     s = ep.simulate(BODY, dissipation(3.0), eps, **kw)
     assert a.status == 0 and s.status == 0 and a.quad_error < 1e-10
@@ -135,7 +136,7 @@ def constant(omega, C, nu):
     return np.zeros(np.shape(omega)) + M0
 
 
-CONST = dict(kind="min", k2_0=0.55, delta0=1.0, lam0=0.3, tau_span=(0, 2.0))
+CONST = dict(kind="min", k2_0=0.55, delta0=1.0, lam0=0.3, tau_span=(0, 2.0), k2_max=None)
 
 
 def test_branches_of_a_torque_whose_two_senses_differ():
@@ -181,11 +182,11 @@ def test_a_separatrix_that_attracts_from_both_sides_ends_the_run_with_a_status()
         return -5.0 * np.tanh(h / 1e-3) * (omega - g / A2)
 
     for kind in ("min", "max"):
-        a = ep.averaged(BODY, attract, 0.0, kind=kind, k2_0=0.5, tau_span=(0, 30))
+        a = ep.averaged(BODY, attract, 0.0, kind=kind, k2_0=0.5, tau_span=(0, 30), k2_max=None)
         assert a.status == 1 and a.event == "separatrix" and "attracts from both sides" in a.message
         assert a.tau[-1] < 5 and a.k2[-1] == pytest.approx(1.0, abs=1e-8)
     # the full motion indeed stays on the separatrix: it keeps crossing it (eps = 0.05, tau in [0, 6])
-    s = ep.simulate(BODY, attract, 0.05, kind="min", k2_0=0.5, tau_span=(0, 6), tau_eval=[6.0])
+    s = ep.simulate(BODY, attract, 0.05, kind="min", k2_0=0.5, tau_span=(0, 6), tau_eval=[6.0], k2_max=None)
     assert s.t_events["separatrix"].size > 20 and s.k2[-1] > 1 - 1e-4
 
 
@@ -193,7 +194,7 @@ def test_output_of_a_run_through_the_separatrix():
     te = np.linspace(0, 1.6, 17)
     T0 = ep.T_from(BODY, 1.0, 0.6, "min")
     a = ep.averaged(BODY, I_DISS, 0.02, T0=T0, tau_span=(0, 1.6), tau_eval=te, delta0=1.0, lam0=0.3,
-                    min_spin_ratio=0)
+                    min_spin_ratio=0, k2_max=None)
     b = ep.averaged(BODY, I_DISS, 0.02, tau_span=(0, 1.6), **START)  # solver steps
     tc = a.crossings[0]["tau"]
     assert np.array_equal(a.tau, te) and a.T[0] == pytest.approx(T0, abs=1e-14)
@@ -213,8 +214,8 @@ def test_output_of_a_run_through_the_separatrix():
     mid = 0.5 * (te[5] + te[6])
     np.testing.assert_allclose(a.sol(te[12]), a.y[:, 12], rtol=1e-12, atol=1e-14)
     assert a.sol(mid).shape == (5,)
-    # the stop on request (the old behaviour): the run ends next to the separatrix
-    c = ep.averaged(BODY, I_DISS, 0.02, tau_span=(0, 1.6), k2_max=1 - 1e-6, **START)
+    # the stop (the default): the run ends next to the separatrix
+    c = ep.averaged(BODY, I_DISS, 0.02, tau_span=(0, 1.6), **{**START, "k2_max": 1 - 1e-6})
     assert c.status == 1 and c.event == "separatrix" and c.tau[-1] < tc
 
 

@@ -515,7 +515,7 @@ def averaged(
     rtol: float = 1e-10,
     atol: float = 1e-12,
     method: str = "DOP853",
-    k2_max: float | None = None,
+    k2_max: float | None = 1.0 - 1e-6,
     min_spin_ratio: float = 1.0,
     sigma: int = 1,
     averaging: str = "auto",
@@ -561,17 +561,19 @@ def averaged(
         Default circular.
     rtol, atol, method
         Passed to the solver (``rigidbody.core.ode.integrate``).
-    k2_max : float, optional
-        When given, the run ends (status 1, event ``'separatrix'``) when :math:`k^2` reaches this value.
-        Default: when :math:`k^2` reaches the separatrix the evolution continues on the other side (see
-        ``branch``), with :math:`G`, :math:`T` and :math:`\mathbf n` continuous; the averaged rates have finite
-        limits there (:func:`separatrix_limits`).
+    k2_max : float or None
+        The run ends (status 1, event ``'separatrix'``) when :math:`k^2` reaches this value (default
+        :math:`1 - 10^{-6}`: at :math:`k^2 = 1` the period of the Euler--Poinsot motion is infinite). ``None``:
+        the evolution goes on through the separatrix into the other kind of motion (see ``branch``), with
+        :math:`G`, :math:`T` and :math:`\mathbf n` continuous; the averaged rates have finite limits there
+        (:func:`separatrix_limits`).
     min_spin_ratio : float
         The run ends (event ``'slow_rotation'``) when the rotation is no longer fast: when
         :func:`spin_ratio` (frequency :math:`2\pi/P` of the Euler--Poinsot motion over the orbital rate
         :math:`\varepsilon`) falls to this value (``eps > 0`` only; a start below it raises ``ValueError``;
-        pass 0 to switch the check off, e.g. to show where the theory fails). The ratio is taken at
-        :math:`\min(k^2, 0.99)`: the infinite period at the separatrix itself does not end a run.
+        pass 0 to switch the check off, e.g. to show where the theory fails). In a run through the separatrix
+        (``k2_max=None``) the ratio is taken at :math:`\min(k^2, 0.99)`: the momentary infinite period of the
+        crossing itself does not end it.
     sigma : {+1, -1}
         Sense of rotation of the Euler--Poinsot motion (torque objects; the drag tensor's averages do not
         depend on it).
@@ -667,7 +669,8 @@ def averaged(
         gen.drag = tq  # the closed forms (9) of the paper; the torque object serves the crossings
     else:
         gen.torque._check_setup(body, orb)
-    _check_spin(_labels(body, kind), G0, min(k2_0, K2_SPIN_CAP), eps, min_spin_ratio)
+    gen.spin_cap = K2_SPIN_CAP if through else 1.0
+    _check_spin(_labels(body, kind), G0, min(k2_0, gen.spin_cap), eps, min_spin_ratio)
     first = gen.piece(region0, tau_span, G0, k2_0, np.array(_unit(delta0, lam0)), nu0, lam0, k2_stop)
     return _through(first, gen, tau_span, tau_eval, through, branch, np.random.default_rng(seed))
 
@@ -691,6 +694,7 @@ class _Setup:
     min_spin_ratio: float
     drift_tol: float | None
     resonance_tol: float | None
+    spin_cap: float = K2_SPIN_CAP
 
 
 @dataclass
@@ -720,7 +724,7 @@ def _state_of(setup: _Setup, kind: str, sigma: int, tau: float, y: np.ndarray, t
 
 def _slow_drift(setup: _Setup, st: _State, m: _Mean) -> float:
     r"""Relative change of the slow variables in one Euler--Poinsot period, :math:`\varepsilon^2P(\ldots)`."""
-    freq = _nut_freq(st.a, st.G, min(st.k2, K2_SPIN_CAP))  # next to the separatrix: see K2_SPIN_CAP
+    freq = _nut_freq(st.a, st.G, min(st.k2, setup.spin_cap))  # next to the separatrix: see K2_SPIN_CAP
     if freq <= 0.0:
         return math.inf
     dG = float(st.n @ m.L)
@@ -766,7 +770,7 @@ def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: flo
               "where the averaging does not hold"),
     ]
     if eps > 0.0:
-        events.append(Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), K2_SPIN_CAP)) / eps
+        events.append(Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), setup.spin_cap)) / eps
                             - setup.min_spin_ratio, "slow_rotation", True, -1.0, _slow_msg(setup.min_spin_ratio)))
         if setup.drift_tol is not None:
             tol = setup.drift_tol
@@ -943,10 +947,13 @@ class _Generic:
     def __post_init__(self) -> None:
         self.averager = Averager(self.torque, self.averaging, self.quad_tol)
         self.drag: Any = None  # a drag tensor run: its segments use the closed forms (9) of the paper
+        # the rotation-speed check takes the period at min(k2, spin_cap): K2_SPIN_CAP in a run through the
+        # separatrix (its momentary infinite period must not end the run), 1 (no cap) in a run that stops there
+        self.spin_cap = K2_SPIN_CAP
 
     def setup(self, k2_stop: float) -> _Setup:
         return _Setup(self.body, self.averager, self.eps, self.orbit, self.nu0, self.rtol, self.atol, self.method,
-                      k2_stop, self.min_spin_ratio, self.drift_tol, self.resonance_tol)
+                      k2_stop, self.min_spin_ratio, self.drift_tol, self.resonance_tol, self.spin_cap)
 
     def piece(self, region: tuple[str, int], tau_span: Any, G: float, k2: float, n: np.ndarray, nu0: float,
               lam_s: float, k2_stop: float) -> _Piece:
@@ -1147,7 +1154,7 @@ def _drag_piece(gen: _Generic, drag: Any, region: tuple[str, int], tau_span: Any
     ]
     if eps > 0.0:
         events.append(
-            Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), K2_SPIN_CAP)) / eps - gen.min_spin_ratio,
+            Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), gen.spin_cap)) / eps - gen.min_spin_ratio,
                   "slow_rotation", True, -1.0, _slow_msg(gen.min_spin_ratio))
         )
     res = integrate(rhs if eps > 0.0 else rhs_limit, tau_span, y0, rtol=gen.rtol, atol=gen.atol, method=gen.method,

@@ -110,7 +110,7 @@ def simulate(
     rtol: float = 1e-10,
     atol: float = 1e-12,
     method: str = "DOP853",
-    k2_max: float | None = None,
+    k2_max: float | None = 1.0 - 1e-6,
     min_spin_ratio: float = 1.0,
 ) -> Solution:
     r"""Integrate the full, unaveraged motion (1), (3), (4) in the slow time :math:`\tau`.
@@ -144,14 +144,16 @@ def simulate(
         Euler--Poinsot motion (see :func:`initial_state`).
     formulation : {'body', 'angles'}
         Euler's equations with a quaternion (default, regular everywhere) or the paper's (1), (3), (4).
-    k2_max : float, optional
-        When given, the run ends (event ``'separatrix'``) as soon as the osculating :math:`k^2` of the initial
-        kind reaches it. Default: no stop; the separatrix crossings are recorded, not terminal.
+    k2_max : float or None
+        The run ends (event ``'separatrix'``) as soon as the osculating :math:`k^2` of the initial kind reaches
+        it (default :math:`1 - 10^{-6}`, as :func:`averaged`). ``None``: no stop; the motion goes on through the
+        separatrix (the body-frame equations are regular there) and the crossings are recorded, not terminal.
     min_spin_ratio : float
         The run ends (event ``'slow_rotation'``) when :func:`spin_ratio` of the osculating motion falls to this
-        value, as in :func:`averaged`. The ratio is taken at :math:`\min(k^2, 0.99)`: within 0.01 of the
-        separatrix the period grows like :math:`\ln(1/(1-k^2))` while the body still turns fast (about the
-        intermediate axis), and the momentary infinite period of a passage must not end the run.
+        value, as in :func:`averaged`. In a run through the separatrix (``k2_max=None``) the ratio is taken at
+        :math:`\min(k^2, 0.99)`: within 0.01 of the separatrix the period grows like :math:`\ln(1/(1-k^2))`
+        while the body still turns fast (about the intermediate axis), and the momentary infinite period of a
+        passage must not end the run.
 
     Returns
     -------
@@ -191,7 +193,8 @@ def simulate(
     ie = 1.0 / eps
     circular = orb.e == 0.0
     (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in Im)
-    _check_spin(Alab, G0, min(k2_0, K2_SPIN_CAP), eps, min_spin_ratio)
+    spin_cap = K2_SPIN_CAP if k2_max is None else 1.0  # see K2_SPIN_CAP: only a run through the separatrix
+    _check_spin(Alab, G0, min(k2_0, spin_cap), eps, min_spin_ratio)
     st = initial_state(body, G0, k2_0, delta0, lam0, kind=kind, u0=u0, psi0=psi0, sigma=sigma)
 
     def nu_of(tau: float, y: np.ndarray, i: int) -> float:
@@ -371,7 +374,7 @@ def simulate(
     def ev_spin(tau: float, y: np.ndarray) -> float:
         G, D = G_D(y)
         Ak, k2 = _osculating(Aall, D)
-        return _nut_freq(Ak, G, min(k2, K2_SPIN_CAP)) / eps - min_spin_ratio
+        return _nut_freq(Ak, G, min(k2, spin_cap)) / eps - min_spin_ratio
 
     if k2_max is None:
         # every passage of D = G^2/2T through A2 is recorded; the run goes on
