@@ -242,3 +242,13 @@ def test_explorer1_example_data():
     # on the way to the major-axis spin: T between the separatrix value and the pure spin's G^2/(2 A1)
     assert 1 / (2 * body.A1) < avg.T[-1] < 1 / (2 * body.A2)
     g["plt"].close("all")
+
+
+def test_starts_on_the_separatrix_are_refused_naming_k2_0():
+    # through the separatrix (k2_max=None) a start within 1e-9 of it has no kind of motion to start in; with
+    # the default stop, a start beyond k2_max = 1 - 1e-6 is refused as before
+    with pytest.raises(ValueError, match="k2_0"):
+        ep.averaged(BODY, CASE1, 0.0, k2_0=1 - 1e-10, k2_max=None)
+    with pytest.raises(ValueError, match="k2_0"):
+        ep.averaged(BODY, CASE1, 0.0, k2_0=1 - 1e-7)
+    assert ep.averaged(BODY, CASE1, 0.0, k2_0=1 - 1e-7, k2_max=None, tau_span=(0, 0.1)).status == 0
