@@ -1033,7 +1033,9 @@ def _through(first: _Piece, gen: _Generic, tau_span: Any, tau_eval: Any, through
         cur = gen.piece(region, (tc, t1), G, K2_SWITCH, n, nu if nu is not None else gen.nu0, lam, K2_SWITCH)
         pieces.append(cur)
     if len(pieces) == 1 and not crossings:
-        return first.finish(tau_eval, first.lam_start)
+        sol: Solution = first.finish(tau_eval, first.lam_start)
+        sol.crossings = []  # type: ignore[attr-defined]  # an extra attribute of this result: no crossing
+        return sol
     return _assemble(pieces, crossings, stop, tau_eval)
 
 
