@@ -21,10 +21,13 @@ cloudpickle.register_pickle_by_value(sweep_testlib)
 
 @pytest.fixture(scope="session")
 def cluster():
-    """A real distributed.LocalCluster: two single-threaded worker processes on this machine (no mock)."""
+    """A real distributed.LocalCluster: two single-threaded worker processes on this machine (no mock).
+
+    The dashboard gets a free port (":0"): with ``dashboard_address=None`` distributed still tries 8787 and
+    warns (an error under our warning filter) when another cluster on the machine holds it."""
     import distributed
 
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
                                   host="127.0.0.1") as lc:
         yield lc
 
