@@ -542,10 +542,15 @@ def integrate_batch(
     # ---- assemble ---------------------------------------------------------------------------------
     t_events: dict[str, np.ndarray] = {}
     y_events: dict[str, np.ndarray] = {}
+    none_t, none_y = np.empty(0), np.empty((0, n))  # shared by the members without this event (read-only)
+    none_t.setflags(write=False)
+    none_y.setflags(write=False)
     for j, ev in enumerate(evs):
         te_obj = np.empty(B, dtype=object)
         ye_obj = np.empty(B, dtype=object)
-        for q in range(B):
+        te_obj.fill(none_t)
+        ye_obj.fill(none_y)
+        for q in (q for q in range(B) if tev[j][q]):
             te_obj[q] = np.asarray(tev[j][q], dtype=float)
             ye_obj[q] = np.asarray(yev[j][q], dtype=float).reshape(-1, n)
         t_events[ev.name] = te_obj.reshape(batch_shape)

@@ -1,0 +1,307 @@
+r"""A batch of averaged evolutions (9) integrated together, and the single run of the same equations.
+
+The members share the body, the torque, the orbit, ``tau_span`` and the options; their initial slow variables
+``G0, k2_0, delta0, lam0``, the true anomaly ``nu0`` and ``eps`` are arrays broadcast to one batch shape. The
+closed forms of a drag tensor (:mod:`._kernel`) are evaluated on all active members at once by
+:func:`rigidbody.core.batch.integrate_batch` (per-member DOP853 step control, events and status); the members
+with ``eps = 0`` (orbit-averaged, state ``(ln G, ln k^2, lambda)``) and those with ``eps > 0`` (state
+``(ln G, ln k^2, delta, lambda[, nu])``) form two sub-batches. A member ends on its own events
+(``'separatrix'``, ``'slow_rotation'``) with its own status and message, which are those of its single run;
+a member whose start is refused by the single run (a ``ValueError`` there) gets ``status = -1`` and that
+message, and the others go on.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..core.batch import integrate_batch
+from ..core.kernel import ARRAY, SCALAR
+from ..core.ode import Event, Solution, integrate
+from . import _kernel as _k
+from ._model import Orbit
+
+__all__ = ["ClosedRun", "closed_batch", "closed_single", "member_inputs"]
+
+_AX = ARRAY
+_SC = SCALAR
+
+#: the order of the output fields of an averaged run
+FIELDS = ("G", "T", "k2", "delta", "lam", "nu", "n")
+
+
+def separatrix_message(k2_max: float) -> str:
+    return (f"k2 reached {k2_max:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
+            "where the averaging (6) does not hold")
+
+
+def slow_message(r: float) -> str:
+    return (f"the rotation is no longer fast: (2 pi / Euler-Poinsot period) / omega0 fell to {r:g}; "
+            "the averaging over the Euler-Poinsot motion (eps << 1) no longer holds")
+
+
+@dataclass
+class ClosedRun:
+    """What the closed-form runs of one kind of motion share: labelled moments and drag, orbit, options."""
+
+    A: tuple[float, float, float]
+    Id: tuple[Any, Any, Any]
+    orbit: Orbit
+    rtol: float
+    k2_max: float
+    min_spin_ratio: float
+
+    @property
+    def coefficients(self) -> _k.DragCoefficients:
+        return _k.DragCoefficients(self.A, self.Id)
+
+
+# --------------------------------------------------------------------------------------------------
+# initial state and output fields, shared by one run and a batch
+# --------------------------------------------------------------------------------------------------
+def initial_state(eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, nu0: Any, e: float) -> tuple[Any, Any]:
+    """The state vector(s) and the factor ``z`` (0 where ``k2_0 = 0``); arrays of members or floats."""
+    z = np.where(np.asarray(k2_0) > 0.0, 1.0, 0.0)
+    with np.errstate(divide="ignore"):
+        s0 = np.where(z > 0.0, np.log(np.where(z > 0.0, k2_0, 1.0)), 0.0)
+    lnG = np.log(G0)
+    if np.ndim(eps) == 0 and float(eps) == 0.0:
+        y = [lnG, s0, lam0]
+    else:
+        y = [lnG, s0, delta0, lam0] + ([nu0] if e != 0.0 else [])
+    return np.stack(np.broadcast_arrays(*y), axis=-1), z
+
+
+def fields(run: ClosedRun, tau: np.ndarray, y: np.ndarray, z: Any, limit: bool, delta0: Any, nu0: Any,
+           ie: Any) -> dict[str, np.ndarray]:
+    """Output fields from raw states ``y`` of shape ``(..., n_state, n_t)`` (members on the leading axes)."""
+    lnG, s = y[..., 0, :], y[..., 1, :]
+    zz = np.asarray(z, dtype=float)[..., None]
+    G = np.exp(lnG)
+    k2 = np.clip(zz * np.exp(s), 0.0, 1.0)
+    T = 0.5 * G * G * _k.s_over_r(run.A, k2)
+    nan = np.isnan(lnG)
+    if limit:
+        delta = np.where(nan, np.nan, np.asarray(delta0, dtype=float)[..., None] + 0.0 * lnG)
+        lam = y[..., 2, :]
+        nu = np.where(nan, np.nan, np.asarray(nu0, dtype=float)[..., None] + 0.0 * lnG)
+    else:
+        delta, lam = y[..., 2, :], y[..., 3, :]
+        if run.orbit.e != 0.0:
+            nu = y[..., 4, :]
+        else:
+            nu = np.where(nan, np.nan, tau * np.asarray(ie, dtype=float)[..., None]
+                          + np.asarray(nu0, dtype=float)[..., None])
+    sd = np.sin(delta)
+    n = np.stack([sd * np.cos(lam), sd * np.sin(lam), np.cos(delta)], axis=-2)
+    return {"G": G, "T": T, "k2": k2, "delta": delta, "lam": lam, "nu": nu, "n": n}
+
+
+# --------------------------------------------------------------------------------------------------
+# one run
+# --------------------------------------------------------------------------------------------------
+def closed_single(run: ClosedRun, eps: float, G0: float, k2_0: float, delta0: float, lam0: float, nu0: float,
+                  tau_span: tuple[float, float], tau_eval: Any, method: str = "DOP853") -> Solution:
+    """One closed-form run from valid inputs: the raw state ``(ln G, ln k^2, [delta,] lambda[, nu])`` with the
+    output fields. DOP853 runs on Python floats (``core.ode.integrate(engine='python')``)."""
+    A, e = run.A, run.orbit.e
+    co = run.coefficients
+    g1, g2, g3, c3, c1 = (float(v) for v in co.args())
+    limit = eps == 0.0
+    y0, z_a = initial_state(eps, G0, k2_0, delta0, lam0, nu0, e)
+    z = float(z_a)
+    lnk_max = math.log(run.k2_max)
+    if limit:
+        hl = 0.75 * run.orbit.mean_factor * math.cos(delta0)
+
+        def rhs(tau: float, y: Any) -> list[float]:
+            return _k.rhs_limit(_SC, A, tau, y, g1, g2, g3, c3, c1, z, hl)
+    else:
+        ie = 1.0 / eps
+
+        def rhs(tau: float, y: Any) -> list[float]:
+            return _k.rhs_orbit(_SC, A, e, tau, y, g1, g2, g3, c3, c1, z, ie, nu0)
+
+    events = [Event((lambda t, y: y[1] - lnk_max) if z > 0.0 else (lambda t, y: -1.0), "separatrix", True, 1.0,
+                    separatrix_message(run.k2_max))]
+    if not limit:
+        r = run.min_spin_ratio
+        events.append(Event(lambda t, y: _k.nut_freq(_SC, A, math.exp(y[0]), min(z * math.exp(y[1]), 1.0)) * ie - r,
+                            "slow_rotation", True, -1.0, slow_message(r)))
+    rt: Any
+    rt, at = _k.tolerances(run.rtol, y0.size)
+    py = method == "DOP853"
+    te = None if tau_eval is None else np.asarray(tau_eval, dtype=float)
+    sol = integrate(rhs, tau_span, y0, t_eval=te, rtol=rt if py else _k.RTOL_FLOOR, atol=at, method=method,
+                    events=events, time_name="tau", engine="python" if py else "scipy",
+                    fields=lambda t, y: fields(run, t, y, z, limit, delta0, nu0, 0.0 if limit else 1.0 / eps))
+    return sol
+
+
+# --------------------------------------------------------------------------------------------------
+# a batch
+# --------------------------------------------------------------------------------------------------
+@dataclass
+class Members:
+    """Broadcast per-member inputs (flat arrays of the batch) and the members refused at the start."""
+
+    batch_shape: tuple[int, ...]
+    eps: np.ndarray
+    G0: np.ndarray
+    k2_0: np.ndarray
+    delta0: np.ndarray
+    lam0: np.ndarray
+    nu0: np.ndarray
+    refused: dict[int, str]
+
+
+def member_inputs(eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, nu0: Any) -> Members:
+    """Broadcast the per-member inputs to one batch shape (``TypeError``/``ValueError`` naming the parameter
+    that does not broadcast or is not real)."""
+    arrays = {}
+    for name, v in (("eps", eps), ("G0", G0), ("k2_0", k2_0), ("delta0", delta0), ("lam0", lam0), ("nu0", nu0)):
+        if isinstance(v, (bool, np.bool_, str, bytes)) or v is None:
+            raise TypeError(f"{name} must be a real number or an array of them, got {v!r}")
+        try:
+            a = np.asarray(v, dtype=float)
+        except (TypeError, ValueError):
+            raise TypeError(f"{name} must be a real number or an array of them, got {v!r}") from None
+        arrays[name] = a
+    try:
+        shape = np.broadcast_shapes(*(a.shape for a in arrays.values()))
+    except ValueError:
+        shapes = ", ".join(f"{k} {a.shape}" for k, a in arrays.items() if a.ndim)
+        raise ValueError(f"the per-member inputs do not broadcast to one batch shape: {shapes}") from None
+    if not shape:
+        raise ValueError("a batch needs at least one array input")
+    if 0 in shape:
+        raise ValueError(f"the batch is empty (shape {shape})")
+    flat = {k: np.broadcast_to(a, shape).reshape(-1).copy() for k, a in arrays.items()}
+    return Members(tuple(int(s) for s in shape), flat["eps"], flat["G0"], flat["k2_0"], flat["delta0"],
+                   flat["lam0"], flat["nu0"], {})
+
+
+def check_members(mem: Members, run: ClosedRun) -> None:
+    """The single run's input checks, member by member: a refused member gets the single call's message."""
+    A = run.A
+    for i in range(mem.eps.size):
+        eps, G0, k2_0, d0 = mem.eps[i], mem.G0[i], mem.k2_0[i], mem.delta0[i]
+        msg = None
+        if not all(math.isfinite(v) for v in (eps, G0, k2_0, d0, mem.lam0[i], mem.nu0[i])):
+            msg = "the initial values must be finite"
+        elif eps < 0:
+            msg = f"eps must be >= 0 (eps = omega0/omega), got {eps}"
+        elif G0 <= 0:
+            msg = f"G0 must be positive, got {G0}"
+        elif not (0.0 <= k2_0 < 1.0):
+            msg = f"k2_0 must lie in [0, 1) (k2 = 1 is the separatrix), got {k2_0}"
+        elif not (0.0 <= d0 <= math.pi):
+            msg = f"delta0 (polar angle of G from x3) must lie in [0, pi], got {d0}"
+        elif not k2_0 < run.k2_max:
+            msg = (f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {run.k2_max}: "
+                   "raise k2_max or start further from the separatrix")
+        elif eps > 0 and run.min_spin_ratio > 0:
+            ratio = float(_k.nut_freq(_SC, A, G0, k2_0)) / eps
+            if ratio <= run.min_spin_ratio:
+                msg = (f"eps = {eps:g} is too large for this state: the Euler-Poinsot frequency over the orbital "
+                       f"rate is {ratio:.3g} <= min_spin_ratio = {run.min_spin_ratio:g} (the rotation is not "
+                       "fast); lower eps, or pass min_spin_ratio=0 to integrate anyway outside the theory")
+        if msg is not None:
+            mem.refused[i] = msg
+
+
+def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te: np.ndarray) -> Solution:
+    """The batch of closed-form runs (``te`` the common output grid); ``mem.refused`` members end at once."""
+    B = mem.eps.size
+    nt = te.size
+    t0, t1 = float(tau_span[0]), float(tau_span[1])
+    e = run.orbit.e
+    A = run.A
+    out = {k: np.full((B, nt), np.nan) for k in FIELDS if k != "n"}
+    out["n"] = np.full((B, 3, nt), np.nan)
+    status = np.full(B, -1, dtype=int)
+    message = np.empty(B, dtype=object)
+    event = np.empty(B, dtype=object)
+    event[:] = None
+    nfev = np.zeros(B, dtype=int)
+    t_final = np.full(B, t0)
+    ymax = 5 if e != 0.0 else 4
+    Y = np.full((B, ymax, nt), np.nan)
+    none = np.empty(0)
+    none.setflags(write=False)
+    tev: dict[str, np.ndarray] = {}
+    for name in ("separatrix", "slow_rotation"):
+        tev[name] = np.empty(B, dtype=object)
+        tev[name].fill(none)
+    for i, msg in mem.refused.items():
+        message[i] = msg
+    ok = np.ones(B, dtype=bool)
+    ok[list(mem.refused)] = False
+    lnk_max = math.log(run.k2_max)
+    Id = tuple(np.broadcast_to(np.asarray(v, dtype=float), (B,)) for v in run.Id)
+    co = _k.DragCoefficients(A, Id)  # type: ignore[arg-type]  # arrays of members
+    cf = co.args()
+
+    r = run.min_spin_ratio
+
+    def sep(t: np.ndarray, y: np.ndarray, *a: np.ndarray) -> np.ndarray:
+        return np.where(a[5] > 0.0, y[:, 1] - lnk_max, -1.0)
+
+    def rhs_lim(t: np.ndarray, y: np.ndarray, *a: np.ndarray) -> np.ndarray:
+        return np.stack(_k.rhs_limit(_AX, A, t, y.T, *a), axis=1)
+
+    def rhs_orb(t: np.ndarray, y: np.ndarray, *a: np.ndarray) -> np.ndarray:
+        return np.stack(_k.rhs_orbit(_AX, A, e, t, y.T, *a), axis=1)
+
+    def slow(t: np.ndarray, y: np.ndarray, *a: np.ndarray) -> np.ndarray:
+        return _k.nut_freq(_AX, A, np.exp(y[:, 0]), _k.k2_of(_AX, y[:, 1], a[5])) * a[6] - r
+
+    groups = [(np.nonzero(ok & (mem.eps == 0.0))[0], True), (np.nonzero(ok & (mem.eps > 0.0))[0], False)]
+    for idx, limit in groups:
+        if not idx.size:
+            continue
+        y0, z = initial_state(0.0 if limit else mem.eps[idx], mem.G0[idx], mem.k2_0[idx], mem.delta0[idx],
+                              mem.lam0[idx], mem.nu0[idx], e)
+        args: tuple[np.ndarray, ...] = (*(c[idx] for c in cf), z)
+        events = [Event(sep, "separatrix", True, 1.0, separatrix_message(run.k2_max))]
+        if limit:
+            args = (*args, 0.75 * run.orbit.mean_factor * np.cos(mem.delta0[idx]))
+            ie = np.zeros(idx.size)
+            rhs = rhs_lim
+        else:
+            ie = 1.0 / mem.eps[idx]
+            args = (*args, ie, mem.nu0[idx])
+            rhs = rhs_orb
+            events.append(Event(slow, "slow_rotation", True, -1.0, slow_message(r)))
+        ns = y0.shape[1]
+        rt, at = _k.tolerances(run.rtol, ns)
+        sol = integrate_batch(rhs, (t0, t1), y0, t_eval=te, rtol=rt, atol=at, events=events, args=args,
+                              time_name="tau")
+        f = fields(run, te, sol.y, z, limit, mem.delta0[idx], mem.nu0[idx], ie)
+        for k in FIELDS:
+            out[k][idx] = f[k]
+        if limit:  # the raw rows (ln G, ln k2, delta, lambda[, nu]) of every member
+            Y[idx, 0:2], Y[idx, 3] = sol.y[:, 0:2], sol.y[:, 2]
+            Y[idx, 2] = f["delta"]
+            if ymax == 5:
+                Y[idx, 4] = f["nu"]
+        else:
+            Y[idx, :ns] = sol.y
+        status[idx] = sol.status
+        message[idx] = sol.message
+        event[idx] = sol.event
+        nfev[idx] = sol.nfev
+        t_final[idx] = sol.t_final
+        for name in tev:
+            if name in sol.t_events:
+                tev[name][idx] = sol.t_events[name]
+    shape = mem.batch_shape
+    data = {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()}
+    t_events = {name: arr.reshape(shape) for name, arr in tev.items()}
+    return Solution("tau", te, Y.reshape(shape + Y.shape[1:]), data, status.reshape(shape), message.reshape(shape),
+                    event.reshape(shape), t_events, {}, None, nfev.reshape(shape), batch_shape=shape,
+                    t_final=t_final.reshape(shape))

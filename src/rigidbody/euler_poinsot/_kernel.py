@@ -1,0 +1,160 @@
+r"""The closed-form averaged system (9) of a drag tensor, in coordinates whose error the integrator controls.
+
+Under drag the slow variables decay: :math:`G` and :math:`T` by many orders over long spans, and :math:`k^2`
+tends to 0 where :math:`k^2 = 0` is stable (the paper's case 2). An integrator that controls
+``atol + rtol |y|`` of :math:`(G, k^2)` controls only an absolute error of these small numbers. The closed
+forms are therefore integrated in
+
+* :math:`\ln G` and :math:`s = \ln k^2` with absolute error control ``rtol``: a relative error ``rtol`` of
+  :math:`G` and of :math:`k^2` however far they decay (:math:`T = G^2S/2R` inherits it). Both rates are
+  finite functions of :math:`k^2` alone, :math:`d\ln G/d\tau = -(I_{11}m_1 + I_{22}m_2 + I_{33}m_3)` and,
+  from (8),
+
+  .. math:: \frac{d\ln k^2}{d\tau} = -2\Big(\frac{I_{33}}{A_3}-\frac{I_{22}}{A_2}\Big)(1-\langle\operatorname{sn}^2
+            \rangle) - 2\Big(\frac{I_{22}}{A_2}-\frac{I_{11}}{A_1}\Big)\frac EK
+
+  (:math:`k^2 - W = k^2(1 - \langle\operatorname{sn}^2\rangle)`, no 0/0 at :math:`k \to 0`). A start at
+  :math:`k^2 = 0` exactly stays there (an equilibrium of (8)): such a member carries the factor ``z = 0``;
+* the angles :math:`(\delta, \lambda)` of :math:`\mathbf G` in :math:`Ox_i`, whose equations (6) for the drag
+  tensor are regular everywhere: with :math:`x = \nu - \lambda`,
+
+  .. math:: \dot\delta = -h\sin x\sin\delta,\qquad \dot\lambda = h\cos x\cos\delta,\qquad
+            h = \tfrac32 f(\nu)N^*\cos x/G
+
+  (:math:`\beta_2\beta_3 = \sin x\cos x\sin\delta`, :math:`\beta_1\beta_3/\sin\delta = \cos^2x\cos\delta`; the
+  poles :math:`\sin\delta = 0` are fixed points of the gravity-gradient average), so :math:`\lambda` is
+  continuous by construction. In the orbit-averaged limit :math:`\varepsilon = 0`, :math:`\delta = \delta_0`
+  and :math:`\dot\lambda = \tfrac34(1-e^2)^{-3/2}N^*\cos\delta_0/G` (:func:`precession_rate`).
+
+The angles are controlled to ``rtol`` radians (:math:`\lambda`, which accumulates turns as :math:`G` decays,
+relatively beyond a radian). The elliptic means come from :func:`rigidbody.core.kernel.elliptic_ratios`.
+
+Every function takes the namespace ``xp`` first (:data:`rigidbody.core.kernel.SCALAR` for one run on Python
+floats, :data:`~rigidbody.core.kernel.ARRAY` for a batch, elementwise over members), so a single run and a
+batch integrate the same equations; the drag coefficients may be floats or per-member arrays.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from scipy import special
+
+from ..core.kernel import elliptic_ratios
+
+#: the smallest relative tolerance the integrators use (SciPy's floor): the log coordinates are controlled
+#: through their absolute tolerance
+RTOL_FLOOR = 100.0 * float(np.finfo(float).eps)
+
+
+class DragCoefficients:
+    """The constants of the closed forms (6), (8) for labelled moments ``A`` and labelled drag ``Id``.
+
+    ``g1, g2, g3`` weigh the means :math:`\\langle g_i^2\\rangle` in :math:`d\\ln G/d\\tau`; ``c3, c1`` are
+    :math:`2(I_{33}/A_3 - I_{22}/A_2)` and :math:`2(I_{22}/A_2 - I_{11}/A_1)` of (8). Floats or arrays (one
+    entry per member).
+    """
+
+    __slots__ = ("A", "c1", "c3", "g1", "g2", "g3")
+
+    def __init__(self, A: tuple[float, float, float], Id: tuple[Any, Any, Any]) -> None:
+        A1, A2, A3 = A
+        I1, I2, I3 = Id
+        self.A = A
+        self.g1 = I1 * (A2 - A3)
+        self.g2 = I2 * (A1 - A3)
+        self.g3 = I3 * (A1 - A2)
+        self.c3 = 2.0 * (I3 / A3 - I2 / A2)
+        self.c1 = 2.0 * (I2 / A2 - I1 / A1)
+
+    def args(self) -> tuple[Any, ...]:
+        """The per-member coefficients in the order :func:`slow_rates` takes them."""
+        return self.g1, self.g2, self.g3, self.c3, self.c1
+
+
+def slow_rates(xp: Any, A: tuple[float, float, float], g1: Any, g2: Any, g3: Any, c3: Any, c1: Any,
+               k2: Any) -> tuple[Any, Any, Any]:
+    r"""``(d ln G/dtau, d ln k^2/dtau, N*)`` of (6), (8) at :math:`k^2` (in [0, 1]; labelled moments)."""
+    A1, A2, A3 = A
+    ek, sn2 = elliptic_ratios(xp, k2)
+    iR = 1.0 / (A1 * (A2 - A3) + A3 * (A1 - A2) * k2)
+    csn = 1.0 - sn2
+    dlnG = -(g1 * ek + (g2 * sn2 + g3 * csn) * k2) * iR
+    dlnk2 = -c3 * csn - c1 * ek
+    Ns = A2 + A3 - 2.0 * A1 + 3.0 * (A1 - A2) * (A1 - A3) * k2 * iR * (A3 + (A2 - A3) * sn2)
+    return dlnG, dlnk2, Ns
+
+
+def s_over_r(A: tuple[float, float, float], k2: Any) -> Any:
+    """:math:`S/R = 2T/G^2` of the kind with labelled moments ``A`` (floats or arrays)."""
+    A1, A2, A3 = A
+    return (A2 - A3 + (A1 - A2) * k2) / (A1 * (A2 - A3) + A3 * (A1 - A2) * k2)
+
+
+def nut_freq(xp: Any, A: tuple[float, float, float], G: Any, k2: Any) -> Any:
+    r"""Angular frequency :math:`2\pi/P = \pi\dot u/(2K)` of the Euler--Poinsot motion (0 at the separatrix)."""
+    A1, A2, A3 = A
+    R = A1 * (A2 - A3) + A3 * (A1 - A2) * k2
+    rate = G * xp.sqrt((A1 - A2) * (A1 - A3) * (A2 - A3) / (A1 * A2 * A3 * R))
+    if not xp.array:
+        return 0.0 if k2 >= 1.0 else math.pi * rate / (2.0 * float(special.ellipk(k2)))
+    with np.errstate(divide="ignore"):
+        return np.where(k2 >= 1.0, 0.0, math.pi * rate / (2.0 * special.ellipk(np.minimum(k2, 1.0))))
+
+
+def orbit_factor(xp: Any, e: float, nu: Any) -> Any:
+    """The gravity-gradient factor :math:`(1+e\\cos\\nu)^3/(1-e^2)^3` of (3)."""
+    return (1.0 + e * xp.cos(nu)) ** 3 / (1.0 - e * e) ** 3
+
+
+def nu_rate(xp: Any, e: float, nu: Any) -> Any:
+    """:math:`\\dot\\nu/\\omega_0 = (1+e\\cos\\nu)^2/(1-e^2)^{3/2}` (Kepler's law)."""
+    return (1.0 + e * xp.cos(nu)) ** 2 / (1.0 - e * e) ** 1.5
+
+
+def k2_of(xp: Any, s: Any, z: Any) -> Any:
+    """:math:`k^2 = z e^s` clipped to 1 (``z = 0`` for a member that started at :math:`k^2 = 0`)."""
+    return xp.minimum(z * xp.exp(s), 1.0)
+
+
+def rhs_limit(xp: Any, A: tuple[float, float, float], tau: Any, y: Any, g1: Any, g2: Any, g3: Any, c3: Any,
+              c1: Any, z: Any, hl: Any) -> list[Any]:
+    r"""The orbit-averaged system (:math:`\varepsilon = 0`) in :math:`(\ln G, \ln k^2, \lambda)`;
+    ``hl`` is :math:`\tfrac34(1-e^2)^{-3/2}\cos\delta_0`."""
+    lnG, s = y[0], y[1]
+    dlnG, dlnk2, Ns = slow_rates(xp, A, g1, g2, g3, c3, c1, k2_of(xp, s, z))
+    return [dlnG, dlnk2, hl * Ns * xp.exp(-lnG)]
+
+
+def rhs_orbit(xp: Any, A: tuple[float, float, float], e: float, tau: Any, y: Any, g1: Any, g2: Any, g3: Any,
+              c3: Any, c1: Any, z: Any, ie: Any, nu0: Any) -> list[Any]:
+    r"""The averaged system (9) with the true anomaly explicit in :math:`(\ln G, \ln k^2, \delta, \lambda)`, plus
+    :math:`\nu` on an eccentric orbit (``e > 0``; ``nu0`` is then unused). ``ie`` is :math:`1/\varepsilon`."""
+    lnG, s, de, la = y[0], y[1], y[2], y[3]
+    dlnG, dlnk2, Ns = slow_rates(xp, A, g1, g2, g3, c3, c1, k2_of(xp, s, z))
+    if e == 0.0:
+        nu = tau * ie + nu0
+        f = 1.5
+    else:
+        nu = y[4]
+        f = 1.5 * orbit_factor(xp, e, nu)
+    x = nu - la
+    c, sx = xp.cos(x), xp.sin(x)
+    h = f * Ns * xp.exp(-lnG) * c
+    out = [dlnG, dlnk2, -h * sx * xp.sin(de), h * c * xp.cos(de)]
+    if e != 0.0:
+        out.append(ie * nu_rate(xp, e, nu))
+    return out
+
+
+def tolerances(rtol: float, n_state: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per-component ``(rtol, atol)`` of the state: ``ln G``, ``ln k^2`` and ``delta`` absolutely to ``rtol``,
+    ``lambda`` to ``rtol`` radians and relatively beyond a radian, ``nu`` (eccentric orbits) likewise."""
+    rt = np.full(n_state, RTOL_FLOOR)
+    at = np.full(n_state, float(rtol))
+    rt[3 if n_state >= 4 else 2] = rtol  # lambda
+    if n_state == 5:
+        rt[4] = rtol
+    return rt, at
