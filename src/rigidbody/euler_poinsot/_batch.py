@@ -305,3 +305,183 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
     return Solution("tau", te, Y.reshape(shape + Y.shape[1:]), data, status.reshape(shape), message.reshape(shape),
                     event.reshape(shape), t_events, {}, None, nfev.reshape(shape), batch_shape=shape,
                     t_final=t_final.reshape(shape))
+
+
+# --------------------------------------------------------------------------------------------------
+# the public batch entries (averaged and simulate dispatch here when an input is an array)
+# --------------------------------------------------------------------------------------------------
+def is_batch(*values: Any) -> bool:
+    """Whether any per-member input is an array (a batch call)."""
+    return any(np.ndim(v) > 0 for v in values)
+
+
+def drag_batch(torque: Any) -> np.ndarray | None:
+    """A batch of drag tensors (an array of shape ``batch_shape + (3, 3)``, ``batch_shape`` non-empty), or None."""
+    if isinstance(torque, (str, bytes)) or callable(torque) or torque is None:
+        return None
+    try:
+        a = np.asarray(torque, dtype=float)
+    except (TypeError, ValueError):
+        return None
+    return a if a.ndim >= 3 and a.shape[-2:] == (3, 3) else None
+
+
+def batch_grid(tau_eval: Any, tau_span: tuple[float, float]) -> np.ndarray:
+    """The common output grid of a batch: ``tau_eval`` (strictly increasing) or 101 points over the span."""
+    t0, t1 = float(tau_span[0]), float(tau_span[1])
+    if tau_eval is None:
+        return np.linspace(t0, t1, 101)
+    te = np.atleast_1d(np.asarray(tau_eval, dtype=float))
+    if te.ndim != 1 or (te.size > 1 and np.any(np.diff(te) <= 0.0)):
+        raise ValueError("tau_eval of a batch must be a strictly increasing 1-D array (the common output grid)")
+    return te
+
+
+def drag_members(run: ClosedRun, mem: Members, tensors: np.ndarray, kind: str) -> None:
+    """Per-member drag tensors (validated like :class:`Drag`; an invalid one refuses its member) into ``run.Id``
+    in the labelling of ``kind``."""
+    from ._model import Drag
+
+    shape = tensors.shape[:-2]
+    try:
+        np.broadcast_shapes(shape, mem.batch_shape)
+    except ValueError:
+        raise ValueError(f"the batch of drag tensors (shape {tensors.shape}) does not broadcast against the batch "
+                         f"shape {mem.batch_shape} of the other inputs") from None
+    full = np.broadcast_shapes(shape, mem.batch_shape)
+    if full != mem.batch_shape:
+        raise ValueError(f"the batch of drag tensors (shape {tensors.shape}) has more members than the other inputs "
+                         f"(batch shape {mem.batch_shape}): give the per-member inputs that shape")
+    T = np.broadcast_to(tensors, (*full, 3, 3)).reshape(-1, 3, 3)
+    diag = np.full((T.shape[0], 3), np.nan)
+    for i in range(T.shape[0]):
+        try:
+            diag[i] = Drag(T[i]).diag
+        except ValueError as exc:
+            mem.refused.setdefault(i, str(exc))
+    d = (diag[:, 0], diag[:, 1], diag[:, 2])
+    run.Id = d if kind == "max" else (d[2], d[1], d[0])
+
+
+def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: np.ndarray,
+             names: tuple[str, ...]) -> Solution:
+    """A batch Solution from single runs evaluated on ``te`` (a str: the message of a member refused at the
+    start, status -1). The engine path of :func:`averaged` and the ``'angles'`` formulation of :func:`simulate`
+    go member by member this way."""
+    B = len(solutions)
+    nt = te.size
+    status = np.full(B, -1, dtype=int)
+    message = np.empty(B, dtype=object)
+    event = np.empty(B, dtype=object)
+    event[:] = None
+    nfev = np.zeros(B, dtype=int)
+    t_final = np.full(B, np.nan)
+    data: dict[str, np.ndarray] = {}
+    ys: np.ndarray | None = None
+    events: dict[str, np.ndarray] = {}
+    extras: dict[str, np.ndarray] = {}
+    for i, s in enumerate(solutions):
+        if isinstance(s, str):
+            message[i] = s
+            continue
+        status[i], message[i], event[i], nfev[i] = int(s.status), str(s.message), s.event, int(s.nfev)
+        ev_t = s.t_events.get(s.event, np.empty(0)) if s.event is not None else np.empty(0)
+        t_final[i] = float(ev_t[-1]) if np.size(ev_t) else (float(s.time[-1]) if s.time.size else np.nan)
+        cols = np.searchsorted(te, s.time)
+        if ys is None:
+            ys = np.full((B, s.y.shape[0], nt), np.nan)
+        ys[i][:, cols] = s.y
+        for k in names:
+            v = np.asarray(getattr(s, k))
+            if k not in data:
+                fill: Any = "" if v.dtype.kind == "U" else np.nan
+                data[k] = np.full((B, *v.shape[:-1], nt), fill, dtype=v.dtype if v.dtype.kind == "U" else float)
+            data[k][i][..., cols] = v
+        for k, v in s.t_events.items():
+            if k not in events:
+                events[k] = np.empty(B, dtype=object)
+                events[k].fill(np.empty(0))
+            events[k][i] = np.asarray(v, dtype=float)
+        for k in ("quad_error", "resonances", "crossings"):  # per-run reports of the engine path
+            if k in s.__dict__:
+                extras.setdefault(k, np.empty(B, dtype=object))[i] = s.__dict__[k]
+    if ys is None:
+        ys = np.full((B, 1, nt), np.nan)
+    fields_ = {k: v.reshape(batch_shape + v.shape[1:]) for k, v in data.items()}
+    sol = Solution("tau", te, ys.reshape(batch_shape + ys.shape[1:]), fields_, status.reshape(batch_shape),
+                   message.reshape(batch_shape), event.reshape(batch_shape),
+                   {k: v.reshape(batch_shape) for k, v in events.items()}, {}, None, nfev.reshape(batch_shape),
+                   batch_shape=batch_shape, t_final=t_final.reshape(batch_shape))
+    for k, v in extras.items():
+        setattr(sol, k, v.reshape(batch_shape))
+    return sol
+
+
+def one_by_one(call: Any, mem: Members, te: np.ndarray, names: tuple[str, ...], **per_member: np.ndarray) -> Solution:
+    """Each member by its own single call ``call(eps, G0, k2_0, delta0, lam0, nu0, tau_eval=..., **extra)``; a
+    ``ValueError`` refuses that member (status -1, its message)."""
+    out: list[Solution | str] = []
+    for i in range(mem.eps.size):
+        if i in mem.refused:
+            out.append(mem.refused[i])
+            continue
+        extra = {k: float(v[i]) for k, v in per_member.items()}
+        try:
+            out.append(call(float(mem.eps[i]), float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]),
+                            float(mem.lam0[i]), float(mem.nu0[i]), te, **extra))
+        except ValueError as exc:
+            out.append(str(exc))
+    return assemble(out, mem.batch_shape, te, names)
+
+
+def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any,
+                   tau_span: Any, tau_eval: Any, nu0: Any, opts: dict[str, Any], single: Any) -> Solution:
+    """The batch branch of :func:`rigidbody.euler_poinsot.averaged`.
+
+    ``opts`` holds the keyword options of the call (validated here as the single run validates them), ``single``
+    is :func:`averaged` itself (members of the engine path run one by one through it).
+    """
+    from ..core.validate import positive, real, span
+    from ._averaged import _check_method, _check_sigma, _check_tol
+    from ._model import _as_orbit, _check_body, _check_kind, _labels
+    from ._torques import resolve
+
+    _check_body(body)
+    t0, t1 = span(tau_span, "tau_span")
+    te = batch_grid(tau_eval, (t0, t1))
+    if te.size and (te[0] < t0 or te[-1] > t1):
+        raise ValueError(f"tau_eval must lie within tau_span = {tuple(tau_span)!r}, got [{te[0]}, {te[-1]}]")
+    rtol, atol = opts["rtol"], opts["atol"]
+    _check_tol(rtol, atol)
+    kind = opts["kind"]
+    _check_kind(kind)
+    orb = _as_orbit(opts["orbit"])
+    _check_method(opts["averaging"], "averaging")
+    _check_sigma(opts["sigma"])
+    if opts["method"] != "DOP853":
+        raise ValueError(f"a batch integrates with method='DOP853' (integrate_batch), got {opts['method']!r}")
+    k2_max = real(opts["k2_max"], "k2_max")
+    if not 0.0 < k2_max <= 1.0:
+        raise ValueError(f"k2_max (the separatrix stop) must lie in (0, 1], got {k2_max}")
+    min_spin = real(opts["min_spin_ratio"], "min_spin_ratio")
+    positive(opts["quad_tol"], "quad_tol")
+    mem = member_inputs(eps, G0, k2_0, delta0, lam0, nu0)
+    tensors = drag_batch(torque)
+    run = ClosedRun(_labels(body, kind), (0.0, 0.0, 0.0), orb, float(rtol), k2_max, min_spin)
+    if tensors is not None:
+        if opts["averaging"] != "auto":
+            raise ValueError("a batch of drag tensors is integrated with the closed forms (averaging='auto')")
+        drag_members(run, mem, tensors, kind)
+        check_members(mem, run)
+        return closed_batch(run, mem, (t0, t1), te)
+    what, tq = resolve(torque)
+    if what == "drag" and opts["averaging"] == "auto":
+        run.Id = _labels(body, kind, tq.diag)[1]
+        check_members(mem, run)
+        return closed_batch(run, mem, (t0, t1), te)
+
+    # the engine path: member by member through the single run (its adaptive quadrature is per state)
+    def call(eps_: float, G0_: float, k2_: float, d0: float, l0: float, n0: float, te_: np.ndarray) -> Solution:
+        return single(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, **opts)
+
+    return one_by_one(call, mem, te, FIELDS)
