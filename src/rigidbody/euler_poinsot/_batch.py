@@ -485,3 +485,63 @@ def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
         return single(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, **opts)
 
     return one_by_one(call, mem, te, FIELDS)
+
+
+def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,
+                   tau_eval: Any, nu0: Any, u0: Any, psi0: Any, opts: dict[str, Any], single: Any) -> Solution:
+    """The batch branch of :func:`rigidbody.euler_poinsot.simulate` (``opts``: its keyword options; ``single``:
+    :func:`simulate`, through which the ``'angles'`` formulation runs member by member)."""
+    from ..core.validate import real, span
+    from ._averaged import _check_sigma, _check_tol
+    from ._fullbatch import FullRun, full_batch
+    from ._model import _as_orbit, _check_body, _check_kind, _labels
+    from ._torques import probe, resolve
+
+    _check_body(body)
+    t0, t1 = span(tau_span, "tau_span")
+    te = batch_grid(tau_eval, (t0, t1))
+    if te.size and (te[0] < t0 or te[-1] > t1):
+        raise ValueError(f"tau_eval must lie within tau_span = {tuple(tau_span)!r}, got [{te[0]}, {te[-1]}]")
+    _check_tol(opts["rtol"], opts["atol"])
+    kind = opts["kind"]
+    _check_kind(kind)
+    sigma = _check_sigma(opts["sigma"])
+    orb = _as_orbit(opts["orbit"])
+    if opts["formulation"] not in ("body", "angles"):
+        raise ValueError(f"formulation must be 'body' or 'angles', got {opts['formulation']!r}")
+    k2_max = None if opts["k2_max"] is None else real(opts["k2_max"], "k2_max")
+    min_spin = real(opts["min_spin_ratio"], "min_spin_ratio")
+    mem = member_inputs(eps, G0, k2_0, delta0, lam0, nu0)
+    try:
+        ph = np.broadcast_to(np.asarray(u0, dtype=float), mem.batch_shape).reshape(-1)
+        ps = np.broadcast_to(np.asarray(psi0, dtype=float), mem.batch_shape).reshape(-1)
+    except ValueError:
+        raise ValueError(f"u0 and psi0 must broadcast to the batch shape {mem.batch_shape}") from None
+    what, tq = resolve(torque)
+    if what == "torque":
+        tq._check_setup(body, orb)
+    if opts["formulation"] == "angles" or opts["method"] != "DOP853":
+        def call(eps_: float, G0_: float, k2_: float, d0: float, l0: float, n0: float, te_: np.ndarray,
+                 u0: float, psi0: float) -> Solution:
+            return single(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, u0=u0, psi0=psi0, **opts)
+
+        names = ("G", "T", "k2", "delta", "lam", "nu", "n")
+        return one_by_one(call, mem, te, names, u0=ph, psi0=ps)
+    run = FullRun(body, what, tq, orb, kind, sigma, float(opts["rtol"]), float(opts["atol"]), k2_max, min_spin)
+    # the single run's checks, member by member (eps > 0 here: the full equations need a fast rotation)
+    crun = ClosedRun(_labels(body, kind), (0.0, 0.0, 0.0), orb, float(opts["rtol"]),
+                     1.0 if k2_max is None else k2_max, min_spin)
+    check_members(mem, crun)
+    for i in range(mem.eps.size):
+        if i not in mem.refused and not mem.eps[i] > 0.0:
+            mem.refused[i] = "eps must be positive for the full equations (eps = 0 has no fast rotation to resolve)"
+    if what == "torque":  # one evaluation at a valid member's start, with the single run's message on failure
+        from ._full import initial_state
+
+        good = [i for i in range(mem.eps.size) if i not in mem.refused]
+        if good:
+            i = good[0]
+            st = initial_state(body, float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]), float(mem.lam0[i]),
+                               kind=kind, u0=float(ph[i]), psi0=float(ps[i]), sigma=sigma)
+            probe(tq, st["g"] / body.A, st["R"], float(mem.nu0[i]))
+    return full_batch(run, mem, ph, ps, (t0, t1), te)

@@ -239,7 +239,8 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
     # the branch of the initial value given by the user
     lam = lam + 2.0 * math.pi * np.round((mem.lam0[:, None] - lam[:, :1]) / (2.0 * math.pi))
     if e == 0.0:
-        nu = np.where(nan, np.nan, te[None, :] / mem.eps[:, None] + mem.nu0[:, None])
+        with np.errstate(divide="ignore", invalid="ignore"):  # refused members (eps = 0) are NaN anyway
+            nu = np.where(nan, np.nan, te[None, :] / mem.eps[:, None] + mem.nu0[:, None])
     else:
         nu = Y[:, 7]
     data = {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[:, 2], -1.0, 1.0)), "n": n, "nu": nu,
