@@ -80,24 +80,32 @@ def fields(run: ClosedRun, tau: np.ndarray, y: np.ndarray, z: Any, limit: bool, 
            ie: Any) -> dict[str, np.ndarray]:
     """Output fields from raw states ``y`` of shape ``(..., n_state, n_t)`` (members on the leading axes)."""
     lnG, s = y[..., 0, :], y[..., 1, :]
-    zz = np.asarray(z, dtype=float)[..., None]
     G = np.exp(lnG)
-    k2 = np.clip(zz * np.exp(s), 0.0, 1.0)
-    T = 0.5 * G * G * _k.s_over_r(run.A, k2)
-    nan = np.isnan(lnG)
+    k2 = np.exp(s)
+    k2 *= np.asarray(z, dtype=float)[..., None]
+    np.minimum(k2, 1.0, out=k2)
+    A1, A2, A3 = run.A
+    T = A1 * (A2 - A3) + A3 * (A1 - A2) * k2  # G^2 S/(2R), in place
+    np.divide(A2 - A3 + (A1 - A2) * k2, T, out=T)
+    T *= 0.5 * G * G
     if limit:
-        delta = np.where(nan, np.nan, np.asarray(delta0, dtype=float)[..., None] + 0.0 * lnG)
+        nan = np.isnan(lnG)
+        delta = np.where(nan, np.nan, np.asarray(delta0, dtype=float)[..., None])
         lam = y[..., 2, :]
-        nu = np.where(nan, np.nan, np.asarray(nu0, dtype=float)[..., None] + 0.0 * lnG)
+        nu = np.where(nan, np.nan, np.asarray(nu0, dtype=float)[..., None])
     else:
         delta, lam = y[..., 2, :], y[..., 3, :]
         if run.orbit.e != 0.0:
             nu = y[..., 4, :]
-        else:
-            nu = np.where(nan, np.nan, tau * np.asarray(ie, dtype=float)[..., None]
-                          + np.asarray(nu0, dtype=float)[..., None])
+        else:  # NaN where the state is (0 * NaN)
+            nu = tau * np.asarray(ie, dtype=float)[..., None] + np.asarray(nu0, dtype=float)[..., None] + 0.0 * lnG
+    n = np.empty((*lam.shape[:-1], 3, lam.shape[-1]))
     sd = np.sin(delta)
-    n = np.stack([sd * np.cos(lam), sd * np.sin(lam), np.cos(delta)], axis=-2)
+    np.cos(lam, out=n[..., 0, :])
+    n[..., 0, :] *= sd
+    np.sin(lam, out=n[..., 1, :])
+    n[..., 1, :] *= sd
+    np.cos(delta, out=n[..., 2, :])
     return {"G": G, "T": T, "k2": k2, "delta": delta, "lam": lam, "nu": nu, "n": n}
 
 
@@ -221,8 +229,6 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
     t0, t1 = float(tau_span[0]), float(tau_span[1])
     e = run.orbit.e
     A = run.A
-    out = {k: np.full((B, nt), np.nan) for k in FIELDS if k != "n"}
-    out["n"] = np.full((B, 3, nt), np.nan)
     status = np.full(B, -1, dtype=int)
     message = np.empty(B, dtype=object)
     event = np.empty(B, dtype=object)
@@ -230,7 +236,7 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
     nfev = np.zeros(B, dtype=int)
     t_final = np.full(B, t0)
     ymax = 5 if e != 0.0 else 4
-    Y = np.full((B, ymax, nt), np.nan)
+    done: list[tuple[np.ndarray, dict[str, np.ndarray], np.ndarray]] = []  # members, fields, raw rows
     none = np.empty(0)
     none.setflags(write=False)
     tev: dict[str, np.ndarray] = {}
@@ -282,15 +288,14 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
         sol = integrate_batch(rhs, (t0, t1), y0, t_eval=te, rtol=rt, atol=at, events=events, args=args,
                               time_name="tau")
         f = fields(run, te, sol.y, z, limit, mem.delta0[idx], mem.nu0[idx], ie)
-        for k in FIELDS:
-            out[k][idx] = f[k]
         if limit:  # the raw rows (ln G, ln k2, delta, lambda[, nu]) of every member
-            Y[idx, 0:2], Y[idx, 3] = sol.y[:, 0:2], sol.y[:, 2]
-            Y[idx, 2] = f["delta"]
+            y = np.empty((idx.size, ymax, nt))
+            y[:, 0:2], y[:, 2], y[:, 3] = sol.y[:, 0:2], f["delta"], sol.y[:, 2]
             if ymax == 5:
-                Y[idx, 4] = f["nu"]
+                y[:, 4] = f["nu"]
         else:
-            Y[idx, :ns] = sol.y
+            y = sol.y
+        done.append((idx, f, y))
         status[idx] = sol.status
         message[idx] = sol.message
         event[idx] = sol.event
@@ -300,6 +305,15 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
             if name in sol.t_events:
                 tev[name][idx] = sol.t_events[name]
     shape = mem.batch_shape
+    if len(done) == 1 and done[0][0].size == B:  # one group of every member: its arrays as they are
+        out, Y = done[0][1], done[0][2]
+    else:
+        out = {k: np.full((B, 3, nt) if k == "n" else (B, nt), np.nan) for k in FIELDS}
+        Y = np.full((B, ymax, nt), np.nan)
+        for idx, f, y in done:
+            for k in FIELDS:
+                out[k][idx] = f[k]
+            Y[idx] = y
     data = {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()}
     t_events = {name: arr.reshape(shape) for name, arr in tev.items()}
     return Solution("tau", te, Y.reshape(shape + Y.shape[1:]), data, status.reshape(shape), message.reshape(shape),
