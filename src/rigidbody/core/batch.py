@@ -136,57 +136,6 @@ class _Dense:
         return np.concatenate(out_w), np.concatenate(out_j), np.concatenate(out_y)
 
 
-def _all_members(ia: np.ndarray, nd: np.ndarray, m: int) -> bool:
-    """Whether the members ``ia[nd]`` are all ``m`` active members in order (their stages are ``K`` itself)."""
-    return bool(nd.size == m and ia.size == m)
-
-
-def _rms_rows(x: np.ndarray) -> np.ndarray:
-    return np.sqrt(np.einsum("ij,ij->i", x, x) / x.shape[1])
-
-
-class _Dense:
-    """The DOP853 dense output of one accepted step for a set of members (``F`` of shape (7, m, n))."""
-
-    __slots__ = ("F", "h", "t_old", "y_old")
-
-    def __init__(self, t_old: np.ndarray, h: np.ndarray, y_old: np.ndarray, F: np.ndarray) -> None:
-        self.t_old, self.h, self.y_old, self.F = t_old, h, y_old, F
-
-    def __call__(self, t: np.ndarray, rows: np.ndarray) -> np.ndarray:
-        """States at times ``t`` (shape (p,)) of the members ``rows`` (indices into this step's members)."""
-        x = ((t - self.t_old[rows]) / self.h[rows])[:, None]
-        F = self.F[:, rows, :]
-        y = np.zeros_like(F[0])
-        for i, f in enumerate(F[::-1]):
-            y += f
-            if i % 2 == 0:
-                y *= x
-            else:
-                y *= 1.0 - x
-        return y + self.y_old[rows]
-
-    def on_grid(self, te: np.ndarray, rows: np.ndarray, lo: np.ndarray, cnt: np.ndarray) -> tuple[np.ndarray, ...]:
-        """States on the grid points ``te[lo_i], ..., te[lo_i + cnt_i - 1]`` of each member ``rows_i`` (``cnt_i
-        >= 1``): the interpolant evaluated per member on a block of its samples (the member's coefficients
-        gathered once, not once per sample). Returns the members' positions, the grid indices and the states
-        (one row per sample)."""
-        S = int(cnt.max())
-        k = np.arange(S)
-        J = lo[:, None] + k
-        valid = k < cnt[:, None]
-        t = te[np.minimum(J, te.size - 1)]
-        x = ((t - self.t_old[rows][:, None]) / self.h[rows][:, None])[:, :, None]
-        x1 = 1.0 - x
-        F = self.F[:, rows, :][:, :, None, :]
-        y = F[6] * x
-        for r in range(5, -1, -1):  # the alternating factors of scipy's Dop853DenseOutput, innermost first
-            y += F[r]
-            y *= x1 if r % 2 else x
-        y = y[valid] + np.repeat(self.y_old[rows], cnt, axis=0)
-        return np.repeat(np.arange(rows.size), cnt), J[valid], y
-
-
 def _locate(
     ev: Event, dense: _Dense, rows: np.ndarray, ta: np.ndarray, tb: np.ndarray, ga: np.ndarray,
     args_rows: tuple[np.ndarray, ...],
