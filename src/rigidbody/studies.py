@@ -343,7 +343,8 @@ def spin_end(
     k2_0 = real(k2_0, "k2_0")
     if not 0.0 < k2_0 < 1.0:
         raise ValueError(f"k2_0 must lie in (0, 1), got {k2_0}")
-    sol = ep.averaged(body, I, 0.0, k2_0=k2_0, tau_span=(0.0, real(tau_end, "tau_end")), rtol=rtol, atol=1e-10)
+    sol = ep.averaged(body, I, 0.0, k2_0=k2_0, tau_span=(0.0, real(tau_end, "tau_end")), rtol=rtol, atol=1e-10,
+                      k2_max=1.0 - 1e-6)  # the default stop next to the separatrix, stated
     if sol.status == -1:
         raise RuntimeError(sol.message)
     k2_end = float(sol.k2[-1])

@@ -115,6 +115,11 @@ def test_too_large_eps_leaves_the_theory():
     # averaged k2 stays below 0.99: the averaged answer is meaningless there
     s = ep.simulate(BODY, CASE1, 0.1, min_spin_ratio=0.0, tau_span=(0, 1))
     assert s.status == 1 and s.event == "separatrix" and s.tau[-1] < 1
+    # asked to go on (k2_max=None), the full motion passes into the other kind there
+    c = ep.simulate(BODY, CASE1, 0.1, min_spin_ratio=0.0, tau_span=(0, 1), k2_max=None)
+    crossings = c.t_events["separatrix"]
+    assert c.status == 0 and crossings.size and "min" in set(c.kind)
+    assert crossings[0] == pytest.approx(s.tau[-1], abs=1e-3)  # k2 = 1 - 1e-6 is reached just before k2 = 1
     a = ep.averaged(BODY, CASE1, 0.1, min_spin_ratio=0.0, tau_span=(0, 1))
     assert a.k2.max() <= 0.99
     # a moderate eps passes the start check but the decaying rotation becomes slow: the run stops with status
@@ -257,3 +262,62 @@ def test_averaged_vs_full_with_a_nonzero_initial_true_anomaly():
     assert s.status == 0 and a.status == 0
     for f in FIELDS:
         assert np.abs(getattr(s, f) - getattr(a, f)).max() < 20 * eps**2, f
+
+
+def dissipation(kappa):
+    """A torque that removes kinetic energy at constant |G| (as internal energy dissipation does, on average).
+
+    M = -kappa (omega - (omega . g) g / G^2) is perpendicular to g: dG = 0 exactly, dT = -kappa |omega_perp|^2.
+    """
+    A = BODY.A
+
+    def torque(omega, C, nu):
+        g = omega * A
+        return -kappa * (omega - (omega * g).sum(-1, keepdims=True) * g / (g * g).sum(-1, keepdims=True))
+
+    return torque
+
+
+def test_full_motion_goes_through_the_separatrix():
+    # a minor-axis spin ('min', k2 = 0.2) loses energy at constant G, crosses G^2 = 2 T A2 near tau = 1.55 and
+    # ends as a major-axis spin: asked to (k2_max=None), the run goes on through the crossing, the osculating kind
+    # switches, and the two independent codings of the full equations agree through it
+    te = np.linspace(0, 3, 31)
+    kw = dict(kind="min", k2_0=0.2, tau_span=(0, 3), tau_eval=te, delta0=1.0, lam0=0.3, u0=0.4, psi0=0.2,
+              k2_max=None)
+    b = ep.simulate(BODY, dissipation(3.0), 0.05, **kw)
+    a = ep.simulate(BODY, dissipation(3.0), 0.05, formulation="angles", **kw)
+    assert a.status == 0 and b.status == 0
+    assert b.t_events["separatrix"].size >= 1
+    tc = b.t_events["separatrix"][0]
+    assert a.t_events["separatrix"][0] == pytest.approx(tc, abs=1e-6)
+    before, after = te < tc, te > tc
+    assert set(b.kind[before]) == {"min"} and set(b.kind[after]) == {"max"}
+    assert np.array_equal(a.kind, b.kind) and np.array_equal(a.sigma, b.sigma)
+    for f in FIELDS:
+        # rtol 1e-10 over tau/eps^2 = 1200 units of t~, amplified near the saddles: ~1e-8; bound 1e-6
+        assert getattr(a, f) == pytest.approx(getattr(b, f), abs=1e-6), f
+    # an independent check of the body formulation: the torque conserves G exactly, and lowers T
+    assert b.G == pytest.approx(1.0, abs=1e-8)
+    assert np.all(np.diff(b.T) < 0)
+    # T passes the separatrix value G^2/(2 A2) at the crossing
+    assert np.interp(tc, te, b.T) == pytest.approx(1 / (2 * BODY.A2), abs=2e-3)  # O(eps^2) wobble of T
+    # the osculating k2 is that of the kind at each time: rises to 1 in 'min', falls from 1 in 'max'
+    assert np.all(np.diff(b.k2[before]) > 0) and np.all(np.diff(b.k2[after]) < 0)
+
+
+@pytest.mark.parametrize("T0_kind", [("max", 0.99), ("min", 0.5)])
+def test_initial_state_by_energy(T0_kind):
+    kind, k2 = T0_kind
+    T0 = ep.T_from(BODY, 1.2, k2, kind)
+    kw = dict(G0=1.2, tau_span=(0, 0.05), tau_eval=[0, 0.05])
+    s = ep.simulate(BODY, CASE1, 0.04, T0=T0, **kw)
+    r = ep.simulate(BODY, CASE1, 0.04, k2_0=k2, kind=kind, **kw)
+    assert s.kind[0] == kind and s.k2[0] == pytest.approx(k2, abs=1e-12) and s.T[0] == pytest.approx(T0, abs=1e-14)
+    assert s.G == pytest.approx(r.G, abs=1e-12)
+    with pytest.raises(ValueError, match="either by T0 or by k2_0"):
+        ep.simulate(BODY, CASE1, 0.04, T0=T0, k2_0=0.5, **kw)
+    with pytest.raises(ValueError, match="separatrix"):
+        ep.simulate(BODY, CASE1, 0.04, T0=1.2**2 / (2 * BODY.A2), **kw)
+    with pytest.raises(ValueError, match="T0 must lie"):
+        ep.simulate(BODY, CASE1, 0.04, T0=1.2**2 / (2 * BODY.A1) * 0.9, **kw)

@@ -55,11 +55,24 @@ Full equations
 ``initial_state(body, G0, k2_0, delta0, lam0)``
     the attitude that starts a full run on given slow variables.
 
+Separatrix (k^2 = 1) and its crossing
+-------------------------------------
+``Separatrix(body, G)``
+    the separatrix motions in hyperbolic functions, on the four arcs ``ARCS`` between the saddles
+    (rotation about the intermediate axis) that bound the four ``REGIONS`` (kind, sigma).
+``separatrix_limits(body, torque, G, delta, lam, nu)``
+    limits of the averaged rates at k^2 -> 1 (the same from all regions) and their 1/K(k) approach.
+``separatrix_crossing(body, torque, G, delta, lam, nu, source)``
+    drifts of the energy along the arcs and the probabilities of capture into each region.
+``averaged(..., branch=...)``, ``averaged_branches(...)``
+    averaged runs go on through the separatrix in the chosen (by default the most probable) region, or in
+    each; ``simulate`` goes through it as well.
+
 All quantities are nondimensional in the paper's section-3 scaling (G0 = 1, A~ = A Omega0/G0,
 I~ = I/(G0 eps^2), orbital rate eps, tau = eps^2 t~); see docs/euler_poinsot.md.
 """
 
-from ._averaged import average_torque, averaged, averaged_rates, precession_rate
+from ._averaged import average_torque, averaged, averaged_branches, averaged_rates, precession_rate
 from ._engine import TorqueAverage
 from ._full import initial_state, simulate
 from ._model import (
@@ -79,6 +92,15 @@ from ._model import (
     spin_ratio,
 )
 from ._motion import EulerPoinsot
+from ._separatrix import (
+    ARCS,
+    REGIONS,
+    Separatrix,
+    SeparatrixCrossing,
+    SeparatrixLimits,
+    separatrix_crossing,
+    separatrix_limits,
+)
 from ._torques import (
     ConstantTorque,
     FunctionTorque,
@@ -91,7 +113,9 @@ from ._torques import (
 )
 
 __all__ = [
+    "ARCS",
     "KINDS",
+    "REGIONS",
     "Body",
     "ConstantTorque",
     "Drag",
@@ -103,6 +127,9 @@ __all__ = [
     "N_star",
     "N_time",
     "Orbit",
+    "Separatrix",
+    "SeparatrixCrossing",
+    "SeparatrixLimits",
     "T_from",
     "Torque",
     "TorqueAverage",
@@ -110,6 +137,7 @@ __all__ = [
     "ViscousCavity",
     "average_torque",
     "averaged",
+    "averaged_branches",
     "averaged_rates",
     "chi",
     "dk2_dtau",
@@ -119,6 +147,8 @@ __all__ = [
     "k2_from",
     "kind_of",
     "precession_rate",
+    "separatrix_crossing",
+    "separatrix_limits",
     "simulate",
     "spin_ratio",
 ]

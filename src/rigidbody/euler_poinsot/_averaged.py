@@ -54,6 +54,7 @@ from ..core.ode import Event, Solution, integrate
 from ..core.validate import positive, real, span
 from ._engine import Averager, TorqueAverage, _Mean, _State, error_of, harmonic, mean_of
 from ._model import (
+    K2_SPIN_CAP,
     Body,
     Orbit,
     _as_orbit,
@@ -68,9 +69,10 @@ from ._model import (
     _S_over_R,
 )
 from ._motion import EulerPoinsot
+from ._separatrix import K2_SWITCH, SeparatrixCrossing, _check_branch, _choose, _initial_kind, separatrix_crossing
 from ._torques import drag_as_torque, resolve
 
-__all__ = ["average_torque", "averaged", "averaged_rates", "precession_rate"]
+__all__ = ["average_torque", "averaged", "averaged_branches", "averaged_rates", "precession_rate"]
 
 
 def averaged_rates(
@@ -500,25 +502,28 @@ def averaged(
     torque: Any,
     eps: float,
     G0: float = 1.0,
-    k2_0: float = 0.99,
+    k2_0: float | None = None,
     delta0: float = math.pi / 4,
     lam0: float = math.pi / 4,
     tau_span: tuple[float, float] = (0.0, 3.0),
     tau_eval: Any = None,
     nu0: float = 0.0,
     *,
-    kind: str = "max",
+    kind: str | None = None,
+    T0: float | None = None,
     orbit: Orbit | None = None,
     rtol: float = 1e-10,
     atol: float = 1e-12,
     method: str = "DOP853",
-    k2_max: float = 1.0 - 1e-6,
+    k2_max: float | None = 1.0 - 1e-6,
     min_spin_ratio: float = 1.0,
     sigma: int = 1,
     averaging: str = "auto",
     quad_tol: float = 1e-12,
     drift_tol: float | None = 0.5,
     resonance_tol: float | None = 0.05,
+    branch: Any = "likely",
+    seed: Any = None,
 ) -> Solution:
     r"""Integrate the nondimensional averaged system (9) in the slow time :math:`\tau = \varepsilon^2\tilde t`.
 
@@ -539,26 +544,36 @@ def averaged(
         :math:`\nu = \tau/\varepsilon + \nu_0` (Kepler's law for an eccentric ``orbit``). ``eps = 0`` gives
         the orbit-averaged limit (the gravity terms averaged over :math:`\nu`).
     G0, k2_0, delta0, lam0 : float
-        Initial :math:`\tilde G`, :math:`k^2` (in [0, 1)), :math:`\delta`, :math:`\lambda` (radians).
+        Initial :math:`\tilde G`, :math:`k^2` (in [0, 1); default 0.99), :math:`\delta`, :math:`\lambda`
+        (radians).
     tau_span : (float, float)
     tau_eval : array_like, optional
         Output times (default: the solver's steps).
     nu0 : float
         Initial true anomaly.
     kind : {'max', 'min'}
-        Kind of Euler--Poinsot motion ('max': about the axis of :math:`A_1`, the paper's case).
+        Initial kind of Euler--Poinsot motion ('max': about the axis of :math:`A_1`, the paper's case;
+        the default).
+    T0 : float, optional
+        The initial kinetic energy instead of ``k2_0`` and ``kind``: any :math:`T_0` in
+        :math:`[G_0^2/(2A_1), G_0^2/(2A_3)]` off the separatrix (the kind follows from :func:`kind_of`).
     orbit : Orbit, optional
         Default circular.
     rtol, atol, method
         Passed to the solver (``rigidbody.core.ode.integrate``).
-    k2_max : float
-        The run ends (status 1, event ``'separatrix'``) when :math:`k^2` reaches this value: at
-        :math:`k^2 = 1` the period of the Euler--Poinsot motion is infinite and (6) does not hold.
+    k2_max : float or None
+        The run ends (status 1, event ``'separatrix'``) when :math:`k^2` reaches this value (default
+        :math:`1 - 10^{-6}`: at :math:`k^2 = 1` the period of the Euler--Poinsot motion is infinite). ``None``:
+        the evolution goes on through the separatrix into the other kind of motion (see ``branch``), with
+        :math:`G`, :math:`T` and :math:`\mathbf n` continuous; the averaged rates have finite limits there
+        (:func:`separatrix_limits`).
     min_spin_ratio : float
         The run ends (event ``'slow_rotation'``) when the rotation is no longer fast: when
         :func:`spin_ratio` (frequency :math:`2\pi/P` of the Euler--Poinsot motion over the orbital rate
         :math:`\varepsilon`) falls to this value (``eps > 0`` only; a start below it raises ``ValueError``;
-        pass 0 to switch the check off, e.g. to show where the theory fails).
+        pass 0 to switch the check off, e.g. to show where the theory fails). In a run through the separatrix
+        (``k2_max=None``) the ratio is taken at :math:`\min(k^2, 0.99)`: the momentary infinite period of the
+        crossing itself does not end it.
     sigma : {+1, -1}
         Sense of rotation of the Euler--Poinsot motion (torque objects; the drag tensor's averages do not
         depend on it).
@@ -582,15 +597,32 @@ def averaged(
         (relative to :math:`G`, :math:`T`; radians for the direction) ends the run there (event
         ``'resonance'``): the passage is too slow (a capture into resonance is possible). ``None`` switches
         the check off.
+    branch : 'likely', 'random', (str, int) or sequence of them
+        Where the motion goes at a separatrix crossing: beyond the separatrix there are motions of either
+        kind and sense, ``(kind, sigma)``, and which one the body enters depends on the fast phase at the
+        crossing; :func:`separatrix_crossing` gives their capture probabilities. ``'likely'`` (default)
+        continues in the most probable one (ties: ``sigma = +1``, then ``'max'``), ``'random'`` draws it
+        (``seed``), a region ``('max', -1)`` forces it, a list of regions forces one per crossing (then
+        ``'likely'``). A forced region of probability 0 (its drift points back to the separatrix) ends the
+        run there with status 1, event ``'separatrix'``; so does a separatrix that no region leaves (it
+        attracts from all sides). :func:`averaged_branches` runs every branch of the first crossing.
+    seed : int or numpy.random.Generator, optional
+        Random source for ``branch='random'``.
 
     Returns
     -------
     Solution
         ``sol.tau``, ``sol.G``, ``sol.T``, ``sol.k2``, ``sol.delta`` (in [0, pi]), ``sol.lam`` (continuous,
         unwrapped), ``sol.nu`` (the true anomaly; constant ``nu0`` when ``eps = 0``, where it is averaged
-        out), ``sol.n`` (unit vector of G in :math:`Ox_i`, shape (3, n)), ``sol.status`` (0 end reached,
-        1 an event ended the run, -1 failure), ``sol.message``, ``sol.event`` (``'separatrix'``,
-        ``'slow_rotation'`` or None; with a torque object also ``'fast_drift'`` and ``'resonance'``).
+        out), ``sol.n`` (unit vector of G in :math:`Ox_i`, shape (3, n)), ``sol.kind`` and ``sol.sigma``
+        (the kind of motion and its sense at every output time; ``k2`` is the modulus of that kind),
+        ``sol.status`` (0 end reached, 1 an event ended the run, -1 failure), ``sol.message``, ``sol.event``
+        (``'separatrix'``, ``'slow_rotation'`` or None; with a torque object also ``'fast_drift'`` and
+        ``'resonance'``). ``sol.t_events['separatrix']`` holds the times of the separatrix crossings and
+        ``sol.crossings`` one dict per crossing: ``tau``, ``source`` and ``region`` (the regions
+        ``(kind, sigma)`` before and after), ``probabilities`` (capture probability of each region) and
+        ``drifts`` (see :class:`SeparatrixCrossing`). A run that crossed the separatrix has as raw state
+        ``sol.y`` the rows ``G, k2, n1, n2, n3`` (and a piecewise dense output ``sol.sol``).
         With a torque object the result also has ``sol.quad_error`` (the largest estimated quadrature error
         of the engine along the run, relative to the size of the averaged torque; 0 when only closed forms
         are used), ``sol.resonances`` (the resonance crossings with their predicted jumps: dicts with
@@ -606,105 +638,41 @@ def averaged(
     >>> bool(sol.G[-1] < sol.G[0]), sol.status
     (True, 0)
     """
+    _check_body(body)
+    k2_0, kind = _initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
     eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)
     _check_tau_eval(tau_eval, tau_span)
     _check_tol(rtol, atol)
-    _check_kind(kind)
     orb = _as_orbit(orbit)
     _check_method(averaging, "averaging")
     sigma = _check_sigma(sigma)
     quad_tol = positive(quad_tol, "quad_tol")
     drift_tol = None if drift_tol is None else positive(drift_tol, "drift_tol")
     resonance_tol = None if resonance_tol is None else positive(resonance_tol, "resonance_tol")
+    branch = _check_branch(branch)
     what, tq = resolve(torque)
-    k2_max = real(k2_max, "k2_max")
-    if not (k2_0 < k2_max <= 1.0):
-        raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {k2_max}: "
-                         "raise k2_max or start further from the separatrix")
-    if what == "torque" or averaging == "numerical":
-        if what == "drag":
-            tq = drag_as_torque(tq, body, orb)
-        tq._check_setup(body, orb)
-        _check_spin(_labels(body, kind), G0, k2_0, eps, min_spin_ratio)
-        setup = _Setup(body, Averager(tq, averaging, quad_tol), eps, orb, nu0, rtol, atol, method, k2_max,
-                       min_spin_ratio, drift_tol, resonance_tol)
-        return _finish_kind(_integrate_kind(setup, kind, sigma, tau_span, G0, k2_0, _unit(delta0, lam0), nu0,
-                                            tau_eval), tau_eval, lam0)
-    drag = tq
-    A, Id = _labels(body, kind, drag.diag)
-    _check_spin(A, G0, k2_0, eps, min_spin_ratio)
-    circular = orb.e == 0.0
-    mf = orb.mean_factor
-    inv_eps = 1.0 / eps if eps > 0 else 0.0
-
-    def grav(G: float, k2: float, n1: float, n2: float, n3: float, nu: float) -> tuple[float, float, float]:
-        Ns = _nstar(A, k2)
-        cn, sn = math.cos(nu), math.sin(nu)
-        c = 1.5 * orb.factor(nu) * Ns * (cn * n1 + sn * n2) / G
-        return -c * n3 * sn, c * n3 * cn, c * (n1 * sn - n2 * cn)
-
-    def rhs_limit(tau: float, y: np.ndarray) -> list[float]:
-        # eps = 0: delta is constant and lambda = lam0 + cos(delta0) * Lambda, dLambda = (3/4) mf N*/G
-        G, k2 = y[0], y[1]
-        k2c = 0.0 if k2 < 0.0 else (1.0 if k2 > 1.0 else k2)
-        dG, _ = _drag_rates(A, Id, G, k2c)
-        return [dG, _dk2(A, Id, k2c), 0.75 * mf * _nstar(A, k2c) / G]
-
-    def rhs(tau: float, y: np.ndarray) -> list[float]:
-        G, k2, n1, n2, n3 = y[0], y[1], y[2], y[3], y[4]
-        k2c = 0.0 if k2 < 0.0 else (1.0 if k2 > 1.0 else k2)
-        nrm = math.sqrt(n1 * n1 + n2 * n2 + n3 * n3)
-        n1, n2, n3 = n1 / nrm, n2 / nrm, n3 / nrm
-        dG, _ = _drag_rates(A, Id, G, k2c)
-        dk2 = _dk2(A, Id, k2c)
-        if eps > 0.0 and not circular:
-            nu = y[5]
-            d1, d2, d3 = grav(G, k2c, n1, n2, n3, nu)
-            return [dG, dk2, d1, d2, d3, inv_eps * orb.nu_rate(nu)]
-        nu = tau * inv_eps + nu0
-        d1, d2, d3 = grav(G, k2c, n1, n2, n3, nu)
-        return [dG, dk2, d1, d2, d3]
-
-    n0 = _unit(delta0, lam0)
-    y0 = [G0, k2_0, *n0] if eps > 0.0 else [G0, k2_0, 0.0]
-    if eps > 0.0 and not circular:
-        y0.append(nu0)
-    cd0, sd0 = math.cos(delta0), math.sin(delta0)
-    events = [
-        Event(lambda t, y: y[1] - k2_max, "separatrix", True, 1.0,
-              f"k2 reached {k2_max:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
-              "where the averaging (6) does not hold"),
-    ]
-    if eps > 0.0:
-        events.append(
-            Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), 1.0)) / eps - min_spin_ratio,
-                  "slow_rotation", True, -1.0, _slow_msg(min_spin_ratio))
-        )
-    res = integrate(rhs if eps > 0.0 else rhs_limit, tau_span, y0, rtol=rtol, atol=atol, method=method,
-                    dense_output=True, events=events, time_name="tau")
-
-    def lam_limit(y: np.ndarray) -> np.ndarray:
-        return lam0 + cd0 * y[2]
-
-    def nvec(y: np.ndarray) -> np.ndarray:
-        if eps == 0.0:
-            lam = lam_limit(y)
-            return np.array([sd0 * np.cos(lam), sd0 * np.sin(lam), np.full_like(lam, cd0)])
-        n = y[2:5]
-        return n / np.linalg.norm(n, axis=0)
-
-    def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
-        G = y[0]
-        k2 = np.clip(y[1], 0.0, 1.0)
-        n = nvec(y) if y.shape[1] else np.empty((3, 0))
-        T = 0.5 * G**2 * np.array([_S_over_R(A, float(x)) for x in k2])
-        if eps > 0.0 and not circular:
-            nu = y[5]
-        else:
-            nu = tau * inv_eps + nu0 if eps > 0 else np.full_like(tau, nu0)
-        return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1.0, 1.0)), "n": n, "nu": nu}
-
-    return _finish(res, tau_eval, make_fields, lam0, nvec, lam_limit if eps == 0.0 else None)
+    through = k2_max is None
+    if through:
+        k2_stop = K2_SWITCH
+        if k2_0 >= k2_stop:
+            raise ValueError(f"k2_0 = {k2_0!r} lies within 1e-9 of the separatrix: start on either side of it "
+                             "(T0 slightly off G0^2/(2 A2))")
+    else:
+        k2_stop = real(k2_max, "k2_max")
+        if not (k2_0 < k2_stop <= 1.0):
+            raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {k2_stop}: "
+                             "raise k2_max or start further from the separatrix")
+    region0 = (kind, sigma)
+    gen = _Generic(body, tq if what == "torque" else drag_as_torque(tq, body, orb), averaging, quad_tol, eps, orb,
+                   nu0, rtol, atol, method, min_spin_ratio, drift_tol, resonance_tol)
+    if what == "drag" and averaging != "numerical":
+        gen.drag = tq  # the closed forms (9) of the paper; the torque object serves the crossings
+    else:
+        gen.torque._check_setup(body, orb)
+    gen.spin_cap = K2_SPIN_CAP if through else 1.0
+    _check_spin(_labels(body, kind), G0, min(k2_0, gen.spin_cap), eps, min_spin_ratio)
+    first = gen.piece(region0, tau_span, G0, k2_0, np.array(_unit(delta0, lam0)), nu0, lam0, k2_stop)
+    return _through(first, gen, tau_span, tau_eval, through, branch, np.random.default_rng(seed))
 
 
 # --------------------------------------------------------------------------------------------------
@@ -726,6 +694,7 @@ class _Setup:
     min_spin_ratio: float
     drift_tol: float | None
     resonance_tol: float | None
+    spin_cap: float = K2_SPIN_CAP
 
 
 @dataclass
@@ -755,7 +724,7 @@ def _state_of(setup: _Setup, kind: str, sigma: int, tau: float, y: np.ndarray, t
 
 def _slow_drift(setup: _Setup, st: _State, m: _Mean) -> float:
     r"""Relative change of the slow variables in one Euler--Poinsot period, :math:`\varepsilon^2P(\ldots)`."""
-    freq = _nut_freq(st.a, st.G, st.k2)
+    freq = _nut_freq(st.a, st.G, min(st.k2, setup.spin_cap))  # next to the separatrix: see K2_SPIN_CAP
     if freq <= 0.0:
         return math.inf
     dG = float(st.n @ m.L)
@@ -801,7 +770,7 @@ def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: flo
               "where the averaging does not hold"),
     ]
     if eps > 0.0:
-        events.append(Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), 1.0)) / eps
+        events.append(Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), setup.spin_cap)) / eps
                             - setup.min_spin_ratio, "slow_rotation", True, -1.0, _slow_msg(setup.min_spin_ratio)))
         if setup.drift_tol is not None:
             tol = setup.drift_tol
@@ -833,7 +802,9 @@ def _resonances(seg: _Segment) -> list[dict[str, float]]:
     tau = res.time
     if tau.size < 2:
         return []
-    k2s = np.clip(res.y[1], 0.0, 1.0 - 1e-12)
+    # within 1 - k2 < 0.01 of the separatrix the rotation number grows without bound (like the period) and the
+    # passage there is the separatrix crossing's business, not a resonance's: the search stops at K2_SPIN_CAP
+    k2s = np.clip(res.y[1], 0.0, K2_SPIN_CAP)
     rho = np.array([_rho(body, kind, float(x)) for x in k2s])
     out = []
 
@@ -867,6 +838,15 @@ def _resonances(seg: _Segment) -> list[dict[str, float]]:
     return out
 
 
+def _slow_fields(A: tuple[float, float, float], y: np.ndarray, nvec: Any, nu: Any) -> dict[str, np.ndarray]:
+    """G, T (from (5) inverted, labelled moments A), k2, delta, n and nu of raw states y = (G, k2, ...)."""
+    G = y[0]
+    k2 = np.clip(y[1], 0.0, 1.0)
+    n = nvec(y) if y.shape[1] else np.empty((3, 0))
+    T = 0.5 * G**2 * np.array([_S_over_R(A, float(x)) for x in k2])
+    return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1.0, 1.0)), "n": n, "nu": nu}
+
+
 def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
     """Output fields of a segment (G, T, k2, delta, lam, nu, n), the quadrature report and the resonance check."""
     setup, res = seg.setup, seg.res
@@ -878,17 +858,13 @@ def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
         return n / np.linalg.norm(n, axis=0)
 
     def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
-        G = y[0]
-        k2 = np.clip(y[1], 0.0, 1.0)
-        n = nvec(y) if y.shape[1] else np.empty((3, 0))
-        T = 0.5 * G**2 * np.array([_S_over_R(A, float(x)) for x in k2])
         if eps == 0.0:
             nu = np.full_like(tau, seg.nu0)
         elif setup.orbit.e == 0.0:
             nu = (tau - seg.tau0) / eps + seg.nu0
         else:
             nu = y[5]
-        return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1.0, 1.0)), "n": n, "nu": nu}
+        return _slow_fields(A, y, nvec, nu)
 
     resonances = _resonances(seg) if eps > 0.0 and setup.resonance_tol is not None else []
     status, message, event = res.status, res.message, res.event
@@ -915,7 +891,9 @@ def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
             size = float(np.abs(m.L).max()) + abs(m.dT) / max(st.T, 1e-300) * st.G + 1e-300
             qerr = max(qerr, float(np.abs(e.L).max()) / size)
     data = {f: getattr(out, f) for f in out.fields}
-    return _with(out, data, {"quad_error": qerr, "resonances": resonances, "kind": seg.kind, "sigma": seg.sigma})
+    data["kind"] = np.full(out.time.shape, seg.kind)
+    data["sigma"] = np.full(out.time.shape, seg.sigma)
+    return _with(out, data, {"quad_error": qerr, "resonances": resonances})
 
 
 def _with(sol: Solution, data: dict[str, Any], extra: dict[str, Any]) -> Solution:
@@ -925,3 +903,286 @@ def _with(sol: Solution, data: dict[str, Any], extra: dict[str, Any]) -> Solutio
     for k, v in extra.items():
         setattr(new, k, v)
     return new
+
+
+# --------------------------------------------------------------------------------------------------
+# through the separatrix: segments of one kind of motion joined at the crossings
+# --------------------------------------------------------------------------------------------------
+#: a run that crosses the separatrix more often than this ends with a status (the averaged motion stalls there)
+_MAX_CROSSINGS = 50
+
+
+@dataclass
+class _Piece:
+    """One segment of an averaged run: its raw result, its region (kind, sigma), how to evaluate its output
+    fields at given times (``finish(tau_eval, lam_start)``), its state as rows G, k2, n (``common(y)``), and
+    the lambda it starts from."""
+
+    res: Solution
+    region: tuple[str, int]
+    finish: Any
+    common: Any
+    lam_start: float
+
+
+@dataclass
+class _Generic:
+    """What the segments after a crossing share: the whole perturbation as a torque object and the options
+    of :func:`averaged`. The segments use the averaging engine (closed forms of the parts that have them)."""
+
+    body: Body
+    torque: Any
+    averaging: str
+    quad_tol: float
+    eps: float
+    orbit: Orbit
+    nu0: float
+    rtol: float
+    atol: float
+    method: str
+    min_spin_ratio: float
+    drift_tol: float | None
+    resonance_tol: float | None
+
+    def __post_init__(self) -> None:
+        self.averager = Averager(self.torque, self.averaging, self.quad_tol)
+        self.drag: Any = None  # a drag tensor run: its segments use the closed forms (9) of the paper
+        # the rotation-speed check takes the period at min(k2, spin_cap): K2_SPIN_CAP in a run through the
+        # separatrix (its momentary infinite period must not end the run), 1 (no cap) in a run that stops there
+        self.spin_cap = K2_SPIN_CAP
+
+    def setup(self, k2_stop: float) -> _Setup:
+        return _Setup(self.body, self.averager, self.eps, self.orbit, self.nu0, self.rtol, self.atol, self.method,
+                      k2_stop, self.min_spin_ratio, self.drift_tol, self.resonance_tol, self.spin_cap)
+
+    def piece(self, region: tuple[str, int], tau_span: Any, G: float, k2: float, n: np.ndarray, nu0: float,
+              lam_s: float, k2_stop: float) -> _Piece:
+        if self.drag is not None:
+            return _drag_piece(self, self.drag, region, tau_span, G, k2, n, nu0, lam_s, k2_stop)
+        seg = _integrate_kind(self.setup(k2_stop), region[0], region[1], tau_span, G, k2, n, nu0)
+
+        def finish(te: Any, lam: float) -> Solution:
+            return _finish_kind(seg, te, lam)
+
+        def common(y: np.ndarray) -> np.ndarray:
+            return np.vstack([y[0], y[1], y[2:5] / np.linalg.norm(y[2:5], axis=0)])
+
+        return _Piece(seg.res, region, finish, common, lam_s)
+
+    def crossing(self, G: float, delta: float, lam: float, nu: float | None, source: tuple[str, int]
+                 ) -> SeparatrixCrossing:
+        return separatrix_crossing(self.body, self.torque, G, delta, lam, nu, source, orbit=self.orbit)
+
+    def dk2_at(self, region: tuple[str, int], G: float, n: np.ndarray, nu: float | None) -> float:
+        """The averaged dk2/dtau of ``region`` at the switch next to the separatrix."""
+        if self.drag is not None:
+            A, Id = _labels(self.body, region[0], self.drag.diag)
+            return _dk2(A, Id, K2_SWITCH)
+        st = _State(self.body, region[0], region[1], G, K2_SWITCH, n, nu, self.orbit)
+        self.averager.calibrate(st)
+        return float(self.averager.mean(st).dk2)
+
+
+class _PiecewiseDense:
+    """Dense output of a run through the separatrix: rows G, k2, n1, n2, n3 from each segment's own."""
+
+    def __init__(self, pieces: list[_Piece]) -> None:
+        self.pieces = pieces
+        self.starts = np.array([p.res.time[0] for p in pieces])
+
+    def __call__(self, t: Any) -> np.ndarray:
+        tt = np.atleast_1d(np.asarray(t, dtype=float))
+        out = np.empty((5, tt.size))
+        idx = np.clip(np.searchsorted(self.starts, tt, side="right") - 1, 0, len(self.pieces) - 1)
+        for i in np.unique(idx):
+            p = self.pieces[i]
+            sel = idx == i
+            out[:, sel] = p.common(p.res.sol(tt[sel]))
+        return out[:, 0] if np.ndim(t) == 0 else out
+
+
+def _through(first: _Piece, gen: _Generic, tau_span: Any, tau_eval: Any, through: bool, branch: Any,
+             rng: np.random.Generator) -> Solution:
+    """Continue an averaged run across the separatrix as often as it reaches it, then assemble the output."""
+    t1 = float(tau_span[1])
+    pieces = [first]
+    crossings: list[dict[str, Any]] = []
+    stop = ""
+    cur = first
+    while through and cur.res.status == 1 and cur.res.event == "separatrix":
+        tc = float(cur.res.t_events["separatrix"][-1])
+        at = cur.finish(np.array([tc]), cur.lam_start)
+        G, n = float(at.G[0]), np.asarray(at.n[:, 0], dtype=float)
+        delta, lam = float(at.delta[0]), float(at.lam[0])
+        nu = float(at.nu[0]) if gen.eps > 0.0 else None
+        c = gen.crossing(G, delta, lam, nu, cur.region)
+        region, why = _choose(c, branch, len(crossings), rng)
+        if region is not None and gen.dk2_at(region, G, n, nu) >= 0.0:
+            why = (f"the separatrix attracts from both sides: the averaged k2 of {region}, where the motion "
+                   "would continue, points back to it")
+            region = None
+        crossings.append({"tau": tc, "source": cur.region, "region": region, "probabilities": dict(c.probabilities),
+                          "drifts": dict(c.drifts), "G": G, "n": n})
+        if region is None:
+            stop = why
+            break
+        if len(crossings) > _MAX_CROSSINGS or (len(crossings) > 1 and tc <= crossings[-2]["tau"]):
+            stop = (f"the averaged motion stalls at the separatrix ({len(crossings)} crossings, the last at "
+                    f"tau = {tc:.6g}): the drifts on the two sides point to it")
+            break
+        cur = gen.piece(region, (tc, t1), G, K2_SWITCH, n, nu if nu is not None else gen.nu0, lam, K2_SWITCH)
+        pieces.append(cur)
+    if len(pieces) == 1 and not crossings:
+        return first.finish(tau_eval, first.lam_start)
+    return _assemble(pieces, crossings, stop, tau_eval)
+
+
+def _assemble(pieces: list[_Piece], crossings: list[dict[str, Any]], stop: str, tau_eval: Any) -> Solution:
+    """One Solution from the segments: fields at the requested times (each from its segment's dense output),
+    lambda continuous, the kind and sense at every time, the crossings as events."""
+    outs: list[Solution] = []
+    last = len(pieces) - 1
+    for i, p in enumerate(pieces):
+        a, b = float(p.res.time[0]), float(p.res.time[-1])
+        if tau_eval is None:
+            te = p.res.time if i == 0 else p.res.time[1:]
+        else:
+            t = np.asarray(tau_eval, dtype=float)
+            te = t[(t >= a) & ((t <= b) if i == last else (t < b))]
+        outs.append(p.finish(te, p.lam_start))
+    names = [f for f in outs[-1].fields if all(f in o.fields for o in outs)]
+    data = {f: np.concatenate([np.asarray(getattr(o, f)) for o in outs], axis=-1) for f in names}
+    tau = np.concatenate([o.time for o in outs])
+    y = np.vstack([data["G"], data["k2"], data["n"]])
+    res = pieces[-1].res
+    status, message, event = res.status, res.message, res.event
+    if stop:
+        tc = crossings[-1]["tau"]
+        status, event = 1, "separatrix"
+        message = f"stopped by event 'separatrix' at tau = {tc:.6g}: {stop}"
+    t_events = dict(res.t_events)
+    y_events = dict(res.y_events)
+    t_events["separatrix"] = np.array([c["tau"] for c in crossings])
+    y_events["separatrix"] = (np.array([[c["G"], K2_SWITCH, *c["n"]] for c in crossings]) if crossings
+                              else np.empty((0, 5)))
+    sol = Solution(res.time_name, tau, y, data, status, message, event, t_events, y_events, _PiecewiseDense(pieces),
+                   sum(p.res.nfev for p in pieces))
+    sol.crossings = crossings  # type: ignore[attr-defined]  # an extra attribute of this result
+    qerr = [getattr(o, "quad_error", 0.0) for o in outs]
+    sol.quad_error = max(qerr)  # type: ignore[attr-defined]  # an extra attribute of this result
+    sol.resonances = [r for o in outs for r in getattr(o, "resonances", [])]  # type: ignore[attr-defined]
+    return sol
+
+
+def averaged_branches(*args: Any, **kwargs: Any) -> dict[tuple[str, int], Solution]:
+    r"""Every branch of the first separatrix crossing of an averaged run.
+
+    Runs :func:`averaged` with the same arguments (``branch`` excepted) and, at its first separatrix crossing,
+    continues once in each region ``(kind, sigma)`` of positive capture probability (later crossings take
+    the most probable branch).
+
+    Parameters
+    ----------
+    *args, **kwargs
+        As for :func:`averaged`, without ``branch``.
+
+    Returns
+    -------
+    dict
+        Region -> Solution; each Solution's ``crossings[0]['probabilities'][region]`` is the probability of
+        that branch. A run that does not cross the separatrix gives one entry, its initial region.
+    """
+    if "branch" in kwargs:
+        raise TypeError("averaged_branches runs every branch: do not pass branch")
+    first = averaged(*args, **kwargs)
+    if not getattr(first, "crossings", None):
+        return {(str(first.kind[0]), int(first.sigma[0])): first} if first.tau.size else {}
+    c = first.crossings
+    out: dict[tuple[str, int], Solution] = {}
+    for region, p in c[0]["probabilities"].items():
+        if p > 0.0:
+            out[region] = first if region == c[0]["region"] else averaged(*args, branch=[region], **kwargs)
+    return out
+
+def _drag_piece(gen: _Generic, drag: Any, region: tuple[str, int], tau_span: Any, G0: float, k2_0: float,
+                n0: np.ndarray, nu_start: float, lam0: float, k2_stop: float) -> _Piece:
+    """A segment of the paper's averaged system (9) (drag tensor plus gravity gradient, closed forms)."""
+    delta0 = math.acos(max(-1.0, min(1.0, float(n0[2]))))
+    body, orb, eps, kind, sigma = gen.body, gen.orbit, gen.eps, region[0], region[1]
+    A, Id = _labels(body, kind, drag.diag)
+    nu0 = gen.nu0  # circular orbit: nu = tau / eps + nu0 with the run's nu0
+    circular = orb.e == 0.0
+    mf = orb.mean_factor
+    inv_eps = 1.0 / eps if eps > 0 else 0.0
+
+    def grav(G: float, k2: float, n1: float, n2: float, n3: float, nu: float) -> tuple[float, float, float]:
+        Ns = _nstar(A, k2)
+        cn, sn = math.cos(nu), math.sin(nu)
+        c = 1.5 * orb.factor(nu) * Ns * (cn * n1 + sn * n2) / G
+        return -c * n3 * sn, c * n3 * cn, c * (n1 * sn - n2 * cn)
+
+    def rhs_limit(tau: float, y: np.ndarray) -> list[float]:
+        # eps = 0: delta is constant and lambda = lam0 + cos(delta0) * Lambda, dLambda = (3/4) mf N*/G
+        G, k2 = y[0], y[1]
+        k2c = 0.0 if k2 < 0.0 else (1.0 if k2 > 1.0 else k2)
+        dG, _ = _drag_rates(A, Id, G, k2c)
+        return [dG, _dk2(A, Id, k2c), 0.75 * mf * _nstar(A, k2c) / G]
+
+    def rhs(tau: float, y: np.ndarray) -> list[float]:
+        G, k2, n1, n2, n3 = y[0], y[1], y[2], y[3], y[4]
+        k2c = 0.0 if k2 < 0.0 else (1.0 if k2 > 1.0 else k2)
+        nrm = math.sqrt(n1 * n1 + n2 * n2 + n3 * n3)
+        n1, n2, n3 = n1 / nrm, n2 / nrm, n3 / nrm
+        dG, _ = _drag_rates(A, Id, G, k2c)
+        dk2 = _dk2(A, Id, k2c)
+        if eps > 0.0 and not circular:
+            nu = y[5]
+            d1, d2, d3 = grav(G, k2c, n1, n2, n3, nu)
+            return [dG, dk2, d1, d2, d3, inv_eps * orb.nu_rate(nu)]
+        nu = tau * inv_eps + nu0
+        d1, d2, d3 = grav(G, k2c, n1, n2, n3, nu)
+        return [dG, dk2, d1, d2, d3]
+
+    y0 = [G0, k2_0, *n0] if eps > 0.0 else [G0, k2_0, 0.0]
+    if eps > 0.0 and not circular:
+        y0.append(nu_start)
+    cd0, sd0 = math.cos(delta0), math.sin(delta0)
+    events = [
+        Event(lambda t, y: y[1] - k2_stop, "separatrix", True, 1.0,
+              f"k2 reached {k2_stop:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
+              "where the averaging (6) does not hold"),
+    ]
+    if eps > 0.0:
+        events.append(
+            Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), gen.spin_cap)) / eps - gen.min_spin_ratio,
+                  "slow_rotation", True, -1.0, _slow_msg(gen.min_spin_ratio))
+        )
+    res = integrate(rhs if eps > 0.0 else rhs_limit, tau_span, y0, rtol=gen.rtol, atol=gen.atol, method=gen.method,
+                    dense_output=True, events=events, time_name="tau")
+
+    def lam_limit(y: np.ndarray) -> np.ndarray:
+        return lam0 + cd0 * y[2]
+
+    def nvec(y: np.ndarray) -> np.ndarray:
+        if eps == 0.0:
+            lam = lam_limit(y)
+            return np.array([sd0 * np.cos(lam), sd0 * np.sin(lam), np.full_like(lam, cd0)])
+        n = y[2:5]
+        return n / np.linalg.norm(n, axis=0)
+
+    def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
+        if eps > 0.0 and not circular:
+            nu = y[5]
+        else:
+            nu = tau * inv_eps + nu0 if eps > 0 else np.full_like(tau, nu0)
+        out = _slow_fields(A, y, nvec, nu)
+        out["kind"], out["sigma"] = np.full(tau.shape, kind), np.full(tau.shape, sigma)
+        return out
+
+    def finish(te: Any, lam_s: float) -> Solution:
+        return _finish(res, te, make_fields, lam_s, nvec, lam_limit if eps == 0.0 else None)
+
+    def common(y: np.ndarray) -> np.ndarray:
+        return np.vstack([y[0], y[1], nvec(y)])
+
+    return _Piece(res, region, finish, common, lam0)

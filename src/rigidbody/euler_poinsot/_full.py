@@ -33,8 +33,17 @@ from ..core import euler
 from ..core.ode import Event, Solution, integrate
 from ..core.validate import real
 from ._averaged import _check_spin, _check_tau_eval, _check_tol, _finish, _slow_msg, _validate_common
-from ._model import Body, Orbit, _as_orbit, _check_kind, _frame_y, _nut_freq
+from ._model import (
+    K2_SPIN_CAP,
+    Body,
+    Orbit,
+    _as_orbit,
+    _check_body,
+    _frame_y,
+    _nut_freq,
+)
 from ._motion import EulerPoinsot
+from ._separatrix import _initial_kind
 from ._torques import probe, resolve
 
 __all__ = ["initial_state", "simulate"]
@@ -73,19 +82,26 @@ def _k2_osc(A: tuple[float, float, float], D: float) -> float:
     return (A2 - A3) * (A1 - D) / den if den > 0 else math.inf
 
 
+def _osculating(A: tuple[float, float, float], D: float) -> tuple[tuple[float, float, float], float]:
+    """Moments labelled for the kind of motion D = G^2/2T belongs to, and its osculating k2 (in [0, 1])."""
+    Alab = A if D >= A[1] else (A[2], A[1], A[0])
+    return Alab, min(max(_k2_osc(Alab, D), 0.0), 1.0)
+
+
 def simulate(
     body: Body,
     torque: Any,
     eps: float,
     G0: float = 1.0,
-    k2_0: float = 0.99,
+    k2_0: float | None = None,
     delta0: float = math.pi / 4,
     lam0: float = math.pi / 4,
     tau_span: tuple[float, float] = (0.0, 3.0),
     tau_eval: Any = None,
     nu0: float = 0.0,
     *,
-    kind: str = "max",
+    kind: str | None = None,
+    T0: float | None = None,
     orbit: Orbit | None = None,
     u0: float = 0.0,
     psi0: float = 0.0,
@@ -94,13 +110,16 @@ def simulate(
     rtol: float = 1e-10,
     atol: float = 1e-12,
     method: str = "DOP853",
-    k2_max: float = 1.0 - 1e-6,
+    k2_max: float | None = 1.0 - 1e-6,
     min_spin_ratio: float = 1.0,
 ) -> Solution:
     r"""Integrate the full, unaveraged motion (1), (3), (4) in the slow time :math:`\tau`.
 
     Same arguments and output fields as :func:`averaged` (the slow variables are the instantaneous,
     osculating ones: :math:`k^2` from (5) with the current :math:`G, T`), plus the body's initial phase.
+    The body-frame equations are regular on the separatrix :math:`G^2 = 2TA_2`: the run goes through it,
+    the osculating kind of motion (and with it the formula for :math:`k^2`) switches there, and each passage
+    is recorded in ``t_events['separatrix']``.
 
     Parameters
     ----------
@@ -112,30 +131,46 @@ def simulate(
         ``torque(omega, C, nu) -> M`` is the whole perturbation (body components, the section-3 scaling
         divided by :math:`\varepsilon^2`; see :class:`Torque`): :math:`d\mathbf g/d\tau =
         \varepsilon^{-2}\mathbf g\times\boldsymbol\omega + \mathbf M`.
-    eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, kind, orbit, rtol, atol, method
+    eps, G0, delta0, lam0, tau_span, tau_eval, nu0, orbit, rtol, atol, method
         As in :func:`averaged`; ``eps`` must be positive (the cost grows like :math:`\varepsilon^{-2}`:
         :math:`\tau` spans :math:`\tau/\varepsilon^2` units of :math:`\tilde t`).
+    k2_0, kind : float, {'max', 'min'}
+        Initial modulus squared (in [0, 1); default 0.99) and kind of motion (default ``'max'``, the paper's).
+    T0 : float, optional
+        The initial kinetic energy instead of ``k2_0`` and ``kind``: any :math:`T_0` in
+        :math:`[G_0^2/(2A_1), G_0^2/(2A_3)]` off the separatrix (the kind follows from :func:`kind_of`).
     u0, psi0, sigma
         Initial elliptic phase, precession angle about :math:`\mathbf G` and sense of rotation of the
         Euler--Poinsot motion (see :func:`initial_state`).
     formulation : {'body', 'angles'}
         Euler's equations with a quaternion (default, regular everywhere) or the paper's (1), (3), (4).
-    k2_max, min_spin_ratio
-        Terminal checks as in :func:`averaged`, on the osculating :math:`G, k^2`.
+    k2_max : float or None
+        The run ends (event ``'separatrix'``) as soon as the osculating :math:`k^2` of the initial kind reaches
+        it (default :math:`1 - 10^{-6}`, as :func:`averaged`). ``None``: no stop; the motion goes on through the
+        separatrix (the body-frame equations are regular there) and the crossings are recorded, not terminal.
+    min_spin_ratio : float
+        The run ends (event ``'slow_rotation'``) when :func:`spin_ratio` of the osculating motion falls to this
+        value, as in :func:`averaged`. In a run through the separatrix (``k2_max=None``) the ratio is taken at
+        :math:`\min(k^2, 0.99)`: within 0.01 of the separatrix the period grows like :math:`\ln(1/(1-k^2))`
+        while the body still turns fast (about the intermediate axis), and the momentary infinite period of a
+        passage must not end the run.
 
     Returns
     -------
     Solution
-        ``tau, G, T, k2, delta, lam, nu, n`` as :func:`averaged`; ``'body'`` adds ``g`` (body components of
-        G, shape (3, n)) and ``q``; ``'angles'`` adds ``theta, phi, psi`` and ``T`` is the integrated
-        energy of (4).
+        ``tau, G, T, k2, delta, lam, nu, n`` as :func:`averaged`, and ``kind`` (``'max'``/``'min'`` at each
+        output time: the osculating kind of motion; ``k2`` is that kind's modulus) and ``sigma`` (+1/-1: the
+        sign of :math:`g_1` for ``'max'``, of :math:`g_3` for ``'min'``); ``t_events['separatrix']`` holds the
+        times of the passages through the separatrix. ``'body'`` adds ``g`` (body components of G, shape
+        (3, n)) and ``q``; ``'angles'`` adds ``theta, phi, psi`` and ``T`` is the integrated energy of (4).
     """
+    _check_body(body)
+    k2_0, kind = _initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
     eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)
     _check_tau_eval(tau_eval, tau_span)
     _check_tol(rtol, atol)
     if eps <= 0:
         raise ValueError("eps must be positive for the full equations (eps = 0 has no fast rotation to resolve)")
-    _check_kind(kind)
     if formulation not in ("body", "angles"):
         raise ValueError(f"formulation must be 'body' or 'angles', got {formulation!r}")
     orb = _as_orbit(orbit)
@@ -146,17 +181,20 @@ def simulate(
         Im = np.zeros((3, 3))
     else:
         Im = tq.I
-    k2_max = real(k2_max, "k2_max")
-    if not (k2_0 < k2_max <= 1.0):
-        raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {k2_max}: "
-                         "raise k2_max or start further from the separatrix")
+    if k2_max is not None:
+        k2_max = real(k2_max, "k2_max")
+        if not (k2_0 < k2_max <= 1.0):
+            raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {k2_max}: "
+                             "raise k2_max or start further from the separatrix")
     A1, A2, A3 = body.A1, body.A2, body.A3
+    Aall = (A1, A2, A3)
     Alab = (A1, A2, A3) if kind == "max" else (A3, A2, A1)
     ie2 = 1.0 / (eps * eps)
     ie = 1.0 / eps
     circular = orb.e == 0.0
     (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in Im)
-    _check_spin(Alab, G0, k2_0, eps, min_spin_ratio)
+    spin_cap = K2_SPIN_CAP if k2_max is None else 1.0  # see K2_SPIN_CAP: only a run through the separatrix
+    _check_spin(Alab, G0, min(k2_0, spin_cap), eps, min_spin_ratio)
     st = initial_state(body, G0, k2_0, delta0, lam0, kind=kind, u0=u0, psi0=psi0, sigma=sigma)
 
     def nu_of(tau: float, y: np.ndarray, i: int) -> float:
@@ -224,16 +262,12 @@ def simulate(
             n = np.einsum("nij,jn->in", R, g)
             return n / np.linalg.norm(n, axis=0)
 
-        def ev_k2(tau: float, y: np.ndarray) -> float:
+        def G_D(y: np.ndarray) -> tuple[float, float]:
             G2 = y[0] ** 2 + y[1] ** 2 + y[2] ** 2
-            D = G2 / (y[0] ** 2 / A1 + y[1] ** 2 / A2 + y[2] ** 2 / A3)
-            return _k2_osc(Alab, D) - k2_max
+            return math.sqrt(G2), G2 / (y[0] ** 2 / A1 + y[1] ** 2 / A2 + y[2] ** 2 / A3)
 
-        def ev_spin(tau: float, y: np.ndarray) -> float:
-            G2 = y[0] ** 2 + y[1] ** 2 + y[2] ** 2
-            D = G2 / (y[0] ** 2 / A1 + y[1] ** 2 / A2 + y[2] ** 2 / A3)
-            k2 = min(max(_k2_osc(Alab, D), 0.0), 1.0)
-            return _nut_freq(Alab, math.sqrt(G2), k2) / eps - min_spin_ratio
+        def body_dir(y: np.ndarray) -> np.ndarray:
+            return y[0:3] / np.sqrt((y[0:3] ** 2).sum(0))
 
         extra_events: list[Event] = []
         inu = 7
@@ -322,12 +356,12 @@ def simulate(
             de, la = y[1], y[2]
             return np.array([np.sin(de) * np.cos(la), np.sin(de) * np.sin(la), np.cos(de)])
 
-        def ev_k2(tau: float, y: np.ndarray) -> float:
-            return _k2_osc(Alab, y[0] ** 2 / (2 * y[6])) - k2_max
+        def G_D(y: np.ndarray) -> tuple[float, float]:
+            return y[0], y[0] ** 2 / (2 * y[6])
 
-        def ev_spin(tau: float, y: np.ndarray) -> float:
-            k2 = min(max(_k2_osc(Alab, y[0] ** 2 / (2 * y[6])), 0.0), 1.0)
-            return _nut_freq(Alab, y[0], k2) / eps - min_spin_ratio
+        def body_dir(y: np.ndarray) -> np.ndarray:
+            st_ = np.sin(y[3])
+            return np.array([st_ * np.sin(y[4]), st_ * np.cos(y[4]), np.cos(y[3])])
 
         extra_events = [
             Event(lambda t, y: abs(math.sin(y[3])) - 1e-6, "sin_theta", True, -1.0,
@@ -337,11 +371,26 @@ def simulate(
         ]
         inu = 7
 
+    def ev_spin(tau: float, y: np.ndarray) -> float:
+        G, D = G_D(y)
+        Ak, k2 = _osculating(Aall, D)
+        return _nut_freq(Ak, G, min(k2, spin_cap)) / eps - min_spin_ratio
+
+    if k2_max is None:
+        # every passage of D = G^2/2T through A2 is recorded; the run goes on
+        ev_sep = Event(lambda t, y: G_D(y)[1] - A2, "separatrix", False, 0.0, "")
+    else:
+        stop = k2_max
+
+        def ev_k2(tau: float, y: np.ndarray) -> float:
+            return _k2_osc(Alab, G_D(y)[1]) - stop
+
+        ev_sep = Event(ev_k2, "separatrix", True, 1.0,
+                       f"the osculating k2 reached {k2_max:g}: the motion is at the separatrix 2T A2 = G^2")
     if not circular:
         y0.append(nu0)
     events = [
-        Event(ev_k2, "separatrix", True, 1.0,
-              f"the osculating k2 reached {k2_max:g}: the motion is at the separatrix 2T A2 = G^2"),
+        ev_sep,
         Event(ev_spin, "slow_rotation", True, -1.0, _slow_msg(min_spin_ratio)),
         *extra_events,
     ]
@@ -350,11 +399,15 @@ def simulate(
 
     def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
         G, T = GT(y)
-        D = G**2 / (2 * T)
-        k2 = np.array([_k2_osc(Alab, float(d)) for d in np.atleast_1d(D)])
+        D = np.atleast_1d(G**2 / (2 * T))
+        k2 = np.array([_osculating(Aall, float(d))[1] for d in D])
+        kinds = np.where(D >= A2, "max", "min")
+        gb = body_dir(y)
+        sig = np.where(np.where(D >= A2, gb[0], gb[2]) >= 0, 1, -1)
         n = nvec(y) if y.shape[1] else np.empty((3, 0))
         nu = y[inu] if not circular else tau * ie + nu0
-        out = {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1, 1)), "n": n, "nu": nu}
+        out = {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1, 1)), "n": n, "nu": nu,
+               "kind": kinds, "sigma": sig}
         if formulation == "body":
             out["g"] = y[0:3]
             out["q"] = y[3:7] / np.linalg.norm(y[3:7], axis=0)

@@ -666,6 +666,13 @@ def k2_equilibria(body: Body, I: Any, kind: str = "max", n_grid: int = 2001) -> 
     return out
 
 
+#: The rotation-speed check (``min_spin_ratio``) takes the period at ``min(k2, K2_SPIN_CAP)``: next to the
+#: separatrix the period grows without bound (like ln(1/(1 - k^2))) while the body still turns fast (about the
+#: intermediate axis, at rate G/A2); the momentary infinite period of a passage must not end a run. At
+#: k^2 = 0.99 the period is about 2.4 times that at k = 0.
+K2_SPIN_CAP = 0.99
+
+
 def _nut_freq(A: tuple[float, float, float], G: float, k2: float) -> float:
     r"""Angular frequency :math:`2\pi/P = \pi\dot u/(2K)` of the Euler--Poinsot motion (labelled moments)."""
     A1, A2, A3 = A

@@ -16,6 +16,7 @@ from .euler_poinsot import (
     hodograph_projection,
     hodograph_side_view,
     plane_basis,
+    separatrix_passage,
     slow_variables,
     spiral_axis,
 )
@@ -60,6 +61,7 @@ __all__ = [
     "plot_top_motion",
     "quasi_coordinate_histories",
     "scaled_error_map",
+    "separatrix_passage",
     "slow_time_axis",
     "slow_variables",
     "sphere_path",

@@ -16,6 +16,7 @@ __all__ = [
     "hodograph_projection",
     "hodograph_side_view",
     "plane_basis",
+    "separatrix_passage",
     "slow_variables",
     "spiral_axis",
 ]
@@ -158,4 +159,101 @@ def slow_variables(sol: Any, axes: Any = None, label: str | None = None, **kw: A
         axes[0].figure.tight_layout()
     return axes
 
+
+def _body_direction(sol: Any) -> np.ndarray:
+    """Unit vector of G in body axes, shape (3, n), from a full run (either formulation)."""
+    if "g" in sol.fields:
+        g = np.asarray(sol.g)
+        return g / np.linalg.norm(g, axis=0)
+    th, ph = np.asarray(sol.theta), np.asarray(sol.phi)
+    return np.array([np.sin(th) * np.sin(ph), np.sin(th) * np.cos(ph), np.cos(th)])
+
+
+def _envelope(body: Any, sol: Any, n: int = 64) -> tuple[np.ndarray, np.ndarray]:
+    """Range (min, max) of g1/G and g3/G over the Euler--Poinsot motion at each output of an averaged run."""
+    from ..euler_poinsot import EulerPoinsot
+
+    lo = np.full((2, np.size(sol.tau)), np.nan)
+    hi = np.full_like(lo, np.nan)
+    kinds = np.broadcast_to(np.asarray(sol.kind), np.shape(sol.tau)) if "kind" in sol.fields else ["max"] * lo.shape[1]
+    sigmas = np.broadcast_to(np.asarray(sol.sigma), np.shape(sol.tau)) if "sigma" in sol.fields else [1] * lo.shape[1]
+    for i, (G, k2, kind, sig) in enumerate(zip(sol.G, sol.k2, kinds, sigmas)):
+        if not (0.0 <= k2 < 1.0):
+            continue
+        m = EulerPoinsot(body, float(G), float(k2), str(kind), int(sig))
+        g = m.g(np.arange(n) * (m.period / n))[[0, 2]] / G
+        lo[:, i], hi[:, i] = g.min(axis=1), g.max(axis=1)
+    return lo, hi
+
+
+def separatrix_passage(body: Any, full: Any, averaged: Any = None, axes: Any = None) -> Any:
+    r"""Draw a passage through the separatrix: energy, body components of :math:`\mathbf G`, and the polhode.
+
+    Three panels: (a) :math:`2TA_2/G^2` against :math:`\tau` (1 on the separatrix, :math:`A_2/A_3` for a pure
+    spin about the minor axis, :math:`A_2/A_1` about the major axis); (b) :math:`g_1/G` and :math:`g_3/G` of
+    the full motion, with the range they sweep over the Euler--Poinsot motion of the averaged run;
+    (c) the path of :math:`\mathbf g/G` seen along the intermediate axis :math:`z_2`, with the separatrix (the
+    planes :math:`g_3 = \pm g_1\sqrt{A_3(A_1-A_2)/(A_1(A_2-A_3))}`).
+
+    Parameters
+    ----------
+    body : Body
+    full : Solution
+        A run of :func:`~rigidbody.euler_poinsot.simulate` (either formulation).
+    averaged : Solution, optional
+        A run of :func:`~rigidbody.euler_poinsot.averaged` over the same span.
+    axes : sequence of three Axes, optional
+        Created (one figure, three panels) when None.
+
+    Returns
+    -------
+    numpy.ndarray
+        The three axes.
+    """
+    if axes is None:
+        import matplotlib.pyplot as plt
+
+        _, axes = plt.subplots(1, 3, figsize=(13.0, 4.0), gridspec_kw={"width_ratios": [1.2, 1.2, 1.0]})
+    ax_e, ax_g, ax_p = axes
+    A1, A2, A3 = body.A1, body.A2, body.A3
+    e_full = 2.0 * np.asarray(full.T) * A2 / np.asarray(full.G) ** 2
+    ax_e.plot(full.tau, e_full, lw=0.6, color="C0", label="full")
+    if averaged is not None:
+        ax_e.plot(averaged.tau, 2.0 * np.asarray(averaged.T) * A2 / np.asarray(averaged.G) ** 2, "--", lw=2,
+                  color="C3", label="averaged")
+    for level, text in ((A2 / A3, "spin about $z_3$ (minor axis)"), (1.0, "separatrix"),
+                        (A2 / A1, "spin about $z_1$ (major axis)")):
+        ax_e.axhline(level, color="0.5", lw=0.8, ls=":")
+        ax_e.annotate(text, (ax_e.get_xlim()[0], level), xytext=(3, 2), textcoords="offset points", fontsize=7,
+                      color="0.35")
+    ax_e.set_xlabel("$\\tau$")
+    ax_e.set_ylabel("$2TA_2/G^2$")
+    ax_e.legend(fontsize=8, loc="upper right")
+    u = _body_direction(full)
+    ax_g.plot(full.tau, u[2], lw=0.5, color="C0", label="$g_3/G$ (full)")
+    ax_g.plot(full.tau, u[0], lw=0.5, color="C2", label="$g_1/G$ (full)")
+    if averaged is not None:
+        lo, hi = _envelope(body, averaged)
+        for j, c in ((1, "C0"), (0, "C2")):
+            ax_g.fill_between(averaged.tau, lo[j], hi[j], color=c, alpha=0.15, lw=0)
+            ax_g.plot(averaged.tau, lo[j], color=c, lw=1.2, ls="--")
+            ax_g.plot(averaged.tau, hi[j], color=c, lw=1.2, ls="--")
+    ax_g.set_xlabel("$\\tau$")
+    ax_g.set_ylabel("body components of $\\mathbf{G}/G$")
+    ax_g.set_ylim(-1.05, 1.05)
+    ax_g.legend(fontsize=8, loc="lower left")
+    th = np.linspace(0.0, 2.0 * np.pi, 361)
+    ax_p.plot(np.cos(th), np.sin(th), color="0.6", lw=0.8)
+    c = np.sqrt(A3 * (A1 - A2) / (A1 * (A2 - A3)))
+    x = 1.0 / np.sqrt(1.0 + c * c)
+    for sgn in (1.0, -1.0):
+        ax_p.plot([-x, x], [-sgn * c * x, sgn * c * x], color="k", lw=1.0, ls="--")
+    ax_p.plot(u[0], u[2], lw=0.4, color="C0")
+    ax_p.plot([u[0, 0]], [u[2, 0]], "o", color="C1", ms=5, label="start")
+    ax_p.plot([u[0, -1]], [u[2, -1]], "s", color="C3", ms=5, label="end")
+    ax_p.set_aspect("equal")
+    ax_p.set_xlabel("$g_1/G$ (major axis)")
+    ax_p.set_ylabel("$g_3/G$ (minor axis)")
+    ax_p.legend(fontsize=8, loc="lower right")
+    return axes
 

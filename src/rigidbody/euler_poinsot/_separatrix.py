@@ -1,0 +1,669 @@
+r"""The separatrix of the Euler--Poinsot motion and the passage through it.
+
+On the sphere :math:`|\mathbf g| = G` of body components of the angular momentum the separatrix
+:math:`G^2 = 2TA_2` is two great circles through the saddles :math:`\pm G\mathbf e_2` (rotation about the
+intermediate axis). They cut the sphere into four *regions*, one per kind of motion and sense of
+rotation: ``("max", s)`` (circulation about :math:`s\,\mathbf e_1`, :math:`g_1` of sign :math:`s`) and
+``("min", s)`` (about :math:`s\,\mathbf e_3`). The four half circles between the saddles are the *arcs*
+:math:`(s_1, s_3)`, :math:`s_i = \pm1` the signs of :math:`g_1, g_3` on them. Arc :math:`(s_1, s_3)`
+separates the regions ``("max", s1)`` and ``("min", s3)``; the flow runs along it from
+:math:`+\mathbf e_2` to :math:`-\mathbf e_2` when :math:`s_1s_3 = 1` and back when :math:`s_1s_3 = -1`.
+
+Motion on an arc (derived here from Euler's equations; it is the :math:`k\to1` limit of the closed form of
+section 2, :math:`\operatorname{sn}\to\tanh`, :math:`\operatorname{cn},\operatorname{dn}\to\operatorname{sech}`):
+
+.. math::
+    \mathbf g = \big(s_1c_1\operatorname{sech}\lambda t,\ -s_1s_3G\tanh\lambda t,\
+    s_3c_3\operatorname{sech}\lambda t\big),\qquad
+    c_1 = G\sqrt{\frac{A_1(A_2-A_3)}{A_2(A_1-A_3)}},\ c_3 = G\sqrt{\frac{A_3(A_1-A_2)}{A_2(A_1-A_3)}},
+    \ \lambda = G\sqrt{\frac{(A_1-A_2)(A_2-A_3)}{A_1A_2^2A_3}} .
+
+Slow drift along the separatrix
+-------------------------------
+With a torque :math:`\mathbf L` (body components) the energy measured from the separatrix,
+:math:`h = T - G^2/(2A_2)` (:math:`h < 0` in the ``"max"`` regions, :math:`> 0` in the ``"min"``
+ones), changes at the rate :math:`\dot h = (\boldsymbol\omega - \mathbf g/A_2)\cdot\mathbf L`, which vanishes
+at the saddles. Its integral along an arc (with the torque averaged over the precession angle
+:math:`\psi` about :math:`\mathbf G`, and over the orbit when ``nu`` is None) is finite:
+
+.. math:: \Theta_{s_1s_3} = \int_{-\infty}^{\infty}\langle\dot h\rangle_\psi\,dt
+          = \frac1\lambda\int_{-\pi/2}^{\pi/2}\Big\langle s_1c_1\Big(\frac1{A_1}-\frac1{A_2}\Big)L_1
+          + s_3c_3\Big(\frac1{A_3}-\frac1{A_2}\Big)L_3\Big\rangle_\psi dx,
+
+(substitution :math:`\tanh\lambda t = \sin x`), computed by Gauss--Legendre quadrature in :math:`x`.
+A region's *loop drift* is the sum over its two arcs: the change of :math:`h` per revolution of a motion
+close to the separatrix. The averaged rate of :math:`h` there is the loop drift over the period,
+:math:`\to 0` like :math:`1/K(k)`, so :math:`k^2` reaches 1 in finite time when the loop drift points to
+the separatrix.
+
+Capture probabilities
+---------------------
+A motion that reaches the separatrix from region :math:`R_0` follows the arcs; at each saddle it
+continues along the next arc of the region on whose side it is (the sign of :math:`h` there), and along
+each arc :math:`h` changes by :math:`\Theta` of that arc. The phase at which the crossing happens is fast
+and, over an ensemble of initial states, uniformly distributed in :math:`h` over one loop drift
+(Liouville). Following the interval of :math:`h` through this piecewise translation until each piece is
+in a region whose loop drift points away from the separatrix gives the probability of capture into each
+region. With two boundary arcs of positive flux this is the classical ratio of the fluxes
+(:math:`\Theta_1/(\Theta_1+\Theta_2)`); on the four-arc network of the rigid body a motion can also pass
+into a region that does not keep it (its loop drift points to the separatrix) and leave it again, which
+the interval bookkeeping follows. The bookkeeping is derived here; the probabilistic description of
+separatrix crossing in the Euler--Poinsot problem is that of J. Bao and A. Neishtadt, "Separatrix
+crossing in rotation of a body with changing geometry of masses" (arXiv:1712.05357, 2017); the
+equivalence of the usual definitions of the probability is shown by A. Neishtadt and A. Okunev, "On the
+phase change for perturbations of Hamiltonian systems with separatrix crossing" (arXiv:2003.05828, 2020).
+
+Assumptions: the torque is averaged over :math:`\psi` on each arc. That is exact for torques that depend
+on the body's angular velocity only (a constant body-fixed torque, linear drag); for torques that depend on
+the attitude about :math:`\mathbf G` (gravity gradient, magnetic) the drift of a single passage depends on
+the precession phase at that passage, and the probabilities computed from the averaged drifts are the
+leading approximation only.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..core import euler
+from ..core.validate import real
+from ._engine import frame, nu_nodes
+from ._model import KINDS, Body, Orbit, _as_orbit, _check_body, _check_kind, k2_from, kind_of
+from ._torques import drag_as_torque, resolve
+
+__all__ = ["ARCS", "REGIONS", "Separatrix", "SeparatrixCrossing", "SeparatrixLimits", "separatrix_crossing",
+           "separatrix_limits"]
+
+#: The four arcs (s1, s3) of the separatrix: signs of g1 and g3 on them.
+ARCS: tuple[tuple[int, int], ...] = ((1, 1), (1, -1), (-1, 1), (-1, -1))
+#: The four regions (kind, sigma) the separatrix cuts the sphere into.
+REGIONS: tuple[tuple[str, int], ...] = (("max", 1), ("max", -1), ("min", 1), ("min", -1))
+
+Region = tuple[str, int]
+Arc = tuple[int, int]
+TorqueFn = Callable[[np.ndarray, np.ndarray, np.ndarray], Any]
+
+
+def _check_arc(arc: Any) -> Arc:
+    try:
+        s1, s3 = arc
+    except (TypeError, ValueError):
+        raise ValueError(f"arc must be a pair (s1, s3) of signs +1/-1, got {arc!r}") from None
+    if s1 not in (1, -1) or s3 not in (1, -1):
+        raise ValueError(f"arc must be a pair (s1, s3) of signs +1/-1, got {arc!r}")
+    return int(s1), int(s3)
+
+
+def _check_region(region: Any, name: str = "region") -> Region:
+    try:
+        kind, sigma = region
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a pair (kind, sigma), e.g. ('min', 1), got {region!r}") from None
+    if not isinstance(kind, str) or kind not in KINDS:
+        raise ValueError(f"{name}: kind must be 'max' (rotation about the axis of A1) or 'min' (about A3), "
+                         f"got {kind!r}")
+    if sigma not in (1, -1):
+        raise ValueError(f"{name}: sigma must be +1 or -1, got {sigma!r}")
+    return str(kind), int(sigma)
+
+
+def region_arcs(region: Region) -> tuple[Arc, Arc]:
+    """The two arcs bounding a region, in the order the motion runs along them (from ``+e2`` first)."""
+    kind, sigma = _check_region(region)
+    if kind == "max":
+        return ((sigma, sigma), (sigma, -sigma))
+    return ((sigma, sigma), (-sigma, sigma))
+
+
+def _next(arc: Arc, h: float) -> Arc:
+    """The arc followed after ``arc`` by a motion with energy offset ``h`` at the saddle where ``arc`` ends."""
+    s1, s3 = arc
+    return (s1, -s3) if h < 0.0 else (-s1, s3)
+
+
+@dataclass(frozen=True)
+class Separatrix:
+    r"""The separatrix motions :math:`G^2 = 2TA_2` of a triaxial body, in hyperbolic functions.
+
+    Parameters
+    ----------
+    body : Body
+    G : float
+        Magnitude of the angular momentum (> 0).
+
+    Notes
+    -----
+    ``g(t, arc)`` is the motion along the arc ``(s1, s3)`` (see the module docstring), at the middle of
+    the arc (``g2 = 0``) at ``t = 0``; it tends to the saddle :math:`\mp s_1s_3G\mathbf e_2` as
+    :math:`t\to\pm\infty`. It is the limit :math:`k\to1` of :class:`EulerPoinsot` of either kind: the
+    ``"max"`` motion with ``sigma = s1`` runs along ``(s1, +1)`` and then ``(s1, -1)``, the ``"min"``
+    motion with ``sigma = s3`` along ``(+1, s3)`` and then ``(-1, s3)``.
+
+    Examples
+    --------
+    >>> from rigidbody.euler_poinsot import Body, Separatrix
+    >>> sep = Separatrix(Body(3.2, 2.6, 1.67), G=1.0)
+    >>> g = sep.g(0.7, (1, -1))
+    >>> bool(abs((g**2).sum() - 1.0) < 1e-14), bool(abs(0.5 * (g**2 / sep.body.A).sum() - sep.T) < 1e-14)
+    (True, True)
+    """
+
+    body: Body
+    G: float
+
+    def __post_init__(self) -> None:
+        _check_body(self.body)
+        G = real(self.G, "G")
+        if G <= 0:
+            raise ValueError(f"G must be positive, got {G}")
+        object.__setattr__(self, "G", G)
+
+    @property
+    def T(self) -> float:
+        """Kinetic energy on the separatrix, :math:`G^2/(2A_2)`."""
+        return self.G**2 / (2.0 * self.body.A2)
+
+    @property
+    def rate(self) -> float:
+        r""":math:`\lambda = G\sqrt{(A_1-A_2)(A_2-A_3)/(A_1A_2^2A_3)}`: the exponent of the saddles."""
+        A1, A2, A3 = self.body.A1, self.body.A2, self.body.A3
+        return self.G * math.sqrt((A1 - A2) * (A2 - A3) / (A1 * A2 * A2 * A3))
+
+    @property
+    def amplitudes(self) -> tuple[float, float]:
+        r""":math:`(c_1, c_3)`, the largest :math:`|g_1|` and :math:`|g_3|` on the separatrix."""
+        A1, A2, A3 = self.body.A1, self.body.A2, self.body.A3
+        c1 = self.G * math.sqrt(A1 * (A2 - A3) / (A2 * (A1 - A3)))
+        c3 = self.G * math.sqrt(A3 * (A1 - A2) / (A2 * (A1 - A3)))
+        return c1, c3
+
+    def _g_x(self, x: np.ndarray, arc: Arc) -> np.ndarray:
+        """Body angular momentum at the points ``sin x = tanh(rate t)`` of an arc, shape ``(3, *x.shape)``."""
+        s1, s3 = arc
+        c1, c3 = self.amplitudes
+        cx = np.cos(x)
+        return np.stack([s1 * c1 * cx, -s1 * s3 * self.G * np.sin(x), s3 * c3 * cx])
+
+    def g(self, t: Any, arc: Any) -> np.ndarray:
+        r"""Body components of the angular momentum on the arc ``(s1, s3)``, shape ``(3, *t.shape)``.
+
+        Parameters
+        ----------
+        t : array_like
+            Time from the middle of the arc.
+        arc : (int, int)
+            Signs ``(s1, s3)`` of :math:`g_1, g_3` on the arc.
+        """
+        a = _check_arc(arc)
+        u = self.rate * np.asarray(t, dtype=float)
+        return self._g_x(np.arctan(np.sinh(u)), a)  # gd(u): sin x = tanh u, cos x = sech u
+
+    def omega(self, t: Any, arc: Any) -> np.ndarray:
+        """Body angular velocity on the arc ``(s1, s3)``, shape ``(3, *t.shape)``."""
+        g = self.g(t, arc)
+        return g / self.body.A.reshape((3,) + (1,) * (g.ndim - 1))
+
+
+# --------------------------------------------------------------------------------------------------
+# the perturbation: a torque callable (omega, C, nu) -> M, vectorised over leading axes
+# --------------------------------------------------------------------------------------------------
+def _torque_fn(torque: Any, body: Body, orbit: Orbit) -> TorqueFn:
+    """The whole perturbation as a torque object: a drag tensor means drag plus the gravity-gradient torque."""
+    what, tq = resolve(torque)
+    if what == "drag":
+        tq = drag_as_torque(tq, body, orbit)
+    tq._check_setup(body, orbit)
+    return tq
+
+
+def _orbit_nodes(nu: float | None, orbit: Orbit, n_nu: int) -> tuple[np.ndarray, np.ndarray]:
+    """True anomalies and weights: ``nu`` itself, or the time mean over one orbit (Kepler's law)."""
+    if nu is not None:
+        return np.array([nu]), np.array([1.0])
+    return nu_nodes(orbit.e, n_nu)
+
+
+def _unit_n(delta: Any, lam: Any) -> np.ndarray:
+    d, la = real(delta, "delta"), real(lam, "lam")
+    if not (0.0 <= d <= math.pi):
+        raise ValueError(f"delta (polar angle of G from x3) must lie in [0, pi], got {d}")
+    return np.array([math.sin(d) * math.cos(la), math.sin(d) * math.sin(la), math.cos(d)])
+
+
+def _psi_average(body: Body, torque: TorqueFn, g: np.ndarray, n: np.ndarray, nus: np.ndarray,
+                 wnu: np.ndarray, n_psi: int) -> tuple[np.ndarray, np.ndarray]:
+    """Torque at body momenta ``g`` (3, m), averaged over psi (and the orbit nodes).
+
+    Returns the mean body torque (3, m) and the mean torque in the orbital axes (3, m).
+    """
+    G = np.linalg.norm(g, axis=0)
+    theta = np.arccos(np.clip(g[2] / G, -1.0, 1.0))
+    phi = np.arctan2(g[0], g[1])
+    psi = np.arange(n_psi) * (2.0 * math.pi / n_psi)
+    alpha = euler.dcm(psi[:, None], theta[None, :], phi[None, :])  # (n_psi, m, 3, 3): body -> Oy
+    C = np.einsum("ij,...jk->...ik", frame(n), alpha)  # body -> Ox
+    omega = np.broadcast_to((g / body.A[:, None]).T, C.shape[:-1])
+    Lb = np.zeros((3, g.shape[1]))
+    Lo = np.zeros((3, g.shape[1]))
+    for nu, w in zip(nus, wnu):
+        M = np.asarray(torque(omega, C, np.full(C.shape[:-2], nu)), dtype=float)
+        if M.shape != omega.shape:
+            raise ValueError(f"the torque must return body components of shape {omega.shape}, got {M.shape}")
+        if not np.all(np.isfinite(M)):
+            raise ValueError("the torque returned non-finite values on the separatrix")
+        Lb += w * M.mean(axis=0).T
+        Lo += w * np.einsum("...ij,...j->...i", C, M).mean(axis=0).T
+    return Lb, Lo
+
+
+def _check_nodes(n: Any, name: str, minimum: int) -> int:
+    if isinstance(n, (bool, np.bool_)) or not isinstance(n, (int, np.integer)) or n < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}, got {n!r}")
+    return int(n)
+
+
+def _setup(body: Any, torque: Any, G: Any, delta: Any, lam: Any, nu: Any, orbit: Any, n_x: Any, n_psi: Any,
+           n_nu: Any) -> tuple[Separatrix, TorqueFn, np.ndarray, float | None, Orbit, tuple[int, int, int]]:
+    _check_body(body)
+    orb = _as_orbit(orbit)
+    sep = Separatrix(body, G)
+    n = _unit_n(delta, lam)
+    nu_ = None if nu is None else real(nu, "nu")
+    nodes = (_check_nodes(n_x, "n_x", 4), _check_nodes(n_psi, "n_psi", 2), _check_nodes(n_nu, "n_nu", 2))
+    return sep, _torque_fn(torque, body, orb), n, nu_, orb, nodes
+
+
+def _arc_drifts(sep: Separatrix, torque: TorqueFn, n: np.ndarray, nus: np.ndarray, wnu: np.ndarray,
+                n_x: int, n_psi: int) -> dict[Arc, float]:
+    body = sep.body
+    A1, A2, A3 = body.A1, body.A2, body.A3
+    c1, c3 = sep.amplitudes
+    x, w = np.polynomial.legendre.leggauss(n_x)
+    x = 0.5 * math.pi * x
+    w = 0.5 * math.pi * w
+    out: dict[Arc, float] = {}
+    for arc in ARCS:
+        s1, s3 = arc
+        Lb, _ = _psi_average(body, torque, sep._g_x(x, arc), n, nus, wnu, n_psi)
+        integrand = s1 * c1 * (1.0 / A1 - 1.0 / A2) * Lb[0] + s3 * c3 * (1.0 / A3 - 1.0 / A2) * Lb[2]
+        out[arc] = float(w @ integrand) / sep.rate
+    return out
+
+
+def _captures(kind: str, loop: float, scale: float) -> bool:
+    """A region keeps the motions that enter it when its loop drift points away from the separatrix."""
+    tol = 1e-12 * scale
+    return loop < -tol if kind == "max" else loop > tol
+
+
+def _propagate(drifts: dict[Arc, float], source: Region, first: int = 0, max_steps: int = 200, floor: float = 0.0
+               ) -> tuple[dict[Region, float], float, bool]:
+    """Capture probabilities from ``source`` by following the interval of h through the arc network.
+
+    Drifts below ``floor`` in absolute value count as zero (a torque without effect on the separatrix).
+    """
+    scale = max(abs(v) for v in drifts.values())
+    if scale <= floor:
+        return dict.fromkeys(REGIONS, 0.0), 0.0, False
+    loops = {r: sum(drifts[a] for a in region_arcs(r)) for r in REGIONS}
+    kind = source[0]
+    a0 = region_arcs(source)[first]
+    loop = loops[source]
+    probs = dict.fromkeys(REGIONS, 0.0)
+    if scale == 0.0 or (kind == "max" and not loop > 1e-12 * scale) or (kind == "min" and not loop < -1e-12 * scale):
+        return probs, 0.0, False  # the source region does not approach the separatrix: nothing crosses
+    p1, p2 = drifts[a0], loop
+    if kind == "min":  # h > 0; crossing in this loop iff h + min(p1, p2) <= 0
+        m = min(p1, p2)
+        pieces = [(a0, -m - abs(loop), -m)]
+    else:  # h < 0; crossing iff h + max(p1, p2) >= 0
+        m = max(p1, p2)
+        pieces = [(a0, -m, -m + loop)]
+    total = abs(loop)
+    for _ in range(max_steps):
+        new: list[tuple[Arc, float, float]] = []
+        for arc, lo, hi in pieces:
+            lo, hi = lo + drifts[arc], hi + drifts[arc]
+            parts = [(lo, min(hi, 0.0)), (max(lo, 0.0), hi)]
+            for plo, phi_ in parts:
+                if phi_ - plo <= 0.0:
+                    continue
+                h_side = -1.0 if phi_ <= 0.0 else 1.0
+                region: Region = ("max", arc[0]) if h_side < 0 else ("min", arc[1])
+                nxt = _next(arc, h_side)
+                q1, q2 = drifts[nxt], loops[region]
+                if _captures(region[0], q2, scale) and (
+                    (region[0] == "max" and phi_ + max(q1, q2) < 0.0)
+                    or (region[0] == "min" and plo + min(q1, q2) > 0.0)
+                ):
+                    probs[region] += (phi_ - plo) / total
+                    continue
+                new.append((nxt, plo, phi_))
+        pieces = new
+        if not pieces:
+            break
+    undetermined = max(0.0, 1.0 - sum(probs.values()))
+    return probs, undetermined, True
+
+
+@dataclass(frozen=True)
+class SeparatrixCrossing:
+    r"""What happens when a motion reaches the separatrix: drifts along the arcs and capture probabilities.
+
+    Attributes
+    ----------
+    source : (str, int)
+        The region ``(kind, sigma)`` the motion comes from.
+    drifts : dict
+        Arc ``(s1, s3)`` -> :math:`\Theta`, the change of :math:`h = T - G^2/(2A_2)` along one passage of the
+        arc, per unit torque time: in the section-3 scaling the change is :math:`\varepsilon^2\Theta` (the
+        torque acts in :math:`\tau = \varepsilon^2\tilde t`); with a dimensional torque :math:`\Theta` is the
+        change itself.
+    loop_drifts : dict
+        Region -> the sum of the drifts of its two arcs: the change of :math:`h` per revolution close to the
+        separatrix. A ``"max"`` region approaches the separatrix when it is positive, a ``"min"`` region when
+        it is negative.
+    probabilities : dict
+        Region -> probability that the motion ends in it (each region whose loop drift points away from the
+        separatrix; 0 for the others). They sum to ``1 - undetermined``.
+    undetermined : float
+        Measure of crossing phases the arc bookkeeping could not settle (e.g. all drifts zero); 0 normally.
+    crosses : bool
+        Whether motions of the source region reach the separatrix at all (its loop drift points to it).
+    quad_error : float
+        Estimated quadrature error of the drifts (difference to the half-node rule).
+    """
+
+    source: Region
+    drifts: dict[Arc, float] = field(repr=False)
+    loop_drifts: dict[Region, float]
+    probabilities: dict[Region, float]
+    undetermined: float
+    crosses: bool
+    quad_error: float = field(repr=False)
+
+    @property
+    def capturing(self) -> tuple[Region, ...]:
+        """The regions that keep the motions entering them (loop drift away from the separatrix)."""
+        scale = max(abs(v) for v in self.drifts.values()) if self.drifts else 0.0
+        return tuple(r for r in REGIONS if _captures(r[0], self.loop_drifts[r], scale))
+
+    def most_probable(self) -> Region:
+        """The region of largest capture probability (ties: ``sigma = +1`` first, then ``'max'``)."""
+        if not self.crosses:
+            raise ValueError(f"motions of {self.source} do not cross the separatrix: no capture")
+        return max(REGIONS, key=lambda r: (round(self.probabilities[r], 12), r[1], r[0] == "max"))
+
+
+def separatrix_crossing(
+    body: Body,
+    torque: Any,
+    G: float,
+    delta: float,
+    lam: float,
+    nu: float | None,
+    source: Any,
+    *,
+    orbit: Orbit | None = None,
+    n_x: int = 48,
+    n_psi: int = 16,
+    n_nu: int = 32,
+) -> SeparatrixCrossing:
+    r"""Drifts along the separatrix arcs and the capture probabilities of a motion crossing it.
+
+    Parameters
+    ----------
+    body : Body
+    torque : callable or array_like or Drag
+        ``torque(omega, C, nu) -> M`` (body components; ``omega`` of shape ``(..., 3)``, ``C`` body ->
+        orbital axes of shape ``(..., 3, 3)``, ``nu`` of shape ``(...)``), the whole perturbation in the
+        section-3 scaling; or a drag tensor (then the perturbation is the paper's drag plus the
+        gravity-gradient torque (3)).
+    G : float
+        Magnitude of the angular momentum at the crossing (> 0).
+    delta, lam : float
+        Direction of :math:`\mathbf G` in the orbital axes (polar angle from :math:`x_3`, azimuth).
+    nu : float or None
+        True anomaly at the crossing (held fixed: the crossing takes a few rotations); ``None`` averages
+        over the orbit (the ``eps = 0`` limit).
+    source : (str, int)
+        The region ``(kind, sigma)`` the motion comes from.
+    orbit : Orbit, optional
+        For the orbit average (``nu=None``) and the drag-tensor form (gravity factor).
+    n_x, n_psi, n_nu : int
+        Gauss--Legendre nodes along an arc, trapezoid nodes in :math:`\psi` and in the mean anomaly.
+
+    Returns
+    -------
+    SeparatrixCrossing
+        ``probabilities`` maps each region ``(kind, sigma)`` to its capture probability.
+
+    Examples
+    --------
+    A constant body-fixed torque that brakes a spin about the minor axis and pushes about the major one:
+
+    >>> import numpy as np
+    >>> from rigidbody.euler_poinsot import Body, separatrix_crossing
+    >>> M0 = np.array([0.4, 0.0, -0.5])
+    >>> c = separatrix_crossing(Body(3.2, 2.6, 1.67), lambda w, C, nu: np.broadcast_to(M0, w.shape),
+    ...                         1.0, 0.5, 0.0, 0.0, ("min", 1))
+    >>> {r: round(p, 3) for r, p in c.probabilities.items() if p > 0}
+    {('max', 1): 0.464, ('min', -1): 0.536}
+    """
+    sep, fn, n, nu_, orb, (n_x, n_psi, n_nu) = _setup(body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu)
+    src = _check_region(source, "source")
+    nus, wnu = _orbit_nodes(nu_, orb, n_nu)
+    drifts = _arc_drifts(sep, fn, n, nus, wnu, n_x, n_psi)
+    nus2, wnu2 = _orbit_nodes(nu_, orb, max(2, n_nu // 2))
+    coarse = _arc_drifts(sep, fn, n, nus2, wnu2, max(4, n_x // 2), max(2, n_psi // 2))
+    err = max(abs(drifts[a] - coarse[a]) for a in ARCS)
+    # drifts below 1e-12 of the separatrix energy per passage time count as zero: a torque that does not act on
+    # the separatrix (then no region keeps the motions reaching it: it attracts from all sides)
+    probs, und, crosses = _propagate(drifts, src, floor=1e-12 * sep.T / sep.rate)
+    loops = {r: sum(drifts[a] for a in region_arcs(r)) for r in REGIONS}
+    return SeparatrixCrossing(src, drifts, loops, probs, und, crosses, err)
+
+
+# --------------------------------------------------------------------------------------------------
+# limits of the averaged rates at the separatrix
+# --------------------------------------------------------------------------------------------------
+def _rates_at(body: Body, g: np.ndarray, Lb: np.ndarray, Lo: np.ndarray, n: np.ndarray) -> dict[str, np.ndarray]:
+    """dG, dT, dh and dn at body momenta g (3, m) for the psi-averaged torques Lb (body), Lo (orbital)."""
+    G = np.linalg.norm(g, axis=0)
+    omega = g / body.A[:, None]
+    dG = (g * Lb).sum(0) / G
+    dT = (omega * Lb).sum(0)
+    dh = dT - G * dG / body.A2
+    dn = (Lo - np.outer(n, n @ Lo)) / G
+    return {"dG": dG, "dT": dT, "dh": dh, "dn": dn}
+
+
+@dataclass(frozen=True)
+class SeparatrixLimits:
+    r"""Limits of the averaged rates at the separatrix and how they are approached.
+
+    The mean of a smooth function over a period of the Euler--Poinsot motion tends, as :math:`k\to1`, to
+    its value at the saddles :math:`\pm G\mathbf e_2` (averaged over :math:`\psi` and over the two
+    saddles): the motion spends all but :math:`O(1)` of its period :math:`4K/\dot u` next to them. The
+    separatrix loop enters only as the correction :math:`J/(4K)`, with :math:`J` the integral along the two
+    arcs of the region of the difference between the function and its value at the saddle being
+    approached or left (in the elliptic argument :math:`u`). So the rates are continuous across the
+    separatrix (the same limit from all four regions), with an infinite slope in :math:`k^2` there, and the
+    convergence is slow: :math:`1/K \approx 1/\ln(4/k')`.
+
+    Attributes
+    ----------
+    dG, dT : float
+        Limits of the averaged :math:`dG/d\tau`, :math:`dT/d\tau`.
+    dn : numpy.ndarray
+        Limit of :math:`d\mathbf n/d\tau` (unit vector of :math:`\mathbf G` in the orbital axes).
+    dk2 : float
+        Limit of :math:`dk^2/d\tau` (0: the averaged drift of the energy vanishes at the separatrix).
+    slope : dict
+        Region -> dict of :math:`J/4` for ``'dG'``, ``'dT'``, ``'dh'``, ``'dk2'`` (floats) and ``'dn'``
+        (array), so that the averaged rate near the separatrix is ``limit + slope / K(k)``.
+    """
+
+    dG: float
+    dT: float
+    dn: np.ndarray
+    dk2: float
+    slope: dict[Region, dict[str, Any]] = field(repr=False)
+
+    def near(self, region: Any, mc: float) -> dict[str, Any]:
+        r"""The two-term asymptotic rates ``limit + slope/K`` at :math:`1 - k^2 = ` ``mc`` in ``region``."""
+        from ..core.elliptic import K
+
+        reg = _check_region(region)
+        mcf = real(mc, "mc")
+        if not (0.0 < mcf <= 1.0):
+            raise ValueError(f"mc (= 1 - k**2) must lie in (0, 1], got {mcf}")
+        kk = float(K(mc=mcf))
+        s = self.slope[reg]
+        base = {"dG": self.dG, "dT": self.dT, "dn": self.dn, "dk2": self.dk2, "dh": 0.0}
+        return {q: base[q] + s[q] / kk for q in ("dG", "dT", "dn", "dk2", "dh")}
+
+
+def separatrix_limits(
+    body: Body,
+    torque: Any,
+    G: float,
+    delta: float,
+    lam: float,
+    nu: float | None,
+    *,
+    orbit: Orbit | None = None,
+    n_x: int = 48,
+    n_psi: int = 16,
+    n_nu: int = 32,
+) -> SeparatrixLimits:
+    r"""Limits at :math:`k^2\to1` of the averaged rates of :math:`G`, :math:`T`, :math:`\mathbf n`, :math:`k^2`.
+
+    Parameters
+    ----------
+    body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu
+        As in :func:`separatrix_crossing`.
+
+    Returns
+    -------
+    SeparatrixLimits
+        The common limit from the four regions and, per region, the coefficient of the :math:`1/K(k)`
+        correction. For the paper's drag (diagonal :math:`I`): :math:`dG/d\tau\to -I_{22}G/A_2`,
+        :math:`dT/d\tau\to -I_{22}G^2/A_2^2` (rotation about the intermediate axis), and
+        :math:`K\,dk^2/d\tau\to \mp2(I_{33}/A_3 - I_{11}/A_1)` from the ``"max"``/``"min"`` side, the
+        limit of (8).
+    """
+    sep, fn, n, nu_, orb, (n_x, n_psi, n_nu) = _setup(body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu)
+    nus, wnu = _orbit_nodes(nu_, orb, n_nu)
+    A1, A2, A3 = body.A1, body.A2, body.A3
+    Gf = sep.G
+    saddles = np.array([[0.0, 0.0], [Gf, -Gf], [0.0, 0.0]])  # +e2, -e2
+    Lb, Lo = _psi_average(body, fn, saddles, n, nus, wnu, n_psi)
+    at = _rates_at(body, saddles, Lb, Lo, n)
+    lim = {q: 0.5 * (v[..., 0] + v[..., 1]) for q, v in at.items()}
+    # J along an arc, in u = rate * t: from the start saddle to the middle and from the middle to the end
+    x, w = np.polynomial.legendre.leggauss(n_x)
+    xh = 0.25 * math.pi * (x - 1.0)  # (-pi/2, 0)
+    wh = 0.25 * math.pi * w
+    arc_J: dict[Arc, dict[str, Any]] = {}
+    for arc in ARCS:
+        s1, s3 = arc
+        start = 0 if s1 * s3 == 1 else 1  # index of the saddle the arc leaves: +e2 when s1 s3 = 1
+        J: dict[str, Any] = {}
+        for half, xs, sad in ((0, xh, start), (1, -xh[::-1], 1 - start)):
+            g = sep._g_x(xs, arc)
+            Lb_, Lo_ = _psi_average(body, fn, g, n, nus, wnu, n_psi)
+            r = _rates_at(body, g, Lb_, Lo_, n)
+            wq = wh if half == 0 else wh[::-1]
+            for q, v in r.items():
+                diff = (v - at[q][..., sad : sad + 1]) / np.cos(xs)  # du = dx / cos x
+                J[q] = J.get(q, 0.0) + diff @ wq
+        arc_J[arc] = J
+    dk2_dD = (A1 - A3) / ((A1 - A2) * (A2 - A3))  # |dk^2/dD| at D = A2, both kinds
+    slope: dict[Region, dict[str, Any]] = {}
+    for reg in REGIONS:
+        a, b = region_arcs(reg)
+        s = {q: 0.25 * (arc_J[a][q] + arc_J[b][q]) for q in ("dG", "dT", "dh", "dn")}
+        # D = G^2/2T: dD = -(2 A2^2/G^2) dh at the separatrix; k^2 decreases with D for 'max', increases for 'min'
+        sign = -1.0 if reg[0] == "max" else 1.0
+        s["dk2"] = sign * dk2_dD * (-2.0 * A2 * A2 / (Gf * Gf)) * s["dh"]
+        slope[reg] = {q: (float(v) if np.ndim(v) == 0 else np.asarray(v)) for q, v in s.items()}
+    return SeparatrixLimits(float(lim["dG"]), float(lim["dT"]), np.asarray(lim["dn"]), 0.0, slope)
+
+
+# --------------------------------------------------------------------------------------------------
+# what the integrators need: initial states on either side, the switch at the separatrix, the branch
+# --------------------------------------------------------------------------------------------------
+#: The averaged integration switches to the other side of the separatrix when k^2 reaches this value; the
+#: new kind of motion starts at the same k^2 with G and n continuous (T jumps by O(1e-9) relative: the two
+#: sides at 1 - k^2 = 1e-9 are that close in energy), and the time skipped is below 1e-7.
+K2_SWITCH = 1.0 - 1e-9
+
+
+def _initial_kind(body: Body, G0: float, k2_0: float | None, kind: str | None, T0: float | None
+                  ) -> tuple[float, str]:
+    """(k2_0, kind) from k2_0 and kind (defaults 0.99, 'max') or from the energy T0."""
+    if T0 is None:
+        kind = "max" if kind is None else kind
+        _check_kind(kind)
+        return (0.99 if k2_0 is None else k2_0), kind
+    if k2_0 is not None or kind is not None:
+        raise ValueError("give the initial state either by T0 or by k2_0 and kind, not both")
+    T0 = real(T0, "T0")
+    if T0 <= 0:
+        raise ValueError(f"T0 must be positive, got {T0}")
+    lo, hi = G0**2 / (2 * body.A1), G0**2 / (2 * body.A3)
+    if not (lo * (1 - 1e-12) <= T0 <= hi * (1 + 1e-12)):
+        raise ValueError(f"T0 must lie in [G0^2/(2 A1), G0^2/(2 A3)] = [{lo:.6g}, {hi:.6g}] (a rigid body), got {T0}")
+    k = kind_of(body, G0, T0)
+    if k == "separatrix":
+        raise ValueError(f"T0 = {T0} lies on the separatrix G0^2 = 2 T0 A2: start on either side of it")
+    return float(k2_from(body, G0, T0, k)), k
+
+
+BRANCHES = ("likely", "random")
+
+
+def _check_branch(branch: Any) -> Any:
+    """'likely', 'random', a region (kind, sigma) or a sequence of regions (one per crossing)."""
+    if isinstance(branch, str):
+        if branch not in BRANCHES:
+            raise ValueError(f"branch must be 'likely', 'random', a region such as ('max', 1) or a list of "
+                             f"regions, got {branch!r}")
+        return branch
+    try:
+        return (_check_region(branch, "branch"),)
+    except ValueError:
+        pass
+    try:
+        seq = tuple(branch)
+    except TypeError:
+        raise ValueError(f"branch must be 'likely', 'random', a region such as ('max', 1) or a list of regions, "
+                         f"got {branch!r}") from None
+    return tuple(_check_region(r, "branch") for r in seq)
+
+
+def _choose(crossing: SeparatrixCrossing, branch: Any, index: int, rng: np.random.Generator
+            ) -> tuple[Region | None, str]:
+    """The region the averaged motion continues in at crossing number ``index`` (or None and why not)."""
+    probs = crossing.probabilities
+    text = ", ".join(f"{r}: {p:.3g}" for r, p in probs.items() if p > 0)
+    if not crossing.crosses or crossing.undetermined > 0.5 or not any(p > 0 for p in probs.values()):
+        loops = ", ".join(f"{r}: {v:.3g}" for r, v in crossing.loop_drifts.items())
+        return None, ("the separatrix attracts from both sides: no region keeps the motions that reach it "
+                      f"(loop drifts {loops}); the averaged theory cannot continue")
+    if isinstance(branch, tuple) and index < len(branch):
+        want = branch[index]
+        if probs[want] <= 0.0:
+            return None, (f"the requested branch {want} is not entered: its averaged drift points back to the "
+                          f"separatrix (capture probability 0; probabilities {text})")
+        return want, ""
+    if branch == "random":
+        regions = [r for r in REGIONS if probs[r] > 0]
+        p = np.array([probs[r] for r in regions])
+        return regions[int(rng.choice(len(regions), p=p / p.sum()))], ""
+    return crossing.most_probable(), ""
