@@ -20,6 +20,8 @@ from rigidbody import euler_poinsot as ep
 BODY = ep.Body(3.2, 2.6, 1.67)
 CASE1 = np.diag([2.322, 1.31, 1.425])
 CASE2 = np.diag([0.919, 5.228, 1.666])
+# I11/A1 > I33/A3: k2 rises to the separatrix in finite time (members stop there, event 'separatrix')
+UPWARD = np.diag([2.9, 1.31, 1.0])
 RTOL = 1e-10
 # a member and its single call integrate the same equations with the same step control; their step sequences
 # part by rounding, so they differ by the integrators' own (global) error: a few rtol relative (G, T, k2) or
@@ -39,7 +41,7 @@ def _agree(member, single, fields=("G", "T", "k2", "delta", "lam", "nu")):
         assert _rel(getattr(member, f), getattr(single, f)) <= AGREE, f
     k2m, k2s = member.k2, single.k2
     nz = k2s > 0
-    assert np.array_equal(k2m > 0, nz) and _rel(k2m[nz], k2s[nz]) <= AGREE
+    assert np.array_equal(k2m > 0, nz) and (not nz.any() or _rel(k2m[nz], k2s[nz]) <= AGREE)
     assert np.max(np.abs(member.delta - single.delta)) <= AGREE
     lam_s = single.lam
     assert np.max(np.abs(member.lam - lam_s) / np.maximum(1.0, np.abs(lam_s))) <= AGREE
@@ -54,20 +56,21 @@ def test_batch_members_equal_their_single_calls(eps):
     B = 12
     k2 = rng.uniform(0.05, 0.95, B)
     k2[0] = 0.0  # an equilibrium of (8): k2 stays 0
-    k2[1] = 0.999995  # reaches k2_max = 1 - 1e-6 at once: stops early (event), NaN after
+    k2[1] = 0.9999  # reaches k2_max = 1 - 1e-6 at once: stops early (event), NaN after
     d0 = rng.uniform(0.0, math.pi, B)
     d0[2] = 0.0  # the pole, a fixed point of the gravity-gradient average
     l0 = rng.uniform(-3.0, 3.0, B)
     G0 = rng.uniform(0.5, 2.0, B)
     te = np.linspace(0.0, 2.0, 21)
     kw = dict(tau_span=(0.0, 2.0), tau_eval=te, rtol=RTOL, k2_max=1 - 1e-6)
-    sol = ep.averaged(BODY, CASE1, eps, G0, k2, d0, l0, **kw)
+    sol = ep.averaged(BODY, UPWARD, eps, G0, k2, d0, l0, **kw)
     assert sol.batch_shape == (B,) and sol.G.shape == (B, te.size) and sol.n.shape == (B, 3, te.size)
     for i in range(B):
-        one = ep.averaged(BODY, CASE1, eps, float(G0[i]), float(k2[i]), float(d0[i]), float(l0[i]), **kw)
+        one = ep.averaged(BODY, UPWARD, eps, float(G0[i]), float(k2[i]), float(d0[i]), float(l0[i]), **kw)
         _agree(sol[i], one)
     assert sol.event[1] == "separatrix" and sol.status[1] == 1
     assert np.isnan(sol.G[1, -1]) and np.all(sol.k2[0] == 0.0)
+    assert 1 < np.sum(sol.status == 1) < B  # several members stop early, the others reach the end
 
 
 def test_members_refused_at_the_start_get_the_single_calls_message():
@@ -159,7 +162,7 @@ def test_simulate_batch_members_equal_their_single_calls():
 def test_simulate_batch_lambda_is_continuous_through_many_turns():
     # a magnet in a field along x3 turns G about x3 many times between two output times: the batch follows the
     # turns through its branch-cut events, the single run through its solver steps
-    tq = ep.MagneticDipole([3.0, 0.0, 0.0], [0.0, 0.0, 1.0])
+    tq = ep.MagneticDipole([40.0, 0.0, 0.0], [0.0, 0.0, 1.0])
     te = np.array([0.0, 0.25, 0.5])
     eps = np.array([0.05, 0.04])
     sol = ep.simulate(BODY, tq, eps, 1.0, 0.3, 1.0, 0.0, (0.0, 0.5), te, k2_max=1 - 1e-6)

@@ -50,8 +50,10 @@ from typing import Any
 
 import numpy as np
 
+from ..core import kernel as _kn
 from ..core.ode import Event, Solution, integrate
 from ..core.validate import positive, real, span
+from . import _kernel as _k
 from ._engine import Averager, TorqueAverage, _Mean, _State, error_of, harmonic, mean_of
 from ._model import (
     K2_SPIN_CAP,
@@ -500,17 +502,17 @@ def _check_tol(rtol: Any, atol: Any) -> None:
 def averaged(
     body: Body,
     torque: Any,
-    eps: float,
-    G0: float = 1.0,
-    k2_0: float | None = None,
-    delta0: float = math.pi / 4,
-    lam0: float = math.pi / 4,
+    eps: Any,
+    G0: Any = 1.0,
+    k2_0: Any = None,
+    delta0: Any = math.pi / 4,
+    lam0: Any = math.pi / 4,
     tau_span: tuple[float, float] = (0.0, 3.0),
     tau_eval: Any = None,
-    nu0: float = 0.0,
+    nu0: Any = 0.0,
     *,
     kind: str | None = None,
-    T0: float | None = None,
+    T0: Any = None,
     orbit: Orbit | None = None,
     rtol: float = 1e-10,
     atol: float = 1e-12,
@@ -638,6 +640,14 @@ def averaged(
     >>> bool(sol.G[-1] < sol.G[0]), sol.status
     (True, 0)
     """
+    from . import _batch
+
+    if _batch.is_batch(eps, G0, k2_0, delta0, lam0, nu0, T0) or _batch.drag_batch(torque) is not None:
+        opts = dict(kind=kind, T0=T0, orbit=orbit, rtol=rtol, atol=atol, method=method, k2_max=k2_max,
+                    min_spin_ratio=min_spin_ratio, sigma=sigma, averaging=averaging, quad_tol=quad_tol,
+                    drift_tol=drift_tol, resonance_tol=resonance_tol, branch=branch, seed=seed)
+        return _batch.averaged_batch(body, torque, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, opts,
+                                     averaged)
     _check_body(body)
     k2_0, kind = _initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
     eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)
@@ -1106,83 +1116,62 @@ def averaged_branches(*args: Any, **kwargs: Any) -> dict[tuple[str, int], Soluti
 
 def _drag_piece(gen: _Generic, drag: Any, region: tuple[str, int], tau_span: Any, G0: float, k2_0: float,
                 n0: np.ndarray, nu_start: float, lam0: float, k2_stop: float) -> _Piece:
-    """A segment of the paper's averaged system (9) (drag tensor plus gravity gradient, closed forms)."""
+    """A segment of the paper's averaged system (9) (drag tensor plus gravity gradient, closed forms), integrated
+    in ``(ln G, ln k^2, [delta,] lambda[, nu])`` (:mod:`._kernel`: relative accuracy of the decaying variables,
+    lambda continuous) by DOP853 on Python floats; its dense output is computed where it is asked for."""
+    SC = _kn.SCALAR
     delta0 = math.acos(max(-1.0, min(1.0, float(n0[2]))))
     body, orb, eps, kind, sigma = gen.body, gen.orbit, gen.eps, region[0], region[1]
     A, Id = _labels(body, kind, drag.diag)
+    g1, g2, g3, c3, c1 = _k.DragCoefficients(A, Id).args()
     nu0 = gen.nu0  # circular orbit: nu = tau / eps + nu0 with the run's nu0
-    circular = orb.e == 0.0
-    mf = orb.mean_factor
-    inv_eps = 1.0 / eps if eps > 0 else 0.0
+    e = orb.e
+    limit = eps == 0.0
+    y0, z_a = _k.initial_state(eps, G0, k2_0, delta0, lam0, nu_start, e)
+    z = float(z_a)
+    if limit:
+        hl = 0.75 * orb.mean_factor * math.cos(delta0)
 
-    def grav(G: float, k2: float, n1: float, n2: float, n3: float, nu: float) -> tuple[float, float, float]:
-        Ns = _nstar(A, k2)
-        cn, sn = math.cos(nu), math.sin(nu)
-        c = 1.5 * orb.factor(nu) * Ns * (cn * n1 + sn * n2) / G
-        return -c * n3 * sn, c * n3 * cn, c * (n1 * sn - n2 * cn)
+        def rhs(tau: float, y: Any) -> list[float]:
+            return _k.rhs_limit(SC, A, tau, y, g1, g2, g3, c3, c1, z, hl)
+        ie = 0.0
+    else:
+        ie = 1.0 / eps
 
-    def rhs_limit(tau: float, y: np.ndarray) -> list[float]:
-        # eps = 0: delta is constant and lambda = lam0 + cos(delta0) * Lambda, dLambda = (3/4) mf N*/G
-        G, k2 = y[0], y[1]
-        k2c = 0.0 if k2 < 0.0 else (1.0 if k2 > 1.0 else k2)
-        dG, _ = _drag_rates(A, Id, G, k2c)
-        return [dG, _dk2(A, Id, k2c), 0.75 * mf * _nstar(A, k2c) / G]
+        def rhs(tau: float, y: Any) -> list[float]:
+            return _k.rhs_orbit(SC, A, e, tau, y, g1, g2, g3, c3, c1, z, ie, nu0)
 
-    def rhs(tau: float, y: np.ndarray) -> list[float]:
-        G, k2, n1, n2, n3 = y[0], y[1], y[2], y[3], y[4]
-        k2c = 0.0 if k2 < 0.0 else (1.0 if k2 > 1.0 else k2)
-        nrm = math.sqrt(n1 * n1 + n2 * n2 + n3 * n3)
-        n1, n2, n3 = n1 / nrm, n2 / nrm, n3 / nrm
-        dG, _ = _drag_rates(A, Id, G, k2c)
-        dk2 = _dk2(A, Id, k2c)
-        if eps > 0.0 and not circular:
-            nu = y[5]
-            d1, d2, d3 = grav(G, k2c, n1, n2, n3, nu)
-            return [dG, dk2, d1, d2, d3, inv_eps * orb.nu_rate(nu)]
-        nu = tau * inv_eps + nu0
-        d1, d2, d3 = grav(G, k2c, n1, n2, n3, nu)
-        return [dG, dk2, d1, d2, d3]
+    lnk_stop = math.log(k2_stop)
+    events = [Event((lambda t, y: y[1] - lnk_stop) if z > 0.0 else (lambda t, y: -1.0), "separatrix", True, 1.0,
+                    f"k2 reached {k2_stop:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
+                    "where the averaging (6) does not hold")]
+    if not limit:
+        cap, r = gen.spin_cap, gen.min_spin_ratio
+        events.append(Event(lambda t, y: _k.nut_freq(SC, A, math.exp(y[0]), min(z * math.exp(y[1]), cap)) * ie - r,
+                            "slow_rotation", True, -1.0, _slow_msg(r)))
+    rt: Any
+    rt, at = _k.tolerances(gen.rtol, y0.size)
+    py = gen.method == "DOP853"
+    res = integrate(rhs, tau_span, y0, rtol=rt if py else _k.RTOL_FLOOR, atol=at, method=gen.method,
+                    dense_output=True, events=events, time_name="tau", engine="python" if py else "scipy")
+    il = 2 if limit else 3  # the row of lambda
 
-    y0 = [G0, k2_0, *n0] if eps > 0.0 else [G0, k2_0, 0.0]
-    if eps > 0.0 and not circular:
-        y0.append(nu_start)
-    cd0, sd0 = math.cos(delta0), math.sin(delta0)
-    events = [
-        Event(lambda t, y: y[1] - k2_stop, "separatrix", True, 1.0,
-              f"k2 reached {k2_stop:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
-              "where the averaging (6) does not hold"),
-    ]
-    if eps > 0.0:
-        events.append(
-            Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), gen.spin_cap)) / eps - gen.min_spin_ratio,
-                  "slow_rotation", True, -1.0, _slow_msg(gen.min_spin_ratio))
-        )
-    res = integrate(rhs if eps > 0.0 else rhs_limit, tau_span, y0, rtol=gen.rtol, atol=gen.atol, method=gen.method,
-                    dense_output=True, events=events, time_name="tau")
-
-    def lam_limit(y: np.ndarray) -> np.ndarray:
-        return lam0 + cd0 * y[2]
-
-    def nvec(y: np.ndarray) -> np.ndarray:
-        if eps == 0.0:
-            lam = lam_limit(y)
-            return np.array([sd0 * np.cos(lam), sd0 * np.sin(lam), np.full_like(lam, cd0)])
-        n = y[2:5]
-        return n / np.linalg.norm(n, axis=0)
+    def common(y: np.ndarray) -> np.ndarray:
+        f = _k.fields(A, e, np.zeros(np.shape(y)[-1]), y, z, limit, delta0, nu0, ie)
+        return np.vstack([f["G"], f["k2"], f["n"]])
 
     def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
-        if eps > 0.0 and not circular:
-            nu = y[5]
-        else:
-            nu = tau * inv_eps + nu0 if eps > 0 else np.full_like(tau, nu0)
-        out = _slow_fields(A, y, nvec, nu)
+        out = _k.fields(A, e, tau, y, z, limit, delta0, nu0, ie)
         out["kind"], out["sigma"] = np.full(tau.shape, kind), np.full(tau.shape, sigma)
         return out
 
     def finish(te: Any, lam_s: float) -> Solution:
-        return _finish(res, te, make_fields, lam_s, nvec, lam_limit if eps == 0.0 else None)
-
-    def common(y: np.ndarray) -> np.ndarray:
-        return np.vstack([y[0], y[1], nvec(y)])
+        # lambda is a state (continuous by construction); the raw rows become G, k2, n like every run's
+        sol = _finish(res, te, make_fields, lam_s, None, lambda y: y[il])
+        out = Solution(sol.time_name, sol.time, np.vstack([sol.G, sol.k2, sol.n]), {f: getattr(sol, f) for f in
+                       sol.fields}, sol.status, sol.message, sol.event, sol.t_events, sol.y_events,
+                       lambda t: common(res.sol(t)), sol.nfev)
+        out.last_step = res.last_step
+        return out
 
     return _Piece(res, region, finish, common, lam0)

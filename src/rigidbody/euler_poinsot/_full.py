@@ -91,20 +91,20 @@ def _osculating(A: tuple[float, float, float], D: float) -> tuple[tuple[float, f
 def simulate(
     body: Body,
     torque: Any,
-    eps: float,
-    G0: float = 1.0,
-    k2_0: float | None = None,
-    delta0: float = math.pi / 4,
-    lam0: float = math.pi / 4,
+    eps: Any,
+    G0: Any = 1.0,
+    k2_0: Any = None,
+    delta0: Any = math.pi / 4,
+    lam0: Any = math.pi / 4,
     tau_span: tuple[float, float] = (0.0, 3.0),
     tau_eval: Any = None,
-    nu0: float = 0.0,
+    nu0: Any = 0.0,
     *,
     kind: str | None = None,
-    T0: float | None = None,
+    T0: Any = None,
     orbit: Orbit | None = None,
-    u0: float = 0.0,
-    psi0: float = 0.0,
+    u0: Any = 0.0,
+    psi0: Any = 0.0,
     sigma: int = 1,
     formulation: str = "body",
     rtol: float = 1e-10,
@@ -164,6 +164,13 @@ def simulate(
         times of the passages through the separatrix. ``'body'`` adds ``g`` (body components of G, shape
         (3, n)) and ``q``; ``'angles'`` adds ``theta, phi, psi`` and ``T`` is the integrated energy of (4).
     """
+    from . import _batch
+
+    if _batch.is_batch(eps, G0, k2_0, delta0, lam0, nu0, T0, u0, psi0):
+        opts = dict(kind=kind, T0=T0, orbit=orbit, sigma=sigma, formulation=formulation, rtol=rtol, atol=atol,
+                    method=method, k2_max=k2_max, min_spin_ratio=min_spin_ratio)
+        return _batch.simulate_batch(body, torque, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, u0, psi0,
+                                     opts, simulate)
     _check_body(body)
     k2_0, kind = _initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
     eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)

@@ -34,13 +34,14 @@ __all__ = ["FullRun", "full_batch"]
 @dataclass
 class FullRun:
     """What the members share: body, torque (``what`` 'drag' with the tensor, or 'torque' with the object),
-    orbit, the initial kind and sense of motion, tolerances and the terminal checks."""
+    orbit, the initial kind of each member (an array) and the sense of motion, tolerances and the terminal
+    checks."""
 
     body: Body
     what: str
     torque: Any
     orbit: Orbit
-    kind: str
+    kind: np.ndarray
     sigma: int
     rtol: float
     atol: float
@@ -76,9 +77,9 @@ def _osculating(A: tuple[float, float, float], D: np.ndarray) -> tuple[np.ndarra
     return a1, a3, np.clip(k2, 0.0, 1.0)
 
 
-def _k2_initial_kind(A: tuple[float, float, float], D: np.ndarray) -> np.ndarray:
-    """The osculating k2 by the formula of the initial kind (labelled A), unclipped (inf beyond the separatrix)."""
-    A1, A2, A3 = A
+def _k2_initial_kind(A1: Any, A2: float, A3: Any, D: np.ndarray) -> np.ndarray:
+    """The osculating k2 by the formula of the initial kind (labelled moments, per member), unclipped (inf beyond
+    the separatrix)."""
     den = (A1 - A2) * (D - A3)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(den > 0.0, (A2 - A3) * (A1 - D) / np.where(den > 0.0, den, 1.0), np.inf)
@@ -92,7 +93,6 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
     body, orb = run.body, run.orbit
     A = (body.A1, body.A2, body.A3)
     A1, A2, A3 = A
-    Alab = A if run.kind == "max" else (A3, A2, A1)
     e = orb.e
     B = mem.eps.size
     nt = te.size
@@ -118,18 +118,20 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
         y0 = np.empty((idx.size, ns))
         for j, i in enumerate(idx):
             st = initial_state(body, float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]), float(mem.lam0[i]),
-                               kind=run.kind, u0=float(u0[i]), psi0=float(psi0[i]), sigma=run.sigma)
+                               kind=str(run.kind[i]), u0=float(u0[i]), psi0=float(psi0[i]), sigma=run.sigma)
             y0[j, :3], y0[j, 3:7] = st["g"], st["q"]
             if e != 0.0:
                 y0[j, 7] = mem.nu0[i]
         ie = 1.0 / mem.eps[idx]
-        args = (ie, ie * ie, mem.nu0[idx])
+        mx = run.kind[idx] == "max"  # the labelled moments A1, A3 of each member's initial kind (the k2_max stop)
+        args = (ie, ie * ie, mem.nu0[idx], np.where(mx, A1, A3), np.where(mx, A3, A1))
         Ab = np.array(A)
         drag = run.what == "drag"
         if drag:
             (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = np.asarray(run.torque.I, dtype=float).tolist()
 
-        def rhs(t: np.ndarray, y: np.ndarray, ie: np.ndarray, ie2: np.ndarray, nu0: np.ndarray) -> np.ndarray:
+        def rhs(t: np.ndarray, y: np.ndarray, ie: np.ndarray, ie2: np.ndarray, nu0: np.ndarray, *lab: np.ndarray
+                ) -> np.ndarray:
             g1, g2, g3, w, x, yq, z = y[:, 0], y[:, 1], y[:, 2], y[:, 3], y[:, 4], y[:, 5], y[:, 6]
             nrm = np.sqrt(w * w + x * x + yq * yq + z * z)
             w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
@@ -181,7 +183,7 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
         r = run.min_spin_ratio
         cap = run.spin_cap
 
-        def ev_spin(t: np.ndarray, y: np.ndarray, ie: np.ndarray, ie2: np.ndarray, nu0: np.ndarray) -> np.ndarray:
+        def ev_spin(t: np.ndarray, y: np.ndarray, ie: np.ndarray, *a: np.ndarray) -> np.ndarray:
             G, D = GD(y)
             a1, a3, k2 = _osculating(A, D)
             out = np.empty(G.shape)
@@ -196,7 +198,7 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
             ev_sep = Event(lambda t, y, *a: GD(y)[1] - A2, "separatrix", False, 0.0, "")
         else:
             stop = run.k2_max
-            ev_sep = Event(lambda t, y, *a: _k2_initial_kind(Alab, GD(y)[1]) - stop, "separatrix", True, 1.0,
+            ev_sep = Event(lambda t, y, *a: _k2_initial_kind(a[3], A2, a[4], GD(y)[1]) - stop, "separatrix", True, 1.0,
                            f"the osculating k2 reached {stop:g}: the motion is at the separatrix 2T A2 = G^2")
         # passages of the azimuth through its branch cut (n2 = 0 with n1 < 0), both ways
         events = [ev_sep, Event(ev_spin, "slow_rotation", True, -1.0, slow_message(r)),

@@ -150,6 +150,55 @@ def rhs_orbit(xp: Any, A: tuple[float, float, float], e: float, tau: Any, y: Any
     return out
 
 
+# --------------------------------------------------------------------------------------------------
+# initial state and output fields, shared by one run and a batch
+# --------------------------------------------------------------------------------------------------
+def initial_state(eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, nu0: Any, e: float) -> tuple[Any, Any]:
+    """The state vector(s) and the factor ``z`` (0 where ``k2_0 = 0``); arrays of members or floats."""
+    z = np.where(np.asarray(k2_0) > 0.0, 1.0, 0.0)
+    with np.errstate(divide="ignore"):
+        s0 = np.where(z > 0.0, np.log(np.where(z > 0.0, k2_0, 1.0)), 0.0)
+    lnG = np.log(G0)
+    if np.ndim(eps) == 0 and float(eps) == 0.0:
+        y = [lnG, s0, lam0]
+    else:
+        y = [lnG, s0, delta0, lam0] + ([nu0] if e != 0.0 else [])
+    return np.stack(np.broadcast_arrays(*y), axis=-1), z
+
+
+def fields(A: tuple[float, float, float], e: float, tau: np.ndarray, y: np.ndarray, z: Any, limit: bool, delta0: Any,
+           nu0: Any, ie: Any) -> dict[str, np.ndarray]:
+    """Output fields from raw states ``y`` of shape ``(..., n_state, n_t)`` (members on the leading axes)."""
+    lnG, s = y[..., 0, :], y[..., 1, :]
+    G = np.exp(lnG)
+    k2 = np.exp(s)
+    k2 *= np.asarray(z, dtype=float)[..., None]
+    np.minimum(k2, 1.0, out=k2)
+    A1, A2, A3 = A
+    T = A1 * (A2 - A3) + A3 * (A1 - A2) * k2  # G^2 S/(2R), in place
+    np.divide(A2 - A3 + (A1 - A2) * k2, T, out=T)
+    T *= 0.5 * G * G
+    if limit:
+        nan = np.isnan(lnG)
+        delta = np.where(nan, np.nan, np.asarray(delta0, dtype=float)[..., None])
+        lam = y[..., 2, :]
+        nu = np.where(nan, np.nan, np.asarray(nu0, dtype=float)[..., None])
+    else:
+        delta, lam = y[..., 2, :], y[..., 3, :]
+        if e != 0.0:
+            nu = y[..., 4, :]
+        else:  # NaN where the state is (0 * NaN)
+            nu = tau * np.asarray(ie, dtype=float)[..., None] + np.asarray(nu0, dtype=float)[..., None] + 0.0 * lnG
+    n = np.empty((*lam.shape[:-1], 3, lam.shape[-1]))
+    sd = np.sin(delta)
+    np.cos(lam, out=n[..., 0, :])
+    n[..., 0, :] *= sd
+    np.sin(lam, out=n[..., 1, :])
+    n[..., 1, :] *= sd
+    np.cos(delta, out=n[..., 2, :])
+    return {"G": G, "T": T, "k2": k2, "delta": delta, "lam": lam, "nu": nu, "n": n}
+
+
 #: the angles' absolute tolerance as a fraction of rtol: their local errors add up over the orbits a run with
 #: eps > 0 resolves (~100 per tau unit at eps = 0.005), so each step is held to a tenth (the global error of
 #: delta and lambda then stays near rtol over the paper's spans; see docs/euler_poinsot.md)
