@@ -107,9 +107,10 @@ def euler_poinsot_averaged(*, body: Any, torque: Any, eps: Any = 0.0, G0: Any = 
     Returns
     -------
     dict
-        One value (or row) per point: the ``outputs``, ``run_status`` (-1 failed, 0 end of the span, 1 ended by
-        an event), ``tau_end`` (when the run ended), and the sweep's ``status`` (0; 2 where the run failed or
-        was refused, e.g. a start outside the theory) and ``message`` (the integration's message).
+        One value (or row) per point: the ``outputs``, ``run_status`` (0 end of the span, 1 ended by an event),
+        ``tau_end`` (when the run ended), and the sweep's ``status`` (0; :data:`RUN_FAILED` where the run failed
+        or was refused, e.g. a start outside the theory: its outputs are then NaN) and ``message`` (the
+        integration's message).
     """
     from .. import euler_poinsot as ep
 
