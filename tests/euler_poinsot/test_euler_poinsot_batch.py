@@ -239,3 +239,27 @@ def test_rtol_is_the_relative_accuracy_of_the_decaying_variables(I, eps, T, k2_0
     assert np.max(np.abs(sol.lam - ref[3]) / np.maximum(1.0, np.abs(ref[3]))) < 5 * RTOL
     if I is CASE2:
         assert sol.k2[-1] < 1e-5 * k2_0  # the test covers the decayed range
+
+
+@pytest.mark.parametrize("eps", [0.0, 0.01])
+def test_batch_members_cross_the_separatrix_as_their_single_calls(eps):
+    # k2_max=None: a member that reaches the separatrix crosses into the other kind of motion (capture
+    # probabilities at its crossing state) and goes on in the next round; the others are unaffected
+    k2 = np.array([0.3, 0.95, 0.99, 0.6])
+    te = np.linspace(0.0, 1.5, 16)
+    kw = dict(tau_span=(0.0, 1.5), tau_eval=te, rtol=RTOL, k2_max=None, min_spin_ratio=0.0)
+    sol = ep.averaged(BODY, UPWARD, eps, 1.0, k2, 0.8, 0.3, **kw)
+    crossed = 0
+    for i in range(k2.size):
+        one = ep.averaged(BODY, UPWARD, eps, 1.0, float(k2[i]), 0.8, 0.3, **kw)
+        _agree(sol[i], one)
+        assert list(sol.kind[i]) == list(one.kind) and list(sol.sigma[i]) == list(one.sigma)
+        single = getattr(one, "crossings", [])  # a single run that did not cross has none
+        assert len(sol.crossings[i]) == len(single)
+        for a, b in zip(sol.crossings[i], single):
+            # the crossing time inherits the run's relative accuracy; the same region from the same probabilities
+            assert a["tau"] == pytest.approx(b["tau"], rel=AGREE, abs=0) and a["region"] == b["region"]
+            assert a["probabilities"] == pytest.approx(b["probabilities"], rel=1e-6, abs=1e-9)
+        np.testing.assert_allclose(sol.t_events["separatrix"][i], one.t_events["separatrix"], rtol=AGREE, atol=0)
+        crossed += bool(single)
+    assert 0 < crossed < k2.size  # some members cross, some do not

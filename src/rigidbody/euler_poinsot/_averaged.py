@@ -966,9 +966,9 @@ class _Generic:
                       k2_stop, self.min_spin_ratio, self.drift_tol, self.resonance_tol, self.spin_cap)
 
     def piece(self, region: tuple[str, int], tau_span: Any, G: float, k2: float, n: np.ndarray, nu0: float,
-              lam_s: float, k2_stop: float) -> _Piece:
+              lam_s: float, k2_stop: float, first_step: float | None = None) -> _Piece:
         if self.drag is not None:
-            return _drag_piece(self, self.drag, region, tau_span, G, k2, n, nu0, lam_s, k2_stop)
+            return _drag_piece(self, self.drag, region, tau_span, G, k2, n, nu0, lam_s, k2_stop, first_step)
         seg = _integrate_kind(self.setup(k2_stop), region[0], region[1], tau_span, G, k2, n, nu0)
 
         def finish(te: Any, lam: float) -> Solution:
@@ -1040,7 +1040,11 @@ def _through(first: _Piece, gen: _Generic, tau_span: Any, tau_eval: Any, through
             stop = (f"the averaged motion stalls at the separatrix ({len(crossings)} crossings, the last at "
                     f"tau = {tc:.6g}): the drifts on the two sides point to it")
             break
-        cur = gen.piece(region, (tc, t1), G, K2_SWITCH, n, nu if nu is not None else gen.nu0, lam, K2_SWITCH)
+        # a segment that starts next to the separatrix starts with the step its predecessor ended with: there
+        # the rates' logarithmic singularity can fool the initial-step heuristic into a step whose error
+        # estimate is too optimistic (1e-7 instead of 1e-10 relative in G, measured)
+        cur = gen.piece(region, (tc, t1), G, K2_SWITCH, n, nu if nu is not None else gen.nu0, lam, K2_SWITCH,
+                        first_step=cur.res.last_step)
         pieces.append(cur)
     if len(pieces) == 1 and not crossings:
         return first.finish(tau_eval, first.lam_start)
@@ -1115,7 +1119,8 @@ def averaged_branches(*args: Any, **kwargs: Any) -> dict[tuple[str, int], Soluti
     return out
 
 def _drag_piece(gen: _Generic, drag: Any, region: tuple[str, int], tau_span: Any, G0: float, k2_0: float,
-                n0: np.ndarray, nu_start: float, lam0: float, k2_stop: float) -> _Piece:
+                n0: np.ndarray, nu_start: float, lam0: float, k2_stop: float, first_step: float | None = None
+                ) -> _Piece:
     """A segment of the paper's averaged system (9) (drag tensor plus gravity gradient, closed forms), integrated
     in ``(ln G, ln k^2, [delta,] lambda[, nu])`` (:mod:`._kernel`: relative accuracy of the decaying variables,
     lambda continuous) by DOP853 on Python floats; its dense output is computed where it is asked for."""
@@ -1153,7 +1158,8 @@ def _drag_piece(gen: _Generic, drag: Any, region: tuple[str, int], tau_span: Any
     rt, at = _k.tolerances(gen.rtol, y0.size)
     py = gen.method == "DOP853"
     res = integrate(rhs, tau_span, y0, rtol=rt if py else _k.RTOL_FLOOR, atol=at, method=gen.method,
-                    dense_output=True, events=events, time_name="tau", engine="python" if py else "scipy")
+                    dense_output=True, events=events, time_name="tau", engine="python" if py else "scipy",
+                    first_step=first_step if py else None)
     il = 2 if limit else 3  # the row of lambda
 
     def common(y: np.ndarray) -> np.ndarray:
