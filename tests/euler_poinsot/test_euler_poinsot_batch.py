@@ -263,3 +263,26 @@ def test_batch_members_cross_the_separatrix_as_their_single_calls(eps):
         np.testing.assert_allclose(sol.t_events["separatrix"][i], one.t_events["separatrix"], rtol=AGREE, atol=0)
         crossed += bool(single)
     assert 0 < crossed < k2.size  # some members cross, some do not
+
+
+def test_the_single_runs_folded_right_hand_sides_are_the_kernels():
+    # one run integrates closures with the constants folded in; a batch the generic kernels: the same arithmetic
+    from rigidbody.core.kernel import ARRAY, SCALAR
+    from rigidbody.euler_poinsot import _kernel as K
+
+    A = (BODY.A1, BODY.A2, BODY.A3)
+    co = K.DragCoefficients(A, (2.322, 1.31, 1.425))
+    rng = np.random.default_rng(5)
+    for _ in range(20):
+        tau, lnG, s, de, la = (rng.uniform(a, b) for a, b in ((0, 3), (-5, 1), (-30, 0), (0, 3), (-9, 9)))
+        for z in (0.0, 1.0):
+            f = K.scalar_rhs(A, co.args(), z, 0.0, True, hl=0.4)
+            assert f(tau, [lnG, s, la]) == pytest.approx(K.rhs_limit(SCALAR, A, tau, [lnG, s, la], *co.args(), z,
+                                                                     0.4), rel=1e-14, abs=1e-300)
+            g = K.scalar_rhs(A, co.args(), z, 0.0, False, ie=100.0, nu0=0.3)
+            y = [lnG, s, de, la]
+            ref = K.rhs_orbit(SCALAR, A, 0.0, tau, y, *co.args(), z, 100.0, 0.3)
+            assert g(tau, y) == pytest.approx(ref, rel=1e-13, abs=1e-15)
+            arr = K.rhs_orbit(ARRAY, A, 0.0, np.array([tau]), [np.array([v]) for v in y],
+                              *(np.array([c]) for c in co.args()), np.array([z]), np.array([100.0]), np.array([0.3]))
+            assert [float(v[0]) for v in arr] == pytest.approx(ref, rel=1e-13, abs=1e-15)

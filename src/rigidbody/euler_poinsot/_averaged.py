@@ -682,7 +682,8 @@ def averaged(
     gen.spin_cap = K2_SPIN_CAP if through else 1.0
     _check_spin(_labels(body, kind), G0, min(k2_0, gen.spin_cap), eps, min_spin_ratio)
     first = gen.piece(region0, tau_span, G0, k2_0, np.array(_unit(delta0, lam0)), nu0, lam0, k2_stop)
-    return _through(first, gen, tau_span, tau_eval, through, branch, np.random.default_rng(seed))
+    rng = np.random.default_rng(seed) if branch == "random" else None  # the only branch rule that draws
+    return _through(first, gen, tau_span, tau_eval, through, branch, rng)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -1012,7 +1013,7 @@ class _PiecewiseDense:
 
 
 def _through(first: _Piece, gen: _Generic, tau_span: Any, tau_eval: Any, through: bool, branch: Any,
-             rng: np.random.Generator) -> Solution:
+             rng: np.random.Generator | None) -> Solution:
     """Continue an averaged run across the separatrix as often as it reaches it, then assemble the output."""
     t1 = float(tau_span[1])
     pieces = [first]
@@ -1134,17 +1135,9 @@ def _drag_piece(gen: _Generic, drag: Any, region: tuple[str, int], tau_span: Any
     limit = eps == 0.0
     y0, z_a = _k.initial_state(eps, G0, k2_0, delta0, lam0, nu_start, e)
     z = float(z_a)
-    if limit:
-        hl = 0.75 * orb.mean_factor * math.cos(delta0)
-
-        def rhs(tau: float, y: Any) -> list[float]:
-            return _k.rhs_limit(SC, A, tau, y, g1, g2, g3, c3, c1, z, hl)
-        ie = 0.0
-    else:
-        ie = 1.0 / eps
-
-        def rhs(tau: float, y: Any) -> list[float]:
-            return _k.rhs_orbit(SC, A, e, tau, y, g1, g2, g3, c3, c1, z, ie, nu0)
+    hl = 0.75 * orb.mean_factor * math.cos(delta0)
+    ie = 0.0 if limit else 1.0 / eps
+    rhs = _k.scalar_rhs(A, (g1, g2, g3, c3, c1), z, e, limit, hl, ie, nu0)
 
     lnk_stop = math.log(k2_stop)
     events = [Event((lambda t, y: y[1] - lnk_stop) if z > 0.0 else (lambda t, y: -1.0), "separatrix", True, 1.0,
@@ -1160,8 +1153,6 @@ def _drag_piece(gen: _Generic, drag: Any, region: tuple[str, int], tau_span: Any
     res = integrate(rhs, tau_span, y0, rtol=rt if py else _k.RTOL_FLOOR, atol=at, method=gen.method,
                     dense_output=True, events=events, time_name="tau", engine="python" if py else "scipy",
                     first_step=first_step if py else None)
-    il = 2 if limit else 3  # the row of lambda
-
     def common(y: np.ndarray) -> np.ndarray:
         f = _k.fields(A, e, np.zeros(np.shape(y)[-1]), y, z, limit, delta0, nu0, ie)
         return np.vstack([f["G"], f["k2"], f["n"]])
@@ -1172,11 +1163,18 @@ def _drag_piece(gen: _Generic, drag: Any, region: tuple[str, int], tau_span: Any
         return out
 
     def finish(te: Any, lam_s: float) -> Solution:
-        # lambda is a state (continuous by construction); the raw rows become G, k2, n like every run's
-        sol = _finish(res, te, make_fields, lam_s, None, lambda y: y[il])
-        out = Solution(sol.time_name, sol.time, np.vstack([sol.G, sol.k2, sol.n]), {f: getattr(sol, f) for f in
-                       sol.fields}, sol.status, sol.message, sol.event, sol.t_events, sol.y_events,
-                       lambda t: common(res.sol(t)), sol.nfev)
+        # the fields on te (the solver's steps by default) from the dense output; lambda is a state (continuous by
+        # construction); the raw rows become G, k2, n like every run's
+        steps = res.time
+        if te is None:
+            tau, y = steps, res.y
+        else:
+            tt = np.asarray(te, dtype=float)
+            tau = tt[(tt >= steps[0]) & (tt <= steps[-1])] if steps.size else tt[:0]
+            y = res.sol(tau) if tau.size else np.empty((res.y.shape[0], 0))
+        f = make_fields(tau, y)
+        out = Solution(res.time_name, tau, np.vstack([f["G"], f["k2"], f["n"]]), f, res.status, res.message,
+                       res.event, res.t_events, res.y_events, lambda t: common(res.sol(t)), res.nfev)
         out.last_step = res.last_step
         return out
 
