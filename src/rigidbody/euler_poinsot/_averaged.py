@@ -536,33 +536,39 @@ def averaged(
     torque : array_like, Drag, torque object or callable
         A nondimensional drag tensor :math:`\tilde I` (3x3, its diagonal or a :class:`Drag`; only the
         diagonal enters (9)): Rachinskaya's drag *plus* the gravity-gradient torque, integrated with the
-        closed forms (9). A torque object (:class:`LinearDrag`, :class:`GravityGradient`, ... and sums) or a
+        closed forms (9); an array of shape ``batch_shape + (3, 3)`` gives each member of a batch its own
+        tensor. A torque object (:class:`LinearDrag`, :class:`GravityGradient`, ... and sums) or a
         plain callable ``torque(omega, C, nu) -> M`` is the whole perturbation: the averaged system is then
         :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle`, :math:`dT/d\tau = \langle\boldsymbol\omega
         \cdot\mathbf M\rangle` with the means from the closed forms of the parts that have them and from the
         averaging engine otherwise (see :func:`average_torque` and ``docs/euler_poinsot.md``, "Any torque").
-    eps : float
+    eps : float or array_like
         :math:`\varepsilon`, the orbital rate in units of :math:`\Omega_0`; the true anomaly is
         :math:`\nu = \tau/\varepsilon + \nu_0` (Kepler's law for an eccentric ``orbit``). ``eps = 0`` gives
         the orbit-averaged limit (the gravity terms averaged over :math:`\nu`).
-    G0, k2_0, delta0, lam0 : float
+    G0, k2_0, delta0, lam0 : float or array_like
         Initial :math:`\tilde G`, :math:`k^2` (in [0, 1); default 0.99), :math:`\delta`, :math:`\lambda`
         (radians).
     tau_span : (float, float)
     tau_eval : array_like, optional
-        Output times (default: the solver's steps).
-    nu0 : float
+        Output times (default: the solver's steps; for a batch 101 times over ``tau_span``).
+    nu0 : float or array_like
         Initial true anomaly.
     kind : {'max', 'min'}
         Initial kind of Euler--Poinsot motion ('max': about the axis of :math:`A_1`, the paper's case;
         the default).
-    T0 : float, optional
+    T0 : float or array_like, optional
         The initial kinetic energy instead of ``k2_0`` and ``kind``: any :math:`T_0` in
         :math:`[G_0^2/(2A_1), G_0^2/(2A_3)]` off the separatrix (the kind follows from :func:`kind_of`).
     orbit : Orbit, optional
         Default circular.
     rtol, atol, method
-        Passed to the solver (``rigidbody.core.ode.integrate``).
+        With a drag tensor ``rtol`` is the relative accuracy of :math:`G`, :math:`T` and :math:`k^2` however far
+        they decay (the closed forms are integrated in :math:`\ln G`, :math:`\ln k^2` with absolute control
+        ``rtol``) and the angles are held to ``rtol/10`` radians per step (:math:`\lambda` relatively beyond a
+        radian); ``atol`` is then not used. With a torque object the state :math:`(G, k^2, \mathbf n)` is
+        controlled by ``atol + rtol |y|``. ``method``: ``'DOP853'`` (default; run on Python floats) or another
+        :func:`scipy.integrate.solve_ivp` method (one run only: a batch uses DOP853).
     k2_max : float or None
         The run ends (status 1, event ``'separatrix'``) when :math:`k^2` reaches this value (default
         :math:`1 - 10^{-6}`: at :math:`k^2 = 1` the period of the Euler--Poinsot motion is infinite). ``None``:
@@ -630,6 +636,23 @@ def averaged(
         are used), ``sol.resonances`` (the resonance crossings with their predicted jumps: dicts with
         ``tau``, ``j``, ``m``, ``rho``, ``jump``, ``jump_G``, ``jump_T``, ``jump_n``), ``sol.kind`` and
         ``sol.sigma``.
+
+        For a batch every field has shape ``batch_shape + (len(tau_eval),)`` (``n``: ``batch_shape + (3, n_t)``),
+        NaN after a member's end; ``status``, ``message``, ``event`` and ``crossings`` are per member; ``sol[i]``
+        is member ``i`` as a single-run result.
+
+    Notes
+    -----
+    *Batches.* Arrays for ``eps``, ``G0``, ``k2_0`` (or ``T0``), ``delta0``, ``lam0``, ``nu0`` (and a batch of
+    drag tensors) broadcast to one batch shape; the body, the orbit, ``tau_span``, ``kind``, ``sigma`` and the
+    options are shared. With a drag tensor the members are integrated together
+    (:func:`rigidbody.core.batch.integrate_batch`, the closed forms vectorised over members, per-member step
+    control and events), round by round: a member that reaches the separatrix in a run through it
+    (``k2_max=None``) crosses as its single run does and continues in the next round in the other kind of
+    motion. A member whose start the single call refuses gets ``status = -1`` and that call's message; the
+    others go on. With a torque object (or ``averaging='numerical'``) the members run one by one through the
+    single call (the engine's quadrature adapts to each state). Every member equals its single call within
+    the tolerance; with ``branch='random'`` the members draw from one generator seeded by ``seed``.
 
     Examples
     --------
