@@ -6,29 +6,18 @@ slow time :math:`\tau = \varepsilon^2\tilde t` and true anomaly :math:`\nu = \ta
 In :math:`\tau` the system (9) is (6) with :math:`\omega_0 = 1` and :math:`I\to\tilde I`, so one set of
 functions serves both forms: pass ``omega0`` and dimensional ``I`` for (6) in :math:`t`.
 
-Formulation that does not break at :math:`\sin\delta = 0`
---------------------------------------------------------
-Instead of :math:`(\delta, \lambda)` the integrator evolves the unit vector
-:math:`\mathbf n = (\sin\delta\cos\lambda, \sin\delta\sin\lambda, \cos\delta)` of :math:`\mathbf G` in the
-orbital axes :math:`Ox_i`. The two angle equations of (6) are the components along :math:`y_1, y_2` of
-
-.. math:: \frac{d\mathbf n}{dt} = \frac{3\omega_0^2}{2G}f(\nu)N^*(\mathbf e_r\cdot\mathbf n)\,
-          (\mathbf n\times\mathbf e_r),\qquad \mathbf e_r = (\cos\nu, \sin\nu, 0),
-
-(:math:`\beta_i = \mathbf e_r\cdot\mathbf y_i`, :math:`f = 1` on a circular orbit), which is regular
-everywhere. :math:`\delta = \arccos n_3` and :math:`\lambda = \operatorname{atan2}(n_2, n_1)` are derived
-output, :math:`\lambda` unwrapped along the solver's steps.
-
-Orbit-averaged limit (:math:`\varepsilon = 0`)
----------------------------------------------
-Averaging also over :math:`\nu` (:math:`\langle f\,\mathbf e_r\mathbf e_r^T\rangle = (1-e^2)^{-3/2}
-\operatorname{diag}(1/2, 1/2, 0)`) gives :math:`d\mathbf n/dt = -\tfrac{3\omega_0^2}{4G}(1-e^2)^{-3/2}N^*n_3\,
-(\mathbf n\times\mathbf e_3)`: :math:`\delta` is constant and :math:`\dot\lambda =
-\tfrac{3\omega_0^2}{4G}(1-e^2)^{-3/2}N^*\cos\delta` (:func:`precession_rate`). The integrator then
-evolves :math:`(G, k^2, \Lambda)` with :math:`\dot\Lambda = \tfrac34(1-e^2)^{-3/2}N^*/G` and
-:math:`\lambda = \lambda_0 + \Lambda\cos\delta_0`: as :math:`G \to 0` the precession accelerates like
-:math:`1/G`, and a smooth :math:`\Lambda` costs no extra steps where resolving the turns of
-:math:`\mathbf n` would.
+The closed forms of a drag tensor: coordinates, and what ``rtol`` means
+-----------------------------------------------------------------------
+With a drag tensor each segment of a run integrates (9) in :math:`(\ln G, \ln k^2, \delta, \lambda)` (plus
+:math:`\nu` on an eccentric orbit; :math:`(\ln G, \ln k^2, \lambda)` in the orbit-averaged limit
+:math:`\varepsilon = 0`, where :math:`\delta` is constant and :math:`\dot\lambda =
+\tfrac34(1-e^2)^{-3/2}N^*\cos\delta_0/G`, :func:`precession_rate`) with the right-hand sides of
+:mod:`._kernel`: ``rtol`` is the relative accuracy of :math:`G`, :math:`T`, :math:`k^2` however far they decay,
+the angle equations (6) are regular at :math:`\sin\delta = 0` (the poles are fixed points of the
+gravity-gradient average) and :math:`\lambda` is continuous by construction. DOP853 runs on Python floats
+(``core.ode.integrate(engine='python')``) with the kernel's formulas folded into closures; its dense output is
+computed for the steps that are sampled. A batch (array inputs, :mod:`._batch`) integrates the same equations
+over members with :func:`rigidbody.core.batch.integrate_batch`.
 
 Any torque
 ----------
