@@ -233,6 +233,7 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
     event[:] = None
     nfev = np.zeros(B, dtype=int)
     t_final = np.full(B, t0)
+    y_final = np.full((B, 5), np.nan)  # rows G, k2, n at each member's end
     none = np.empty(0)
     none.setflags(write=False)
     tev: dict[str, np.ndarray] = {}
@@ -318,6 +319,8 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
                     out[k][idx] = np.where(got, f[k], out[k][idx])
             tev["slow_rotation"][idx] = sol.t_events["slow_rotation"] if "slow_rotation" in sol.t_events else \
                 tev["slow_rotation"][idx]
+            ff = _k.fields(A, e, np.zeros(1), sol.y_final[:, :, None], z, limit, dl[idx], mem.nu0[idx], ie)
+            y_final[idx] = np.concatenate([ff["G"], ff["k2"], ff["n"][:, :, 0]], axis=1)
             for j, i in enumerate(idx.tolist()):
                 st_, ev_ = int(sol.status[j]), sol.event[j]
                 if not (run.through and st_ == 1 and ev_ == "separatrix"):
@@ -364,7 +367,7 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
     t_events = {name: arr.reshape(shape) for name, arr in tev.items()}
     sol = Solution("tau", te, Y.reshape(shape + Y.shape[1:]), data, status.reshape(shape), message.reshape(shape),
                    event.reshape(shape), t_events, {}, None, nfev.reshape(shape), batch_shape=shape,
-                   t_final=t_final.reshape(shape))
+                   t_final=t_final.reshape(shape), y_final=y_final.reshape((*shape, 5)))
     sol.crossings = crossings.reshape(shape)  # type: ignore[attr-defined]  # per member, as the single run's
     return sol
 
