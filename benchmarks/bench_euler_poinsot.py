@@ -24,7 +24,8 @@ Run on demand: python benchmarks/bench_euler_poinsot.py
    time at the project's error is interpolated (log-log) over a sweep of its rtol.
 4. A batch of 10^4 averaged evolutions (paper body and drag case 1, random k2(0) in [0.05, 0.95], delta(0) in
    [0, pi], lambda(0) in [0, 2 pi], eps = 0, tau in [0, 3], 31 output times) against the loop of single calls;
-   and a batch of full simulations against its loop. Both sides give the same numbers (difference printed).
+   and a batch of 100 full simulations (random eps in [0.03, 0.05], k2(0), phases; tau in [0, 0.3]) against its
+   loop. Both sides give the same numbers (difference printed).
 
 Times are CPU seconds of this process (the minimum of a few repeats where stated); ratios come from one run.
 Lines starting with ``RATIO`` are collected by ``benchmarks/run_all.py``.
@@ -222,6 +223,22 @@ def bench_batch(B: int = 10_000, T: float = 3.0) -> None:
     print(f"RATIO euler_poinsot.averaged batch of {B} vs loop (case 1, eps 0, tau in [0, {T:g}], rtol 1e-10): "
           f"{t_l / t_b:.1f}x ({t_b:.2f} s vs {t_l:.2f} s; statuses {np.bincount(b.status + 1).tolist()} for "
           f"-1/0/1; largest batch-loop difference: relative in G {dG:.1e}, lambda {dl:.1e} rad)")
+    # full equations: an ensemble of 100 full runs (random phases and slow states, eps in [0.03, 0.05])
+    n = 100
+    eps = rng.uniform(0.03, 0.05, n)
+    k2s = rng.uniform(0.1, 0.9, n)
+    u0 = rng.uniform(0.0, 4.0, n)
+    tt = np.linspace(0.0, 0.3, 7)
+    kw = dict(tau_span=(0.0, 0.3), tau_eval=tt)
+    t0 = time.process_time()
+    bs = ep.simulate(BODY, I, eps, 1.0, k2s, 0.7, 0.3, u0=u0, **kw)
+    t_b = time.process_time() - t0
+    t0 = time.process_time()
+    loop = [ep.simulate(BODY, I, float(eps[i]), 1.0, float(k2s[i]), 0.7, 0.3, u0=float(u0[i]), **kw) for i in range(n)]
+    t_l = time.process_time() - t0
+    diff = max(float(np.max(np.abs(bs.G[i] - loop[i].G))) for i in range(n))
+    print(f"RATIO euler_poinsot.simulate batch of {n} vs loop (eps in [0.03, 0.05], tau in [0, 0.3], rtol 1e-10): "
+          f"{t_l / t_b:.1f}x ({t_b:.2f} s vs {t_l:.2f} s; largest batch-loop difference in G {diff:.1e})")
 
 
 if __name__ == "__main__":
