@@ -639,8 +639,10 @@ def averaged(
     control and events), round by round: a member that reaches the separatrix in a run through it
     (``k2_max=None``) crosses as its single run does and continues in the next round in the other kind of
     motion. A member whose start the single call refuses gets ``status = -1`` and that call's message; the
-    others go on. With a torque object (or ``averaging='numerical'``) the members run one by one through the
-    single call (the engine's quadrature adapts to each state). Every member equals its single call within
+    others go on. A torque object made of :class:`LinearDrag` parts and the :class:`GravityGradient` of the run
+    (the drag tensor's meaning) runs the same vectorised closed forms; any other torque object (or
+    ``averaging='numerical'``) runs its members one by one through the single call (the engine's quadrature
+    adapts to each state). Every member equals its single call within
     the tolerance; with ``branch='random'`` the members draw from one generator seeded by ``seed``.
 
     Examples

@@ -473,6 +473,23 @@ def one_by_one(call: Any, mem: Members, te: np.ndarray, names: tuple[str, ...], 
     return assemble(out, mem.batch_shape, te, names)
 
 
+def drag_equivalent(torque: Any, body: Body, orbit: Orbit) -> np.ndarray | None:
+    """The drag tensor whose meaning (linear drag plus the gravity gradient) a torque object has, or None: a sum
+    of :class:`LinearDrag` parts and one :class:`GravityGradient` of this body and orbit in the module's scaling
+    (``omega0 = 1``). Such a batch runs the closed forms of the drag tensor vectorised over its members."""
+    from ._torques import GravityGradient, LinearDrag
+
+    parts = torque.parts()
+    gg = [p for p in parts if isinstance(p, GravityGradient)]
+    lin = [p for p in parts if isinstance(p, LinearDrag)]
+    if len(gg) != 1 or not lin or len(gg) + len(lin) != len(parts):
+        return None
+    g = gg[0]
+    if g.omega0 != 1.0 or g.body != body or g.orbit != orbit:
+        return None
+    return np.sum([np.asarray(p.I, dtype=float) for p in lin], axis=0)
+
+
 def _common_checks(body: Any, tau_span: Any, tau_eval: Any, opts: dict[str, Any]) -> tuple[float, float, np.ndarray]:
     from ..core.validate import span
     from ._averaged import _check_tol
@@ -521,6 +538,8 @@ def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
         what, tq = resolve(torque)
         if what == "drag" and opts["averaging"] == "auto":
             tensors = tq.I
+        elif what == "torque" and opts["averaging"] == "auto":
+            tensors = drag_equivalent(tq, body, orb)  # the paper's two torques as objects: the same closed forms
     elif opts["averaging"] != "auto":
         raise ValueError("a batch of drag tensors is integrated with the closed forms (averaging='auto')")
     if tensors is not None:
