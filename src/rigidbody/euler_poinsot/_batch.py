@@ -429,7 +429,8 @@ def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: 
         cols = np.searchsorted(te, s.time)
         if ys is None:
             ys = np.full((B, s.y.shape[0], nt), np.nan)
-        ys[i][:, cols] = s.y
+        r = min(ys.shape[1], s.y.shape[0])  # raw rows: the leading ones are common (e.g. G, k2, n [, nu])
+        ys[i][:r, cols] = s.y[:r]
         for k in names:
             v = np.asarray(getattr(s, k))
             if k not in data:
@@ -439,7 +440,9 @@ def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: 
         for k, v in s.t_events.items():
             if k not in events:
                 events[k] = np.empty(B, dtype=object)
-                events[k].fill(np.empty(0))
+                none = np.empty(0)
+                none.setflags(write=False)
+                events[k].fill(none)
             events[k][i] = np.asarray(v, dtype=float)
         for k in ("quad_error", "resonances", "crossings"):  # per-run reports of the engine path
             if k in s.__dict__:
