@@ -252,3 +252,8 @@ def test_starts_on_the_separatrix_are_refused_naming_k2_0():
     with pytest.raises(ValueError, match="k2_0"):
         ep.averaged(BODY, CASE1, 0.0, k2_0=1 - 1e-7)
     assert ep.averaged(BODY, CASE1, 0.0, k2_0=1 - 1e-7, k2_max=None, tau_span=(0, 0.1)).status == 0
+
+
+def test_a_run_without_a_crossing_lists_none():
+    a = ep.averaged(BODY, CASE1, 0.0, k2_0=0.5, tau_span=(0, 0.1), k2_max=None)
+    assert a.crossings == [] and a.t_events["separatrix"].size == 0

@@ -1062,7 +1062,9 @@ def _through(first: _Piece, gen: _Generic, tau_span: Any, tau_eval: Any, through
                         first_step=cur.res.last_step)
         pieces.append(cur)
     if len(pieces) == 1 and not crossings:
-        return first.finish(tau_eval, first.lam_start)
+        sol: Solution = first.finish(tau_eval, first.lam_start)
+        sol.crossings = []  # type: ignore[attr-defined]  # an extra attribute of this result: no crossing
+        return sol
     return _assemble(pieces, crossings, stop, tau_eval)
 
 
