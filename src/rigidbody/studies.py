@@ -56,6 +56,7 @@ from . import euler_poinsot as ep
 from . import lagrange
 from .core import elliptic
 from .core.validate import real
+from .sweep import batched
 
 __all__ = [
     "GRIDS",
@@ -297,6 +298,7 @@ def drag_from_ratios(r1: float, r3: float, body: ep.Body = PAPER_BODY) -> np.nda
     return np.diag([r1 * body.A1, body.A2, r3 * body.A3])
 
 
+@batched
 def spin_end(
     r1: float,
     r3: float,
@@ -338,11 +340,17 @@ def spin_end(
     dict
         ``regime`` (see :data:`REGIMES`), ``k2_end`` (the last :math:`k^2`), ``tau_end`` (when the run
         ended), ``chi`` (:math:`\chi` of (7); NaN where its denominator :math:`a_3 - a_1` vanishes).
+        Arrays ``r1``, ``r3`` (a chunk of a sweep: the function is marked :func:`rigidbody.sweep.batched`)
+        give arrays, integrated as one batch (a drag tensor per point), with the sweep's ``status`` (1 where
+        the point's single call would raise) and ``message`` per point.
     """
-    I = drag_from_ratios(r1, r3, body)
     k2_0 = real(k2_0, "k2_0")
     if not 0.0 < k2_0 < 1.0:
         raise ValueError(f"k2_0 must lie in (0, 1), got {k2_0}")
+    if np.ndim(r1) or np.ndim(r3):
+        return _spin_end_batch(np.asarray(r1, dtype=float), np.asarray(r3, dtype=float), body, k2_0,
+                               real(tau_end, "tau_end"), real(k2_zero, "k2_zero"), rtol)
+    I = drag_from_ratios(r1, r3, body)
     sol = ep.averaged(body, I, 0.0, k2_0=k2_0, tau_span=(0.0, real(tau_end, "tau_end")), rtol=rtol, atol=1e-10,
                       k2_max=1.0 - 1e-6)  # the default stop next to the separatrix, stated
     if sol.status == -1:
@@ -351,6 +359,40 @@ def spin_end(
     regime = 2 if sol.event == "separatrix" else (0 if k2_end < k2_zero else 1)
     chi = float(ep.chi(body, I)) if r3 != r1 else math.nan
     return {"regime": float(regime), "k2_end": k2_end, "tau_end": float(sol.tau[-1]), "chi": chi}
+
+
+def _failed(sol: Any) -> tuple[np.ndarray, list[str]]:
+    """The sweep's status (1: the point's single call would have raised) and messages of a batch: a member
+    refused at its start (the ValueError of its single call) or failed later (a RuntimeError here)."""
+    st = np.asarray(sol.status).reshape(-1)
+    started = np.isfinite(np.asarray(sol.G).reshape(st.size, -1)[:, 0])
+    msg = [str(m) for m in np.asarray(sol.message, dtype=object).reshape(-1)]
+    out = [("" if s >= 0 else (f"RuntimeError: {m}" if ok else f"ValueError: {m}"))
+           for s, ok, m in zip(st, started, msg)]
+    return np.where(st >= 0, 0, 1), out
+
+
+def _spin_end_batch(r1: np.ndarray, r3: np.ndarray, body: ep.Body, k2_0: float, tau_end: float, k2_zero: float,
+                    rtol: float) -> dict[str, Any]:
+    """:func:`spin_end` over arrays of points: one batch of averaged evolutions (a drag tensor per point)."""
+    r1, r3 = np.broadcast_arrays(r1, r3)
+    shape = r1.shape
+    r1, r3 = r1.reshape(-1), r3.reshape(-1)
+    if np.any(~(r1 > 0.0)) or np.any(~(r3 > 0.0)):
+        raise ValueError("r1 and r3 must be > 0 (a drag dissipates)")
+    I = np.zeros((r1.size, 3, 3))
+    I[:, 0, 0], I[:, 1, 1], I[:, 2, 2] = r1 * body.A1, body.A2, r3 * body.A3
+    sol = ep.averaged(body, I, 0.0, k2_0=k2_0, tau_span=(0.0, tau_end), tau_eval=[0.0, tau_end], rtol=rtol,
+                      atol=1e-10, k2_max=1.0 - 1e-6)
+    k2_end = np.asarray(sol.y_final)[:, 1]  # k2 where each run ended
+    regime = np.where(sol.event == "separatrix", 2.0, np.where(k2_end < k2_zero, 0.0, 1.0))
+    # chi of (7) from the decay-rate ratios: (2 a2 - a1 - a3)/(a3 - a1), a2 = 1
+    with np.errstate(divide="ignore", invalid="ignore"):
+        chi = np.where(r3 != r1, (2.0 - r1 - r3) / (r3 - r1), np.nan)
+    status, message = _failed(sol)
+    out = {"regime": regime, "k2_end": k2_end, "tau_end": np.asarray(sol.t_final, dtype=float), "chi": chi}
+    out = {k: v.reshape(shape) for k, v in out.items()}
+    return {**out, "status": status.reshape(shape), "message": np.array(message, dtype=object).reshape(shape)}
 
 
 def spin_end_predicted(r1: float, r3: float, *, body: ep.Body = PAPER_BODY, k2_0: float = 0.5) -> int:

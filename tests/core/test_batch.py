@@ -130,7 +130,8 @@ def test_a_failing_member_ends_alone_with_status_and_message():
     assert s.t_final[1] <= 0.5 + 1e-9 and s.t_final[2] < 1.0 + 1e-6
     np.testing.assert_allclose(s.y[0, 0], np.exp(-te), rtol=1e-7)  # the others go on (rtol 1e-8 run)
     np.testing.assert_allclose(s.y[3, 0], np.exp(-te), rtol=1e-7)
-    assert np.all(np.isnan(s.y[1, 0, te > 0.5])) and np.all(np.isfinite(s.y[1, 0, te <= 0.5]))
+    # (the sample at t = 0.5 itself exists only if a step lands on 0.5 exactly: a matter of rounding)
+    assert np.all(np.isnan(s.y[1, 0, te > 0.5])) and np.all(np.isfinite(s.y[1, 0, te < 0.5]))
     assert not s.success[1] and s.success[0]
 
 

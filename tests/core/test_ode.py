@@ -113,3 +113,17 @@ def test_python_engine_per_component_rtol_and_first_step():
         integrate(f, (0.0, 1.0), [1.0, 1.0], engine="fortran")
     with pytest.raises(ValueError, match="forward"):
         integrate(f, (1.0, 0.0), [1.0, 1.0], engine="python")
+
+
+def test_python_engine_dense_output_is_scipys():
+    # the same interpolant as solve_ivp's OdeSolution (Hairer's 7th-order DOP853 dense output): between the
+    # solvers' steps the two agree to rounding (the same steps, see above), and at a step's end it returns the
+    # step's state; a terminal event ends the dense output's span there
+    a, b = _pendulum_run("scipy", dense_output=True), _pendulum_run("python", dense_output=True)
+    t = np.linspace(0.0, float(a.t_events["w"][-1]), 301)
+    np.testing.assert_allclose(b.sol(t), a.sol(t), rtol=0, atol=1e-13)
+    assert b.sol(1.234).shape == (2,) and b.sol(t).shape == (2, t.size)
+    np.testing.assert_allclose(b.sol(b.t), b.y, rtol=0, atol=1e-14)
+    # a run with no step (an empty span) has a constant dense output
+    c = integrate(lambda t, y: [y[1], -y[0]], (1.0, 1.0), [0.5, 0.2], engine="python", dense_output=True)
+    np.testing.assert_array_equal(c.sol(1.0), [0.5, 0.2])

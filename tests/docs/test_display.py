@@ -12,6 +12,7 @@ import math
 import re
 import subprocess
 import sys
+from collections import Counter
 
 import matplotlib
 
@@ -25,6 +26,7 @@ from rigidbody import euler_poinsot as ep
 from rigidbody import gyrostat as gy
 from rigidbody import lagrange as lg
 from rigidbody import viscous as vs
+from rigidbody.core._display import status_text
 from rigidbody.core.ode import Solution
 
 
@@ -114,20 +116,25 @@ def test_html_escapes_the_message_and_lists_the_events():
 
 
 def test_html_of_a_batch_summarises_the_members():
-    # a result in the batch layout of the Solution model: leading batch shape (2, 3) on fields and statuses
-    t = np.linspace(0.0, 1.0, 4)
-    x = np.broadcast_to(t, (2, 3, 4)).copy()
-    x[1, 2, 2:] = np.nan  # a member that ended early has NaN after its end
-    status = np.array([[0, 0, 0], [0, 0, 1]])
-    message = np.array([["end"] * 3, ["end", "end", "stopped by event 'separatrix'"]], dtype=object)
-    event = np.array([[None] * 3, [None, None, "separatrix"]], dtype=object)
-    sol = Solution("tau", t, x[..., None, :], {"x": x}, status, message, event, {}, {}, None, 0)
-    sol.batch_shape = (2, 3)
+    # a real batch (lagrange.averaged with initial states of shape (2, 3, 3)) in the u chart only: the paper's
+    # case 1 starts next to a branch point of (2.8) (refused, status -1), case 2 reaches one (event
+    # 'branch_point', NaN after it), case 3 the end of the span -- each twice
+    ini = np.array([lg.integrals(lg.PAPER_TOP, *lg.paper_initial_state(c)[:5]) for c in (1, 2, 3)])
+    sol = lg.averaged(lg.PAPER_TOP, lg.PAPER_DRAG, np.stack([ini, ini]), (0.0, 60.0),
+                      tau_eval=np.linspace(0.0, 60.0, 7), chart="u")
     page = sol._repr_html_()
     assert "batch shape (2, 3) (6 members)" in page
-    assert "0 (reached the end of the span) × 5" in page and "1 (stopped by an event) × 1" in page
-    assert "separatrix × 1" in page and "end × 5" in page
-    assert _rows(page)["x"] == ("(2, 3, 4)", "[0, 1] (2 NaN)")
+    counts = Counter(np.asarray(sol.status).ravel().tolist())
+    assert set(counts) == {-1, 0, 1}  # the three outcomes are all there
+    for s, c in counts.items():
+        assert f"{s} ({status_text(s)}) × {c}" in page
+    events = [e for e in np.asarray(sol.event).ravel() if e is not None]
+    assert events and f"{events[0]} × {len(events)}" in page
+    r = np.asarray(sol.r)
+    nan = int(np.isnan(r).sum())
+    assert 0 < nan < r.size  # members that ended early have NaN after their end
+    shape, rng = _rows(page)["r"]
+    assert shape == str(r.shape) and rng.endswith(f"({nan} NaN)")
 
 
 def _line_data(axes) -> list[np.ndarray]:

@@ -164,3 +164,20 @@ def test_the_paper_cases_in_the_plane():
     assert S.spin_end(*cases["case 2"])["regime"] == 0
     with pytest.raises(ValueError, match="r1 and r3 must be > 0"):
         S.spin_end(0.0, 1.0)
+
+
+def test_spin_end_on_arrays_is_one_batch_equal_to_the_point_calls():
+    # marked batched: a sweep sends chunks of points, integrated as one batch with a drag tensor per point; each
+    # point equals its own call (the event ending a run is located to the integration's accuracy, rtol 1e-6)
+    r1 = np.array([0.3, 1.44, 2.2, 1.0, 0.5])
+    r3 = np.array([0.5, 1.69, 0.4, 1.0, 2.0])
+    out = S.spin_end(r1, r3)
+    assert out["status"].tolist() == [0] * 5 and list(out["message"]) == [""] * 5
+    for i in range(r1.size):
+        one = S.spin_end(float(r1[i]), float(r3[i]))
+        assert out["regime"][i] == one["regime"]
+        assert out["k2_end"][i] == pytest.approx(one["k2_end"], rel=1e-5, abs=1e-9)
+        assert out["tau_end"][i] == pytest.approx(one["tau_end"], rel=1e-5, abs=0)
+        assert out["chi"][i] == pytest.approx(one["chi"], rel=1e-12, abs=0) or (math.isnan(out["chi"][i])
+                                                                               and math.isnan(one["chi"]))
+    assert set(out["regime"].tolist()) == {0.0, 1.0, 2.0}

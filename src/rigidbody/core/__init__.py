@@ -12,6 +12,9 @@
 :mod:`rigidbody.core.batch`
     Many independent systems integrated together (vectorised DOP853 with per-member step control,
     events and status).
+:mod:`rigidbody.core.kernel`
+    One formula for a single run and a batch: ``math``/NumPy namespaces for right-hand sides, elliptic
+    means (``<sn^2>``, ``E/K``) by the AGM without cancellation.
 :mod:`rigidbody.core.quadform`
     Quadratic forms: inertia-preserving scaling, leading minors, inertia (degree of instability),
     constrained (null-space) forms, finite-difference Hessians, complex-step gradients.
@@ -19,6 +22,6 @@
     Validation of scalar user input (clear ``TypeError``/``ValueError`` naming the parameter).
 """
 
-from . import averaging, batch, elliptic, euler, ode, quadform, validate
+from . import averaging, batch, elliptic, euler, kernel, ode, quadform, validate
 
-__all__ = ["averaging", "batch", "elliptic", "euler", "ode", "quadform", "validate"]
+__all__ = ["averaging", "batch", "elliptic", "euler", "kernel", "ode", "quadform", "validate"]

@@ -68,6 +68,17 @@ def _as_member_array(value: Any, size: int, name: str) -> np.ndarray:
     return a.reshape(size).copy()
 
 
+def _comb(c: np.ndarray, K: np.ndarray) -> np.ndarray:
+    """The linear combination ``c @ K`` of stage rows by einsum's own loop: a BLAS call would spread these
+    memory-bound products over threads, which on a loaded machine costs more than it saves."""
+    return np.einsum("...j,jk->...k", c, K)
+
+
+def _all_members(ia: np.ndarray, nd: np.ndarray, m: int) -> bool:
+    """Whether the members ``ia[nd]`` are all ``m`` active members in order (their stages are ``K`` itself)."""
+    return bool(nd.size == m and ia.size == m)
+
+
 def _rms_rows(x: np.ndarray) -> np.ndarray:
     return np.sqrt(np.einsum("ij,ij->i", x, x) / x.shape[1])
 
@@ -92,6 +103,37 @@ class _Dense:
             else:
                 y *= 1.0 - x
         return y + self.y_old[rows]
+
+    def on_grid(self, te: np.ndarray, rows: np.ndarray, lo: np.ndarray, cnt: np.ndarray) -> tuple[np.ndarray, ...]:
+        """States on the grid points ``te[lo_i], ..., te[lo_i + cnt_i - 1]`` of each member ``rows_i`` (``cnt_i
+        >= 1``): the interpolant evaluated per member on a block of its samples (the member's coefficients
+        gathered once, not once per sample), members grouped by their number of samples (up to 2, 4, 8, ...) so
+        that a block is never more than half empty. Returns the members' positions (into ``rows``), the grid
+        indices and the states, one row per sample."""
+        out_w, out_j, out_y = [], [], []
+        bucket = np.ceil(np.log2(np.maximum(cnt, 1))).astype(int)
+        for b in np.unique(bucket):
+            sel = np.nonzero(bucket == b)[0]
+            r, c = rows[sel], cnt[sel]
+            S = int(c.max())
+            k = np.arange(S)
+            J = lo[sel, None] + k
+            valid = k < c[:, None]
+            t = te[np.minimum(J, te.size - 1)]
+            x = ((t - self.t_old[r][:, None]) / self.h[r][:, None])[:, :, None]
+            x1 = 1.0 - x
+            F = self.F[:, r, :][:, :, None, :]
+            y = F[6] * x
+            for q in range(5, -1, -1):  # the alternating factors of scipy's Dop853DenseOutput, innermost first
+                y += F[q]
+                y *= x1 if q % 2 else x
+            y += self.y_old[r][:, None, :]
+            out_w.append(np.repeat(sel, c))
+            out_j.append(J[valid])
+            out_y.append(y[valid])
+        if len(out_w) == 1:
+            return out_w[0], out_j[0], out_y[0]
+        return np.concatenate(out_w), np.concatenate(out_j), np.concatenate(out_y)
 
 
 def _locate(
@@ -375,14 +417,14 @@ def integrate_batch(
             K[0] = f
             hc = h[:, None]
             for s in range(1, _N_STAGES):
-                dy = (_A[s, :s] @ K2[:s]).reshape(m, n) * hc
+                dy = _comb(_A[s, :s], K2[:s]).reshape(m, n) * hc
                 K[s] = fun(t + _C[s] * h, y + dy, *prm)
-            y_new = y + (_B @ K2[:_N_STAGES]).reshape(m, n) * hc
+            y_new = y + _comb(_B, K2[:_N_STAGES]).reshape(m, n) * hc
             f_new = np.asarray(fun(t_new, y_new, *prm), dtype=float)
             K[_N_STAGES] = f_new
             scale = atol_m + np.maximum(np.abs(y), np.abs(y_new)) * rtol
-            e5 = (_E5 @ K2[: _N_STAGES + 1]).reshape(m, n) / scale
-            e3 = (_E3 @ K2[: _N_STAGES + 1]).reshape(m, n) / scale
+            e5 = _comb(_E5, K2[: _N_STAGES + 1]).reshape(m, n) / scale
+            e3 = _comb(_E3, K2[: _N_STAGES + 1]).reshape(m, n) / scale
             e5n = np.einsum("ij,ij->i", e5, e5)
             e3n = np.einsum("ij,ij->i", e3, e3)
             denom = e5n + 0.01 * e3n
@@ -442,14 +484,15 @@ def integrate_batch(
             dense: _Dense | None = None
             nd = np.nonzero(need)[0]
             if nd.size:
-                Kd = np.ascontiguousarray(K[:, ia[nd]])  # a reshape of it must be a view
+                # the stages of the members that need the dense output (all of them, often: then K itself)
+                Kd = K if _all_members(ia, nd, m) else np.ascontiguousarray(K[:, ia[nd]])  # a reshape must be a view
                 md = nd.size
                 Kd2 = Kd.reshape(_N_STAGES + 4, md * n)
                 hd = ha[nd][:, None]
                 prm_d = tuple(p[ia[nd]] for p in prm)
                 with np.errstate(all="ignore"):
                     for s in range(_N_STAGES + 1, _N_STAGES + 4):
-                        dy = (_A_EXTRA[s - _N_STAGES - 1, :s] @ Kd2[:s]).reshape(md, n) * hd
+                        dy = _comb(_A_EXTRA[s - _N_STAGES - 1, :s], Kd2[:s]).reshape(md, n) * hd
                         Kd[s] = fun(ta[nd] + _C_EXTRA[s - _N_STAGES - 1] * ha[nd], ya[nd] + dy, *prm_d)
                 nfev[gidx[ia[nd]]] += 3
                 dly = yna[nd] - ya[nd]
@@ -457,7 +500,7 @@ def integrate_batch(
                 Fd[0] = dly
                 Fd[1] = hd * Kd[0] - dly
                 Fd[2] = 2.0 * dly - hd * (f_new[ia[nd]] + Kd[0])
-                Fd[3:] = hd * (_D @ Kd2).reshape(4, md, n)
+                Fd[3:] = hd * _comb(_D, Kd2).reshape(4, md, n)
                 dense = _Dense(ta[nd], ha[nd], ya[nd], Fd)
             # position of each accepted member in the dense arrays
             pos = np.full(ia.size, -1)
@@ -496,10 +539,9 @@ def integrate_batch(
             tot = int(cnt.sum())
             if tot:
                 assert dense is not None
-                rows = np.repeat(np.arange(ia.size), cnt)
-                # grid indices lo .. hi - 1 of each member, concatenated
-                jj = np.repeat(lo - np.cumsum(cnt) + cnt, cnt) + np.arange(tot)
-                Yout[gidx[ia[rows]], :, jj] = dense(te[jj], pos[rows])
+                mm = np.nonzero(cnt)[0]  # members with samples in this step: grid indices lo .. hi - 1 each
+                which, jj, ys = dense.on_grid(te, pos[mm], lo[mm], cnt[mm])
+                Yout[gidx[ia[mm[which]]], :, jj] = ys
 
             # terminal events end their member at the root
             term = np.nonzero(stop_ev >= 0)[0]
@@ -542,10 +584,15 @@ def integrate_batch(
     # ---- assemble ---------------------------------------------------------------------------------
     t_events: dict[str, np.ndarray] = {}
     y_events: dict[str, np.ndarray] = {}
+    none_t, none_y = np.empty(0), np.empty((0, n))  # shared by the members without this event (read-only)
+    none_t.setflags(write=False)
+    none_y.setflags(write=False)
     for j, ev in enumerate(evs):
         te_obj = np.empty(B, dtype=object)
         ye_obj = np.empty(B, dtype=object)
-        for q in range(B):
+        te_obj.fill(none_t)
+        ye_obj.fill(none_y)
+        for q in (q for q in range(B) if tev[j][q]):
             te_obj[q] = np.asarray(tev[j][q], dtype=float)
             ye_obj[q] = np.asarray(yev[j][q], dtype=float).reshape(-1, n)
         t_events[ev.name] = te_obj.reshape(batch_shape)

@@ -334,6 +334,39 @@ class _DenseStep:
         return self.interp(self.F, self.y_old, (t - self.t_old) / self.h)
 
 
+class _LazyDense:
+    """Dense output of a run of ``engine='python'`` over its whole span, like SciPy's ``OdeSolution``: each step
+    keeps its stages, and the three extra stages of its interpolant are computed the first time a time in
+    that step is asked for (so a run whose dense output is never used costs nothing more)."""
+
+    def __init__(self, fun: Callable[..., Any], args: tuple, coeffs: Callable[..., Any], interp: Callable[..., Any],
+                 steps: list[list[Any]], y0: list[float]) -> None:
+        self.fun, self.args, self.coeffs, self.interp = fun, args, coeffs, interp
+        self.steps = steps  # [t_old, h, y_old, y_new, K, _DenseStep or None] per accepted step
+        self.starts = np.array([st[0] for st in steps], dtype=float)
+        self.y0 = list(y0)
+
+    def _step(self, i: int) -> _DenseStep:
+        st = self.steps[i]
+        if st[5] is None:
+            t_old, h, y_old, y_new, K = st[:5]
+            st[5] = _DenseStep(t_old, h, y_old, self.coeffs(self.fun, t_old, y_old, y_new, h, K, self.args),
+                               self.interp)
+        return st[5]
+
+    def __call__(self, t: Any) -> np.ndarray:
+        ta = np.asarray(t, dtype=float)
+        tt = np.atleast_1d(ta).ravel()
+        out = np.empty((len(self.y0), tt.size))
+        if not self.steps:
+            out[:] = np.asarray(self.y0, dtype=float)[:, None]
+        else:
+            idx = np.clip(np.searchsorted(self.starts, tt, side="right") - 1, 0, len(self.steps) - 1)
+            for k, (i, tv) in enumerate(zip(idx.tolist(), tt.tolist())):
+                out[:, k] = self._step(i)(tv)
+        return out[:, 0] if ta.ndim == 0 else out
+
+
 def _rms(v: list[float]) -> float:
     return math.sqrt(sum(x * x for x in v) / len(v))
 
@@ -341,7 +374,7 @@ def _rms(v: list[float]) -> float:
 def _solve_small(
     fun: Callable[..., Any], t0: float, t1: float, y0: list[float], t_eval: np.ndarray | None, rtol: list[float],
     atol: list[float], events: list[tuple[Callable[..., float], bool, float]], args: tuple, max_step: float,
-    first_step: float | None = None,
+    first_step: float | None = None, dense_output: bool = False,
 ) -> dict[str, Any]:
     """DOP853 on one system of floats; returns what :func:`integrate` reads from a solve_ivp result."""
     n = len(y0)
@@ -394,6 +427,7 @@ def _solve_small(
     status: int | None = None if span > 0.0 else 0
     message = "The solver successfully reached the end of the integration interval."
     rejected = False
+    steps: list[list[Any]] = []  # the accepted steps, for the dense output
     while status is None:
         min_step = 10.0 * abs(math.nextafter(t, math.inf) - t)
         h_abs = min(max(h_abs, min_step), max_step)
@@ -437,6 +471,8 @@ def _solve_small(
             nfev += 3
             return _DenseStep(d[0], d[1], d[2], dense_coeffs(fun, d[0], d[2], d[3], d[1], d[4], args), interp)
 
+        if dense_output:
+            steps.append([t_old, h, y_old, y_new, K, None])
         if events:
             g_new = [ev(t, y, *args) for ev, _, _ in events]
             active = []
@@ -447,6 +483,8 @@ def _solve_small(
                     active.append(e)
             if active:
                 sol = _dense()
+                if dense_output:
+                    steps[-1][5] = sol
                 roots = [brentq(lambda tt, e=e, d=sol: events[e][0](tt, d(tt), *args), t_old, t,
                                 xtol=4 * _EPS, rtol=4 * _EPS) for e in active]
                 hits = sorted(zip(roots, active))
@@ -471,6 +509,8 @@ def _solve_small(
             if j > ti:
                 if sol is None:
                     sol = _dense()
+                    if dense_output:
+                        steps[-1][5] = sol
                 for tt in te_list[ti:j]:
                     ts.append(tt)
                     ys.append(sol(tt))
@@ -478,6 +518,7 @@ def _solve_small(
         if status is None and t >= t1:
             status = 0
     return {
+        "sol": _LazyDense(fun, args, dense_coeffs, interp, steps, list(y0)) if dense_output else None,
         "t": np.array(ts, dtype=float),
         "y": np.array(ys, dtype=float).reshape(-1, n).T,
         "t_events": [np.array(v, dtype=float) for v in t_events],
@@ -515,7 +556,9 @@ def integrate(
         norm, step-size control, initial step, dense output on ``t_eval``, events located by ``brentq``) run
         on lists of floats, for small systems (a few states) where SciPy's per-step NumPy overhead dominates;
         ``fun`` and the events then receive ``y`` as a list of floats and ``fun`` may return any sequence.
-        It integrates forward only, with ``method='DOP853'`` and without ``dense_output``.
+        It integrates forward only, with ``method='DOP853'``; its dense output (``sol.sol(t)``, rows of the state
+        for scalar or array ``t``, like SciPy's ``OdeSolution``) computes each step's interpolant the first time
+        that step is asked for.
     first_step : float, optional
         Initial step size (default: SciPy's heuristic), e.g. the ``last_step`` of a run being continued.
     events : iterable of Event
@@ -557,8 +600,8 @@ def integrate(
     if engine not in ("scipy", "python"):
         raise ValueError(f"engine must be 'scipy' or 'python', got {engine!r}")
     py = engine == "python"
-    if py and (method != "DOP853" or dense_output or t1 < t0):
-        raise ValueError("engine='python' integrates forward with method='DOP853' and no dense_output")
+    if py and (method != "DOP853" or t1 < t0):
+        raise ValueError("engine='python' integrates forward with method='DOP853'")
     with np.errstate(all="ignore"):
         # solve_ivp loops forever when the right-hand side is NaN at the initial state (its step-size control
         # turns NaN): refuse that up front
@@ -580,8 +623,8 @@ def integrate(
         with np.errstate(all="ignore"):
             rtol_l = np.broadcast_to(np.asarray(rtol, dtype=float), (n,)).tolist()
             out = _solve_small(fun, t0, t1, y0a.tolist(), te_arr, rtol_l, atol_l, ev_small, tuple(args or ()),
-                               float(max_step), first_step)
-        res: Any = SimpleNamespace(**out, sol=None)  # what integrate reads from a solve_ivp result
+                               float(max_step), first_step, dense_output)
+        res: Any = SimpleNamespace(**out)  # what integrate reads from a solve_ivp result
     else:
         with np.errstate(all="ignore"):
             res = solve_ivp(

@@ -45,13 +45,15 @@ Averaged system (6)-(9)
     integrate (9) in tau = eps^2 t; eps = 0 is the orbit-averaged limit. The result has ``.tau``,
     ``.G``, ``.T``, ``.k2``, ``.delta``, ``.lam`` (unwrapped), ``.nu``, ``.n``, ``.status``,
     ``.message``; with a torque object also ``.quad_error``, ``.resonances``, ``.kind``, ``.sigma``.
+    Arrays for ``eps, G0, k2_0 (or T0), delta0, lam0, nu0`` (or a batch of drag tensors) give a batch of
+    evolutions integrated together, with per-member statuses.
 
 Full equations
 --------------
 ``simulate(body, torque, eps, ..., formulation='body'|'angles', u0=0, psi0=0, sigma=1)``
     the unaveraged motion: Euler's equations and a quaternion, or the paper's (1), (3), (4). ``torque`` is
     a drag tensor (drag plus gravity gradient, the paper's case) or a torque object / callable (the whole
-    perturbation).
+    perturbation). Array inputs (also ``u0``, ``psi0``) give a batch.
 ``initial_state(body, G0, k2_0, delta0, lam0)``
     the attitude that starts a full run on given slow variables.
 

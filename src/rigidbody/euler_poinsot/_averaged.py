@@ -6,29 +6,18 @@ slow time :math:`\tau = \varepsilon^2\tilde t` and true anomaly :math:`\nu = \ta
 In :math:`\tau` the system (9) is (6) with :math:`\omega_0 = 1` and :math:`I\to\tilde I`, so one set of
 functions serves both forms: pass ``omega0`` and dimensional ``I`` for (6) in :math:`t`.
 
-Formulation that does not break at :math:`\sin\delta = 0`
---------------------------------------------------------
-Instead of :math:`(\delta, \lambda)` the integrator evolves the unit vector
-:math:`\mathbf n = (\sin\delta\cos\lambda, \sin\delta\sin\lambda, \cos\delta)` of :math:`\mathbf G` in the
-orbital axes :math:`Ox_i`. The two angle equations of (6) are the components along :math:`y_1, y_2` of
-
-.. math:: \frac{d\mathbf n}{dt} = \frac{3\omega_0^2}{2G}f(\nu)N^*(\mathbf e_r\cdot\mathbf n)\,
-          (\mathbf n\times\mathbf e_r),\qquad \mathbf e_r = (\cos\nu, \sin\nu, 0),
-
-(:math:`\beta_i = \mathbf e_r\cdot\mathbf y_i`, :math:`f = 1` on a circular orbit), which is regular
-everywhere. :math:`\delta = \arccos n_3` and :math:`\lambda = \operatorname{atan2}(n_2, n_1)` are derived
-output, :math:`\lambda` unwrapped along the solver's steps.
-
-Orbit-averaged limit (:math:`\varepsilon = 0`)
----------------------------------------------
-Averaging also over :math:`\nu` (:math:`\langle f\,\mathbf e_r\mathbf e_r^T\rangle = (1-e^2)^{-3/2}
-\operatorname{diag}(1/2, 1/2, 0)`) gives :math:`d\mathbf n/dt = -\tfrac{3\omega_0^2}{4G}(1-e^2)^{-3/2}N^*n_3\,
-(\mathbf n\times\mathbf e_3)`: :math:`\delta` is constant and :math:`\dot\lambda =
-\tfrac{3\omega_0^2}{4G}(1-e^2)^{-3/2}N^*\cos\delta` (:func:`precession_rate`). The integrator then
-evolves :math:`(G, k^2, \Lambda)` with :math:`\dot\Lambda = \tfrac34(1-e^2)^{-3/2}N^*/G` and
-:math:`\lambda = \lambda_0 + \Lambda\cos\delta_0`: as :math:`G \to 0` the precession accelerates like
-:math:`1/G`, and a smooth :math:`\Lambda` costs no extra steps where resolving the turns of
-:math:`\mathbf n` would.
+The closed forms of a drag tensor: coordinates, and what ``rtol`` means
+-----------------------------------------------------------------------
+With a drag tensor each segment of a run integrates (9) in :math:`(\ln G, \ln k^2, \delta, \lambda)` (plus
+:math:`\nu` on an eccentric orbit; :math:`(\ln G, \ln k^2, \lambda)` in the orbit-averaged limit
+:math:`\varepsilon = 0`, where :math:`\delta` is constant and :math:`\dot\lambda =
+\tfrac34(1-e^2)^{-3/2}N^*\cos\delta_0/G`, :func:`precession_rate`) with the right-hand sides of
+:mod:`._kernel`: ``rtol`` is the relative accuracy of :math:`G`, :math:`T`, :math:`k^2` however far they decay,
+the angle equations (6) are regular at :math:`\sin\delta = 0` (the poles are fixed points of the
+gravity-gradient average) and :math:`\lambda` is continuous by construction. DOP853 runs on Python floats
+(``core.ode.integrate(engine='python')``) with the kernel's formulas folded into closures; its dense output is
+computed for the steps that are sampled. A batch (array inputs, :mod:`._batch`) integrates the same equations
+over members with :func:`rigidbody.core.batch.integrate_batch`.
 
 Any torque
 ----------
@@ -50,8 +39,10 @@ from typing import Any
 
 import numpy as np
 
+from ..core import kernel as _kn
 from ..core.ode import Event, Solution, integrate
 from ..core.validate import positive, real, span
+from . import _kernel as _k
 from ._engine import Averager, TorqueAverage, _Mean, _State, error_of, harmonic, mean_of
 from ._model import (
     K2_SPIN_CAP,
@@ -500,17 +491,17 @@ def _check_tol(rtol: Any, atol: Any) -> None:
 def averaged(
     body: Body,
     torque: Any,
-    eps: float,
-    G0: float = 1.0,
-    k2_0: float | None = None,
-    delta0: float = math.pi / 4,
-    lam0: float = math.pi / 4,
+    eps: Any,
+    G0: Any = 1.0,
+    k2_0: Any = None,
+    delta0: Any = math.pi / 4,
+    lam0: Any = math.pi / 4,
     tau_span: tuple[float, float] = (0.0, 3.0),
     tau_eval: Any = None,
-    nu0: float = 0.0,
+    nu0: Any = 0.0,
     *,
     kind: str | None = None,
-    T0: float | None = None,
+    T0: Any = None,
     orbit: Orbit | None = None,
     rtol: float = 1e-10,
     atol: float = 1e-12,
@@ -534,33 +525,39 @@ def averaged(
     torque : array_like, Drag, torque object or callable
         A nondimensional drag tensor :math:`\tilde I` (3x3, its diagonal or a :class:`Drag`; only the
         diagonal enters (9)): Rachinskaya's drag *plus* the gravity-gradient torque, integrated with the
-        closed forms (9). A torque object (:class:`LinearDrag`, :class:`GravityGradient`, ... and sums) or a
+        closed forms (9); an array of shape ``batch_shape + (3, 3)`` gives each member of a batch its own
+        tensor. A torque object (:class:`LinearDrag`, :class:`GravityGradient`, ... and sums) or a
         plain callable ``torque(omega, C, nu) -> M`` is the whole perturbation: the averaged system is then
         :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle`, :math:`dT/d\tau = \langle\boldsymbol\omega
         \cdot\mathbf M\rangle` with the means from the closed forms of the parts that have them and from the
         averaging engine otherwise (see :func:`average_torque` and ``docs/euler_poinsot.md``, "Any torque").
-    eps : float
+    eps : float or array_like
         :math:`\varepsilon`, the orbital rate in units of :math:`\Omega_0`; the true anomaly is
         :math:`\nu = \tau/\varepsilon + \nu_0` (Kepler's law for an eccentric ``orbit``). ``eps = 0`` gives
         the orbit-averaged limit (the gravity terms averaged over :math:`\nu`).
-    G0, k2_0, delta0, lam0 : float
+    G0, k2_0, delta0, lam0 : float or array_like
         Initial :math:`\tilde G`, :math:`k^2` (in [0, 1); default 0.99), :math:`\delta`, :math:`\lambda`
         (radians).
     tau_span : (float, float)
     tau_eval : array_like, optional
-        Output times (default: the solver's steps).
-    nu0 : float
+        Output times (default: the solver's steps; for a batch 101 times over ``tau_span``).
+    nu0 : float or array_like
         Initial true anomaly.
     kind : {'max', 'min'}
         Initial kind of Euler--Poinsot motion ('max': about the axis of :math:`A_1`, the paper's case;
         the default).
-    T0 : float, optional
+    T0 : float or array_like, optional
         The initial kinetic energy instead of ``k2_0`` and ``kind``: any :math:`T_0` in
         :math:`[G_0^2/(2A_1), G_0^2/(2A_3)]` off the separatrix (the kind follows from :func:`kind_of`).
     orbit : Orbit, optional
         Default circular.
     rtol, atol, method
-        Passed to the solver (``rigidbody.core.ode.integrate``).
+        With a drag tensor ``rtol`` is the relative accuracy of :math:`G`, :math:`T` and :math:`k^2` however far
+        they decay (the closed forms are integrated in :math:`\ln G`, :math:`\ln k^2` with absolute control
+        ``rtol``) and the angles are held to ``rtol/10`` radians per step (:math:`\lambda` relatively beyond a
+        radian); ``atol`` is then not used. With a torque object the state :math:`(G, k^2, \mathbf n)` is
+        controlled by ``atol + rtol |y|``. ``method``: ``'DOP853'`` (default; run on Python floats) or another
+        :func:`scipy.integrate.solve_ivp` method (one run only: a batch uses DOP853).
     k2_max : float or None
         The run ends (status 1, event ``'separatrix'``) when :math:`k^2` reaches this value (default
         :math:`1 - 10^{-6}`: at :math:`k^2 = 1` the period of the Euler--Poinsot motion is infinite). ``None``:
@@ -629,6 +626,25 @@ def averaged(
         ``tau``, ``j``, ``m``, ``rho``, ``jump``, ``jump_G``, ``jump_T``, ``jump_n``), ``sol.kind`` and
         ``sol.sigma``.
 
+        For a batch every field has shape ``batch_shape + (len(tau_eval),)`` (``n``: ``batch_shape + (3, n_t)``),
+        NaN after a member's end; ``status``, ``message``, ``event`` and ``crossings`` are per member; ``sol[i]``
+        is member ``i`` as a single-run result.
+
+    Notes
+    -----
+    *Batches.* Arrays for ``eps``, ``G0``, ``k2_0`` (or ``T0``), ``delta0``, ``lam0``, ``nu0`` (and a batch of
+    drag tensors) broadcast to one batch shape; the body, the orbit, ``tau_span``, ``kind``, ``sigma`` and the
+    options are shared. With a drag tensor the members are integrated together
+    (:func:`rigidbody.core.batch.integrate_batch`, the closed forms vectorised over members, per-member step
+    control and events), round by round: a member that reaches the separatrix in a run through it
+    (``k2_max=None``) crosses as its single run does and continues in the next round in the other kind of
+    motion. A member whose start the single call refuses gets ``status = -1`` and that call's message; the
+    others go on. A torque object made of :class:`LinearDrag` parts and the :class:`GravityGradient` of the run
+    (the drag tensor's meaning) runs the same vectorised closed forms; any other torque object (or
+    ``averaging='numerical'``) runs its members one by one through the single call (the engine's quadrature
+    adapts to each state). Every member equals its single call within
+    the tolerance; with ``branch='random'`` the members draw from one generator seeded by ``seed``.
+
     Examples
     --------
     >>> import numpy as np
@@ -638,6 +654,14 @@ def averaged(
     >>> bool(sol.G[-1] < sol.G[0]), sol.status
     (True, 0)
     """
+    from . import _batch
+
+    if _batch.is_batch(eps, G0, k2_0, delta0, lam0, nu0, T0) or _batch.drag_batch(torque) is not None:
+        opts = dict(kind=kind, T0=T0, orbit=orbit, rtol=rtol, atol=atol, method=method, k2_max=k2_max,
+                    min_spin_ratio=min_spin_ratio, sigma=sigma, averaging=averaging, quad_tol=quad_tol,
+                    drift_tol=drift_tol, resonance_tol=resonance_tol, branch=branch, seed=seed)
+        return _batch.averaged_batch(body, torque, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, opts,
+                                     averaged)
     _check_body(body)
     k2_0, kind = _initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
     eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)
@@ -672,7 +696,8 @@ def averaged(
     gen.spin_cap = K2_SPIN_CAP if through else 1.0
     _check_spin(_labels(body, kind), G0, min(k2_0, gen.spin_cap), eps, min_spin_ratio)
     first = gen.piece(region0, tau_span, G0, k2_0, np.array(_unit(delta0, lam0)), nu0, lam0, k2_stop)
-    return _through(first, gen, tau_span, tau_eval, through, branch, np.random.default_rng(seed))
+    rng = np.random.default_rng(seed) if branch == "random" else None  # the only branch rule that draws
+    return _through(first, gen, tau_span, tau_eval, through, branch, rng)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -956,9 +981,9 @@ class _Generic:
                       k2_stop, self.min_spin_ratio, self.drift_tol, self.resonance_tol, self.spin_cap)
 
     def piece(self, region: tuple[str, int], tau_span: Any, G: float, k2: float, n: np.ndarray, nu0: float,
-              lam_s: float, k2_stop: float) -> _Piece:
+              lam_s: float, k2_stop: float, first_step: float | None = None) -> _Piece:
         if self.drag is not None:
-            return _drag_piece(self, self.drag, region, tau_span, G, k2, n, nu0, lam_s, k2_stop)
+            return _drag_piece(self, self.drag, region, tau_span, G, k2, n, nu0, lam_s, k2_stop, first_step)
         seg = _integrate_kind(self.setup(k2_stop), region[0], region[1], tau_span, G, k2, n, nu0)
 
         def finish(te: Any, lam: float) -> Solution:
@@ -1002,7 +1027,7 @@ class _PiecewiseDense:
 
 
 def _through(first: _Piece, gen: _Generic, tau_span: Any, tau_eval: Any, through: bool, branch: Any,
-             rng: np.random.Generator) -> Solution:
+             rng: np.random.Generator | None) -> Solution:
     """Continue an averaged run across the separatrix as often as it reaches it, then assemble the output."""
     t1 = float(tau_span[1])
     pieces = [first]
@@ -1030,7 +1055,11 @@ def _through(first: _Piece, gen: _Generic, tau_span: Any, tau_eval: Any, through
             stop = (f"the averaged motion stalls at the separatrix ({len(crossings)} crossings, the last at "
                     f"tau = {tc:.6g}): the drifts on the two sides point to it")
             break
-        cur = gen.piece(region, (tc, t1), G, K2_SWITCH, n, nu if nu is not None else gen.nu0, lam, K2_SWITCH)
+        # a segment that starts next to the separatrix starts with the step its predecessor ended with: there
+        # the rates' logarithmic singularity can fool the initial-step heuristic into a step whose error
+        # estimate is too optimistic (1e-7 instead of 1e-10 relative in G, measured)
+        cur = gen.piece(region, (tc, t1), G, K2_SWITCH, n, nu if nu is not None else gen.nu0, lam, K2_SWITCH,
+                        first_step=cur.res.last_step)
         pieces.append(cur)
     if len(pieces) == 1 and not crossings:
         sol: Solution = first.finish(tau_eval, first.lam_start)
@@ -1107,84 +1136,62 @@ def averaged_branches(*args: Any, **kwargs: Any) -> dict[tuple[str, int], Soluti
     return out
 
 def _drag_piece(gen: _Generic, drag: Any, region: tuple[str, int], tau_span: Any, G0: float, k2_0: float,
-                n0: np.ndarray, nu_start: float, lam0: float, k2_stop: float) -> _Piece:
-    """A segment of the paper's averaged system (9) (drag tensor plus gravity gradient, closed forms)."""
+                n0: np.ndarray, nu_start: float, lam0: float, k2_stop: float, first_step: float | None = None
+                ) -> _Piece:
+    """A segment of the paper's averaged system (9) (drag tensor plus gravity gradient, closed forms), integrated
+    in ``(ln G, ln k^2, [delta,] lambda[, nu])`` (:mod:`._kernel`: relative accuracy of the decaying variables,
+    lambda continuous) by DOP853 on Python floats; its dense output is computed where it is asked for."""
+    SC = _kn.SCALAR
     delta0 = math.acos(max(-1.0, min(1.0, float(n0[2]))))
     body, orb, eps, kind, sigma = gen.body, gen.orbit, gen.eps, region[0], region[1]
     A, Id = _labels(body, kind, drag.diag)
+    g1, g2, g3, c3, c1 = _k.DragCoefficients(A, Id).args()
     nu0 = gen.nu0  # circular orbit: nu = tau / eps + nu0 with the run's nu0
-    circular = orb.e == 0.0
-    mf = orb.mean_factor
-    inv_eps = 1.0 / eps if eps > 0 else 0.0
+    e = orb.e
+    limit = eps == 0.0
+    y0, z_a = _k.initial_state(eps, G0, k2_0, delta0, lam0, nu_start, e)
+    z = float(z_a)
+    hl = 0.75 * orb.mean_factor * math.cos(delta0)
+    ie = 0.0 if limit else 1.0 / eps
+    rhs = _k.scalar_rhs(A, (g1, g2, g3, c3, c1), z, e, limit, hl, ie, nu0)
 
-    def grav(G: float, k2: float, n1: float, n2: float, n3: float, nu: float) -> tuple[float, float, float]:
-        Ns = _nstar(A, k2)
-        cn, sn = math.cos(nu), math.sin(nu)
-        c = 1.5 * orb.factor(nu) * Ns * (cn * n1 + sn * n2) / G
-        return -c * n3 * sn, c * n3 * cn, c * (n1 * sn - n2 * cn)
-
-    def rhs_limit(tau: float, y: np.ndarray) -> list[float]:
-        # eps = 0: delta is constant and lambda = lam0 + cos(delta0) * Lambda, dLambda = (3/4) mf N*/G
-        G, k2 = y[0], y[1]
-        k2c = 0.0 if k2 < 0.0 else (1.0 if k2 > 1.0 else k2)
-        dG, _ = _drag_rates(A, Id, G, k2c)
-        return [dG, _dk2(A, Id, k2c), 0.75 * mf * _nstar(A, k2c) / G]
-
-    def rhs(tau: float, y: np.ndarray) -> list[float]:
-        G, k2, n1, n2, n3 = y[0], y[1], y[2], y[3], y[4]
-        k2c = 0.0 if k2 < 0.0 else (1.0 if k2 > 1.0 else k2)
-        nrm = math.sqrt(n1 * n1 + n2 * n2 + n3 * n3)
-        n1, n2, n3 = n1 / nrm, n2 / nrm, n3 / nrm
-        dG, _ = _drag_rates(A, Id, G, k2c)
-        dk2 = _dk2(A, Id, k2c)
-        if eps > 0.0 and not circular:
-            nu = y[5]
-            d1, d2, d3 = grav(G, k2c, n1, n2, n3, nu)
-            return [dG, dk2, d1, d2, d3, inv_eps * orb.nu_rate(nu)]
-        nu = tau * inv_eps + nu0
-        d1, d2, d3 = grav(G, k2c, n1, n2, n3, nu)
-        return [dG, dk2, d1, d2, d3]
-
-    y0 = [G0, k2_0, *n0] if eps > 0.0 else [G0, k2_0, 0.0]
-    if eps > 0.0 and not circular:
-        y0.append(nu_start)
-    cd0, sd0 = math.cos(delta0), math.sin(delta0)
-    events = [
-        Event(lambda t, y: y[1] - k2_stop, "separatrix", True, 1.0,
-              f"k2 reached {k2_stop:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
-              "where the averaging (6) does not hold"),
-    ]
-    if eps > 0.0:
-        events.append(
-            Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), gen.spin_cap)) / eps - gen.min_spin_ratio,
-                  "slow_rotation", True, -1.0, _slow_msg(gen.min_spin_ratio))
-        )
-    res = integrate(rhs if eps > 0.0 else rhs_limit, tau_span, y0, rtol=gen.rtol, atol=gen.atol, method=gen.method,
-                    dense_output=True, events=events, time_name="tau")
-
-    def lam_limit(y: np.ndarray) -> np.ndarray:
-        return lam0 + cd0 * y[2]
-
-    def nvec(y: np.ndarray) -> np.ndarray:
-        if eps == 0.0:
-            lam = lam_limit(y)
-            return np.array([sd0 * np.cos(lam), sd0 * np.sin(lam), np.full_like(lam, cd0)])
-        n = y[2:5]
-        return n / np.linalg.norm(n, axis=0)
+    lnk_stop = math.log(k2_stop)
+    events = [Event((lambda t, y: y[1] - lnk_stop) if z > 0.0 else (lambda t, y: -1.0), "separatrix", True, 1.0,
+                    f"k2 reached {k2_stop:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
+                    "where the averaging (6) does not hold")]
+    if not limit:
+        cap, r = gen.spin_cap, gen.min_spin_ratio
+        events.append(Event(lambda t, y: _k.nut_freq(SC, A, math.exp(y[0]), min(z * math.exp(y[1]), cap)) * ie - r,
+                            "slow_rotation", True, -1.0, _slow_msg(r)))
+    rt: Any
+    rt, at = _k.tolerances(gen.rtol, y0.size)
+    py = gen.method == "DOP853"
+    res = integrate(rhs, tau_span, y0, rtol=rt if py else _k.RTOL_FLOOR, atol=at, method=gen.method,
+                    dense_output=True, events=events, time_name="tau", engine="python" if py else "scipy",
+                    first_step=first_step if py else None)
+    def common(y: np.ndarray) -> np.ndarray:
+        f = _k.fields(A, e, np.zeros(np.shape(y)[-1]), y, z, limit, delta0, nu0, ie)
+        return np.vstack([f["G"], f["k2"], f["n"]])
 
     def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
-        if eps > 0.0 and not circular:
-            nu = y[5]
-        else:
-            nu = tau * inv_eps + nu0 if eps > 0 else np.full_like(tau, nu0)
-        out = _slow_fields(A, y, nvec, nu)
+        out = _k.fields(A, e, tau, y, z, limit, delta0, nu0, ie)
         out["kind"], out["sigma"] = np.full(tau.shape, kind), np.full(tau.shape, sigma)
         return out
 
     def finish(te: Any, lam_s: float) -> Solution:
-        return _finish(res, te, make_fields, lam_s, nvec, lam_limit if eps == 0.0 else None)
-
-    def common(y: np.ndarray) -> np.ndarray:
-        return np.vstack([y[0], y[1], nvec(y)])
+        # the fields on te (the solver's steps by default) from the dense output; lambda is a state (continuous by
+        # construction); the raw rows become G, k2, n like every run's
+        steps = res.time
+        if te is None:
+            tau, y = steps, res.y
+        else:
+            tt = np.asarray(te, dtype=float)
+            tau = tt[(tt >= steps[0]) & (tt <= steps[-1])] if steps.size else tt[:0]
+            y = res.sol(tau) if tau.size else np.empty((res.y.shape[0], 0))
+        f = make_fields(tau, y)
+        out = Solution(res.time_name, tau, np.vstack([f["G"], f["k2"], f["n"]]), f, res.status, res.message,
+                       res.event, res.t_events, res.y_events, lambda t: common(res.sol(t)), res.nfev)
+        out.last_step = res.last_step
+        return out
 
     return _Piece(res, region, finish, common, lam0)

@@ -91,20 +91,20 @@ def _osculating(A: tuple[float, float, float], D: float) -> tuple[tuple[float, f
 def simulate(
     body: Body,
     torque: Any,
-    eps: float,
-    G0: float = 1.0,
-    k2_0: float | None = None,
-    delta0: float = math.pi / 4,
-    lam0: float = math.pi / 4,
+    eps: Any,
+    G0: Any = 1.0,
+    k2_0: Any = None,
+    delta0: Any = math.pi / 4,
+    lam0: Any = math.pi / 4,
     tau_span: tuple[float, float] = (0.0, 3.0),
     tau_eval: Any = None,
-    nu0: float = 0.0,
+    nu0: Any = 0.0,
     *,
     kind: str | None = None,
-    T0: float | None = None,
+    T0: Any = None,
     orbit: Orbit | None = None,
-    u0: float = 0.0,
-    psi0: float = 0.0,
+    u0: Any = 0.0,
+    psi0: Any = 0.0,
     sigma: int = 1,
     formulation: str = "body",
     rtol: float = 1e-10,
@@ -132,16 +132,17 @@ def simulate(
         divided by :math:`\varepsilon^2`; see :class:`Torque`): :math:`d\mathbf g/d\tau =
         \varepsilon^{-2}\mathbf g\times\boldsymbol\omega + \mathbf M`.
     eps, G0, delta0, lam0, tau_span, tau_eval, nu0, orbit, rtol, atol, method
-        As in :func:`averaged`; ``eps`` must be positive (the cost grows like :math:`\varepsilon^{-2}`:
-        :math:`\tau` spans :math:`\tau/\varepsilon^2` units of :math:`\tilde t`).
-    k2_0, kind : float, {'max', 'min'}
+        As in :func:`averaged` (``eps``, ``G0``, ``delta0``, ``lam0``, ``nu0`` floats or arrays of a batch);
+        ``eps`` must be positive (the cost grows like :math:`\varepsilon^{-2}`: :math:`\tau` spans
+        :math:`\tau/\varepsilon^2` units of :math:`\tilde t`).
+    k2_0, kind : float or array_like, {'max', 'min'}
         Initial modulus squared (in [0, 1); default 0.99) and kind of motion (default ``'max'``, the paper's).
-    T0 : float, optional
+    T0 : float or array_like, optional
         The initial kinetic energy instead of ``k2_0`` and ``kind``: any :math:`T_0` in
         :math:`[G_0^2/(2A_1), G_0^2/(2A_3)]` off the separatrix (the kind follows from :func:`kind_of`).
     u0, psi0, sigma
-        Initial elliptic phase, precession angle about :math:`\mathbf G` and sense of rotation of the
-        Euler--Poinsot motion (see :func:`initial_state`).
+        Initial elliptic phase, precession angle about :math:`\mathbf G` (floats or arrays of a batch) and sense
+        of rotation of the Euler--Poinsot motion (see :func:`initial_state`).
     formulation : {'body', 'angles'}
         Euler's equations with a quaternion (default, regular everywhere) or the paper's (1), (3), (4).
     k2_max : float or None
@@ -163,7 +164,26 @@ def simulate(
         sign of :math:`g_1` for ``'max'``, of :math:`g_3` for ``'min'``); ``t_events['separatrix']`` holds the
         times of the passages through the separatrix. ``'body'`` adds ``g`` (body components of G, shape
         (3, n)) and ``q``; ``'angles'`` adds ``theta, phi, psi`` and ``T`` is the integrated energy of (4).
+        For a batch every field has the leading ``batch_shape`` (and ``tau_eval``, default 101 times, as its
+        last axis), NaN after a member's end; ``status``, ``message``, ``event`` are per member.
+
+    Notes
+    -----
+    *Batches.* Arrays for ``eps``, ``G0``, ``k2_0`` (or ``T0``), ``delta0``, ``lam0``, ``nu0``, ``u0``, ``psi0``
+    broadcast to one batch shape (a batch over initial phases is an ensemble of the same slow state). The
+    ``'body'`` formulation integrates the members together (:func:`rigidbody.core.batch.integrate_batch`, the
+    torque evaluated on all members at once: a torque object through its vectorised protocol), with
+    ``lam`` continuous from the located passages of :math:`\mathbf n` through the branch cut of the azimuth;
+    the ``'angles'`` formulation (and a ``method`` other than DOP853) runs member by member. A member whose
+    start the single call refuses gets ``status = -1`` and that call's message.
     """
+    from . import _batch
+
+    if _batch.is_batch(eps, G0, k2_0, delta0, lam0, nu0, T0, u0, psi0):
+        opts = dict(kind=kind, T0=T0, orbit=orbit, sigma=sigma, formulation=formulation, rtol=rtol, atol=atol,
+                    method=method, k2_max=k2_max, min_spin_ratio=min_spin_ratio)
+        return _batch.simulate_batch(body, torque, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, u0, psi0,
+                                     opts, simulate)
     _check_body(body)
     k2_0, kind = _initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
     eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)

@@ -647,7 +647,7 @@ def _check_branch(branch: Any) -> Any:
     return tuple(_check_region(r, "branch") for r in seq)
 
 
-def _choose(crossing: SeparatrixCrossing, branch: Any, index: int, rng: np.random.Generator
+def _choose(crossing: SeparatrixCrossing, branch: Any, index: int, rng: np.random.Generator | None
             ) -> tuple[Region | None, str]:
     """The region the averaged motion continues in at crossing number ``index`` (or None and why not)."""
     probs = crossing.probabilities
@@ -665,5 +665,6 @@ def _choose(crossing: SeparatrixCrossing, branch: Any, index: int, rng: np.rando
     if branch == "random":
         regions = [r for r in REGIONS if probs[r] > 0]
         p = np.array([probs[r] for r in regions])
-        return regions[int(rng.choice(len(regions), p=p / p.sum()))], ""
+        gen = rng if rng is not None else np.random.default_rng()
+        return regions[int(gen.choice(len(regions), p=p / p.sum()))], ""
     return crossing.most_probable(), ""

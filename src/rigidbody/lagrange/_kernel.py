@@ -22,8 +22,9 @@ The map (2.8) from the roots to ``(Gz, H, r)`` is evaluated without cancellation
 (the values ``-P(-1)``, ``-P(1)`` of the monic cubic (1.5); derived here from (1.6)), and the factor
 ``1/(1 - u_i^2)`` of the chart is cancelled analytically in ``V`` of (2.13).
 
-Every function takes a namespace ``xp`` first: :data:`SCALAR` (``math``, for one run: a few microseconds a
-call) or :data:`ARRAY` (NumPy, for a batch, elementwise over members), so one formula serves both.
+Every function takes a namespace ``xp`` first: :data:`rigidbody.core.kernel.SCALAR` (``math``, for one run: a few
+microseconds a call) or :data:`rigidbody.core.kernel.ARRAY` (NumPy, for a batch, elementwise over members), so one
+formula serves both; ``<sn^2>`` comes from :func:`rigidbody.core.kernel.sn2_excess`.
 """
 
 from __future__ import annotations
@@ -31,80 +32,11 @@ from __future__ import annotations
 import math
 from typing import Any
 
-import numpy as np
+from ..core.kernel import ARRAY, SCALAR, sn2_excess
 
-__all__ = ["ARRAY", "SCALAR"]
+__all__ = ["ARRAY", "SCALAR", "sn2_excess"]
 
 _SQRT2 = math.sqrt(2.0)
-
-
-class _Scalar:
-    """``math`` functions under the names the kernels use (callers turn ``ZeroDivisionError``,
-    ``OverflowError`` and ``ValueError`` of a state outside the functions' domain into NaN)."""
-
-    sqrt = staticmethod(math.sqrt)
-    exp = staticmethod(math.exp)
-    expm1 = staticmethod(math.expm1)
-    log = staticmethod(math.log)
-    sinh = staticmethod(math.sinh)
-    cosh = staticmethod(math.cosh)
-    tanh = staticmethod(math.tanh)
-    sin = staticmethod(math.sin)
-    cos = staticmethod(math.cos)
-    acos = staticmethod(math.acos)
-    atan2 = staticmethod(math.atan2)
-    copysign = staticmethod(math.copysign)
-    abs = staticmethod(abs)
-    minimum = staticmethod(min)
-    maximum = staticmethod(max)
-    nan = math.nan
-    array = False
-
-    @staticmethod
-    def where(c: Any, a: Any, b: Any) -> Any:
-        return a if c else b
-
-    @staticmethod
-    def any(c: Any) -> bool:
-        return bool(c)
-
-    @staticmethod
-    def rint(x: float) -> float:
-        return float(round(x)) if math.isfinite(x) else x
-
-    @staticmethod
-    def clip(x: float, lo: float, hi: float) -> float:
-        return lo if x < lo else hi if x > hi else x
-
-
-class _Array:
-    """NumPy ufuncs under the same names (elementwise over batch members)."""
-
-    sqrt = staticmethod(np.sqrt)
-    exp = staticmethod(np.exp)
-    expm1 = staticmethod(np.expm1)
-    log = staticmethod(np.log)
-    sinh = staticmethod(np.sinh)
-    cosh = staticmethod(np.cosh)
-    tanh = staticmethod(np.tanh)
-    sin = staticmethod(np.sin)
-    cos = staticmethod(np.cos)
-    acos = staticmethod(np.arccos)
-    atan2 = staticmethod(np.arctan2)
-    copysign = staticmethod(np.copysign)
-    abs = staticmethod(np.abs)
-    minimum = staticmethod(np.minimum)
-    maximum = staticmethod(np.maximum)
-    where = staticmethod(np.where)
-    any = staticmethod(np.any)
-    rint = staticmethod(np.rint)
-    clip = staticmethod(np.clip)
-    nan = np.nan
-    array = True
-
-
-SCALAR = _Scalar()
-ARRAY = _Array()
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -119,39 +51,6 @@ def sincospi(xp: Any, x: Any) -> tuple[Any, Any]:
     sin_ = xp.where(k == 0, s, xp.where(k == 1, c, xp.where(k == 2, -s, -c)))
     cos_ = xp.where(k == 0, c, xp.where(k == 1, -s, xp.where(k == 2, -c, s)))
     return sin_, cos_
-
-
-def sn2_excess(xp: Any, k2: Any, mc: Any) -> Any:
-    r"""``<sn^2> - 1/2`` over a period, ``(1 - E/K)/k^2 - 1/2``, without cancellation for small ``k``.
-
-    By the arithmetic-geometric mean (``a0 = 1, b0 = sqrt(mc), c0 = k``, ``c_{n+1} = c_n^2/(4 a_{n+1})``),
-    ``1 - E/K = sum_{n>=0} 2^{n-1} c_n^2`` (Abramowitz & Stegun 17.6.3-17.6.4); with ``q_n = c_n^2/k^2`` the
-    sum divided by ``k^2`` is ``1/2 + sum_{n>=1} 2^{n-1} q_n``, every term positive. Exact in ``mc``.
-    """
-    a = 1.0
-    b = xp.sqrt(mc)
-    q = 1.0  # q_n = c_n^2/k^2
-    p = 1.0  # 2^(n-1)
-    total = 0.0
-    if xp.array:
-        # the AGM converges quadratically: with c_1 = k^2/(2(1 + k')) <= 1/2 and c_{n+1} = c_n^2/(4 a_{n+1}),
-        # a_{n+1} >= sqrt(mc), the iterations needed for the terms to drop below 1e-17 follow from the smallest
-        # complementary parameter of the batch
-        mcmin = max(float(np.min(mc)), 0.0) if np.size(mc) else 1.0
-        c, n_it = (1.0 - mcmin) / (2.0 * (1.0 + math.sqrt(mcmin))), 1
-        while c * c > 1e-17 and n_it < 40:
-            c, n_it = c * c / (4.0 * max(math.sqrt(mcmin), 1e-300)) if c > 0.0 else 0.0, n_it + 1
-    else:
-        n_it = 40
-    for _ in range(n_it):
-        a, b = 0.5 * (a + b), xp.sqrt(a * b)
-        q = q * q * k2 / (16.0 * a * a)
-        term = p * q
-        total = total + term
-        if not xp.array and term <= 1e-17 * (0.5 + total):
-            break
-        p *= 2.0
-    return total
 
 
 # ---------------------------------------------------------------------------------------------------

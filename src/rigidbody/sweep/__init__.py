@@ -13,6 +13,9 @@ resumes where it stopped.
     the Dataset of a store as it stands (while a sweep writes it, or after an interruption).
 :func:`gyrostat_stability`
     a batched wrapper of :func:`rigidbody.gyrostat.stability_map`.
+:func:`euler_poinsot_averaged`, :func:`lagrange_averaged`
+    batched wrappers of the averaged evolutions (:func:`rigidbody.euler_poinsot.averaged`,
+    :func:`rigidbody.lagrange.averaged`): a chunk of points is one batch integration.
 
 Needs the optional dependencies: ``pip install "rigidbody[sweep]"`` (xarray, zarr, dask[distributed],
 tqdm). ``import rigidbody`` does not import any of them. See ``docs/sweeps.md``.
@@ -20,6 +23,7 @@ tqdm). ``import rigidbody`` does not import any of them. See ``docs/sweeps.md``.
 
 from ._api import load, sweep
 from ._run import NOT_COMPUTED, OK, RAISED, batched
-from ._wrappers import gyrostat_stability
+from ._wrappers import RUN_FAILED, euler_poinsot_averaged, gyrostat_stability, lagrange_averaged
 
-__all__ = ["NOT_COMPUTED", "OK", "RAISED", "batched", "gyrostat_stability", "load", "sweep"]
+__all__ = ["NOT_COMPUTED", "OK", "RAISED", "RUN_FAILED", "batched", "euler_poinsot_averaged", "gyrostat_stability",
+           "lagrange_averaged", "load", "sweep"]

@@ -49,3 +49,114 @@ def gyrostat_stability(*, sat: Any, R0: Any = None, omega_sign: int = 1, rtol: f
                                omega_sign=omega_sign, grid=False, rtol=rtol, **params)
     return {"code": m.code, "degree": m.degree, "s1": m.s1, "s2": m.s2, "s3": m.s3, "kappa0": m.kappa0,
             "omega0": m.omega0, computed: getattr(m, computed)}
+
+
+#: the sweep status of a point whose integration failed or was refused at its start (its message says why)
+RUN_FAILED = 2
+
+
+def _evolution_outputs(sol: Any, outputs: tuple[str, ...], end_only: bool) -> dict[str, np.ndarray]:
+    """The outputs of a batch of averaged evolutions, one row per point: the requested fields (at the end of the
+    span, or over ``tau_eval``), ``run_status`` (the integration's -1/0/1), ``tau_end`` (where the run ended), and
+    the sweep's ``status`` (0, or :data:`RUN_FAILED` for a failed or refused run) and ``message``."""
+    n = int(np.prod(sol.batch_shape))
+    out: dict[str, np.ndarray] = {}
+    for name in outputs:
+        a = np.asarray(getattr(sol, name), dtype=float).reshape(n, -1)
+        out[name] = a[:, -1] if end_only else a
+    run_status = np.asarray(sol.status).reshape(n)
+    out["run_status"] = run_status.astype(float)
+    out["tau_end"] = np.asarray(sol.t_final, dtype=float).reshape(n)
+    out["status"] = np.where(run_status < 0, RUN_FAILED, 0)
+    out["message"] = np.asarray(sol.message, dtype=object).reshape(n)
+    return out
+
+
+@batched
+def euler_poinsot_averaged(*, body: Any, torque: Any, eps: Any = 0.0, G0: Any = 1.0, k2_0: Any = 0.99,
+                           delta0: Any = np.pi / 4, lam0: Any = np.pi / 4, nu0: Any = 0.0,
+                           tau_span: tuple[float, float] = (0.0, 3.0), tau_eval: Any = None,
+                           outputs: tuple[str, ...] = ("G", "T", "k2", "delta", "lam"),
+                           **options: Any) -> dict[str, np.ndarray]:
+    """Averaged Euler--Poinsot evolutions (Rachinskaya's (9)), a chunk of points per batched call.
+
+    A batched wrapper of :func:`rigidbody.euler_poinsot.averaged` for :func:`rigidbody.sweep.sweep`: the grid
+    names are any of its per-member inputs ``eps, G0, k2_0, delta0, lam0, nu0``; fix the rest (the body, the
+    torque, options such as ``rtol``, ``kind``, ``orbit``) with :func:`functools.partial`::
+
+        sweep(partial(euler_poinsot_averaged, body=body, torque=I), {"k2_0": k2, "delta0": d})
+
+    Each chunk is one batch call (the closed forms of a drag tensor vectorised over the chunk's points).
+
+    Parameters
+    ----------
+    body : rigidbody.euler_poinsot.Body
+    torque : array_like, Drag, torque object or callable
+        As in :func:`~rigidbody.euler_poinsot.averaged`.
+    eps, G0, k2_0, delta0, lam0, nu0 : float or array_like
+        Swept (arrays of the chunk's points) or fixed.
+    tau_span : (float, float)
+    tau_eval : array_like, optional
+        Output times: each output is then an array over them (a dimension ``<output>_dim_0`` of the Dataset).
+        Default: the values at the end of ``tau_span`` (NaN for a run that ended earlier).
+    outputs : tuple of str
+        Fields of the result to return (``G``, ``T``, ``k2``, ``delta``, ``lam``, ``nu``).
+    **options
+        Keyword options of :func:`~rigidbody.euler_poinsot.averaged`.
+
+    Returns
+    -------
+    dict
+        One value (or row) per point: the ``outputs``, ``run_status`` (0 end of the span, 1 ended by an event),
+        ``tau_end`` (when the run ended), and the sweep's ``status`` (0; :data:`RUN_FAILED` where the run failed
+        or was refused, e.g. a start outside the theory: its outputs are then NaN) and ``message`` (the
+        integration's message).
+    """
+    from .. import euler_poinsot as ep
+
+    t1 = float(tau_span[1])
+    te = np.array([t1]) if tau_eval is None else tau_eval
+    sol = ep.averaged(body, torque, eps, G0, k2_0, delta0, lam0, tau_span, te, nu0, **options)
+    if not sol.batch_shape:  # every input a scalar: a batch of one
+        sol = ep.averaged(body, torque, np.atleast_1d(eps), G0, k2_0, delta0, lam0, tau_span, te, nu0, **options)
+    return _evolution_outputs(sol, tuple(outputs), tau_eval is None)
+
+
+@batched
+def lagrange_averaged(*, top: Any, torque: Any, Gz0: Any, H0: Any, r0: Any, tau_span: tuple[float, float],
+                      tau_eval: Any = None, outputs: tuple[str, ...] = ("Gz", "H", "r", "k2"),
+                      **options: Any) -> dict[str, np.ndarray]:
+    """Averaged evolutions of the Lagrange top (2.15), a chunk of points per batched call.
+
+    A batched wrapper of :func:`rigidbody.lagrange.averaged` for :func:`rigidbody.sweep.sweep`: the grid
+    names are the initial slow variables ``Gz0, H0, r0`` (any of them, the others fixed); fix the top, the
+    torque, ``tau_span`` and options with :func:`functools.partial`. Each chunk is one batch call (initial
+    states of shape ``(n, 3)``).
+
+    Parameters
+    ----------
+    top : rigidbody.lagrange.Top
+    torque : rigidbody.lagrange.Torque
+    Gz0, H0, r0 : float or array_like
+        Initial :math:`G_z`, :math:`H`, :math:`r` (1.2), swept or fixed.
+    tau_span : (float, float)
+    tau_eval : array_like, optional
+        Output times (each output an array over them); default the values at the end of ``tau_span``.
+    outputs : tuple of str
+        Fields of the result (``Gz``, ``H``, ``r``, ``u1``, ``u2``, ``u3``, ``k2``, ``delta1``, ``delta2``).
+    **options
+        Keyword options of :func:`~rigidbody.lagrange.averaged`.
+
+    Returns
+    -------
+    dict
+        As :func:`euler_poinsot_averaged`: the ``outputs``, ``run_status``, ``tau_end``, ``status``, ``message``.
+    """
+    from .. import lagrange
+
+    t1 = float(tau_span[1])
+    te = np.array([t1]) if tau_eval is None else tau_eval
+    ini = np.stack(np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=float)) for v in (Gz0, H0, r0))),
+                   axis=-1)
+    sol = lagrange.averaged(top, torque, ini, tau_span, tau_eval=te, **options)
+    return _evolution_outputs(sol, tuple(outputs), tau_eval is None)
