@@ -3,8 +3,8 @@
 Each ``benchmarks/bench_*.py`` runs in its own process, one after the other (the ratios are timings: running
 two at once would distort both), with its full output shown as it comes. At the end the lines that state a
 ratio are repeated together: lines starting with ``RATIO`` (the convention for new benchmarks), and in older
-scripts any line mentioning a ratio. A benchmark that fails is reported and the others still run; the exit
-status is non-zero if any failed.
+scripts any line mentioning a ratio or printing one as ``<number>x``. A benchmark that fails is reported
+and the others still run; the exit status is non-zero if any failed.
 
 Options: names to select some benchmarks (``python benchmarks/run_all.py lagrange core``).
 """
@@ -18,7 +18,7 @@ import time
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent
-RATIO = re.compile(r"^RATIO\b|\bratio\b", re.IGNORECASE)
+RATIO = re.compile(r"^RATIO\b|\bratio\b|\d\.\d+x\b", re.IGNORECASE)
 
 
 def main(argv: list[str]) -> int:
