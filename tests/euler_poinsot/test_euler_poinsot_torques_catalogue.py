@@ -111,6 +111,25 @@ def test_magnet_precesses_G_about_the_field():
     np.testing.assert_allclose(d1, -d2, rtol=0, atol=1e-14)
 
 
+@pytest.mark.parametrize("e", [0.3, 0.7])
+@pytest.mark.parametrize("kind", ["max", "min"])
+def test_magnet_on_an_eccentric_orbit_feels_the_time_mean_of_the_field(e, kind):
+    # nu averaged: the field turning with the orbit, B(nu) = (0.3 cos nu, 0.2 sin 2nu, 0.8), acts through its
+    # mean over time, in which nu is weighted by Kepler's law: <cos nu> = -e, <sin 2nu> = 0 (derived here:
+    # dM = (1 - e^2)^(3/2) (1 + e cos nu)^-2 dnu, and the integral of cos nu dM over the orbit is -2 pi e),
+    # i.e. the constant field (-0.3 e, 0, 0.8) -- not the mean over nu, (0, 0, 0.8)
+    orb = ep.Orbit(e)
+    m = [0.5, -0.3, 0.2]
+    turning = ep.MagneticDipole(m, turning_field)
+    const = ep.MagneticDipole(m, [-0.3 * e, 0.0, 0.8])
+    ref = L_y(ep.averaged_rates(BODY, const, 1.2, 0.6, DELTA, LAM, None, kind=kind, orbit=orb))
+    closed = L_y(ep.averaged_rates(BODY, turning, 1.2, 0.6, DELTA, LAM, None, kind=kind, orbit=orb))
+    eng = L_y(ep.average_torque(BODY, turning, 1.2, 0.6, DELTA, LAM, None, kind=kind, orbit=orb).rates)
+    # the field's orbit mean by 256 (closed form) or the engine's nodes, both spectrally accurate: rounding
+    assert np.abs(closed - ref).max() <= 1e-13 * np.abs(ref).max()
+    assert np.abs(eng - ref).max() <= 1e-12 * np.abs(ref).max()
+
+
 @pytest.mark.parametrize(
     ("call", "exc", "match"),
     [

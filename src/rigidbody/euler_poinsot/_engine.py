@@ -35,6 +35,16 @@ not decrease; differences at the rounding level of the mean count as converged. 
 is pessimistic (the error of :math:`Q_n` is about :math:`d_2 r`), which costs one doubling at the start of
 a run and buys an honest figure for torques that are not smooth. The node counts are doubled along each
 axis whose estimate exceeds the tolerance, up to a budget.
+
+Two checks that the nested differences cannot make. A torque that *jumps* (an eclipse, a switched torque)
+gives means whose differences change by whole nodes, and often not at all: along an axis whose profile (the
+quantities averaged over the other axes) keeps a step of the same size when the nodes double, and that step
+stands out of the others, the estimate is at least :math:`V/n` (:math:`V` the variation of the profile;
+Koksma's inequality bounds the error by :math:`V/2n`). And a feature that falls between *all* nested nodes
+leaves them in agreement: the mean on the *dual* grid (shifted by half a step on every axis) is compared
+with the grid's, the difference joins the estimate and refines every axis. What neither sees is a feature
+narrower than the spacing of grid and dual together, :math:`\pi/n` per axis (from the start, 16 orbit
+nodes: an eclipse shorter than 1/32 of the orbit).
 """
 
 from __future__ import annotations
@@ -171,10 +181,11 @@ def motion_nodes(st: _State, n_u: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 @functools.lru_cache(maxsize=64)
-def nu_nodes(e: float, n_nu: int) -> tuple[np.ndarray, np.ndarray]:
+def nu_nodes(e: float, n_nu: int, dual: bool = False) -> tuple[np.ndarray, np.ndarray]:
     """True-anomaly nodes and time weights (sum 1) for the mean over one orbit of eccentricity ``e``
-    (Kepler's law: dt is proportional to (1 + e cos nu)^-2 d nu). Cached; read-only arrays."""
-    nu = np.arange(n_nu) * (2.0 * math.pi / n_nu)
+    (Kepler's law: dt is proportional to (1 + e cos nu)^-2 d nu). ``dual``: the nodes shifted by half a
+    step. Cached; read-only arrays."""
+    nu = (np.arange(n_nu) + (0.5 if dual else 0.0)) * (2.0 * math.pi / n_nu)
     w = (1.0 + e * np.cos(nu)) ** -2.0
     w /= w.sum()
     nu.setflags(write=False)
@@ -183,8 +194,8 @@ def nu_nodes(e: float, n_nu: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 @functools.lru_cache(maxsize=64)
-def _psi_trig(n_psi: int) -> tuple[np.ndarray, np.ndarray]:
-    psi = np.arange(n_psi) * (2.0 * math.pi / n_psi)
+def _psi_trig(n_psi: int, dual: bool = False) -> tuple[np.ndarray, np.ndarray]:
+    psi = (np.arange(n_psi) + (0.5 if dual else 0.0)) * (2.0 * math.pi / n_psi)
     c, s = np.cos(psi)[:, None], np.sin(psi)[:, None]
     c.setflags(write=False)
     s.setflags(write=False)
@@ -197,14 +208,14 @@ class Grid:
 
     n_psi: int = 8
     m_u: float = 1.0
-    n_nu: int = 8
+    n_nu: int = 16
 
     def n_u(self, mc: float) -> int:
         n = round(self.m_u * avg.n_nodes(mc=mc, period="4K"))
         return max(4, n + (-n) % 4)
 
 
-def torque_grid(torque: Any, st: _State, grid: Grid, compact: bool = False,
+def torque_grid(torque: Any, st: _State, grid: Grid, compact: bool = False, dual: bool = False,
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The torque at every node: ``M`` of shape ``(n_nu, n_psi, n_u, 3)`` (``n_nu = 1`` when nu is held),
     the orbit weights ``w``, and the body angular velocity ``(n_u, 3)`` and attitudes ``C`` ``(n_psi, n_u,
@@ -214,18 +225,25 @@ def torque_grid(torque: Any, st: _State, grid: Grid, compact: bool = False,
     ``(1, 1, n_u, 3)``, C ``(1, n_psi, n_u, 3, 3)``, nu ``(n_nu, 1, 1)``), so that a torque that does not
     depend on the attitude or on nu is evaluated once per phase node; :func:`adaptive` checks on the first
     grid that the torque gives the same values this way and otherwise passes full arrays.
+
+    ``dual=True``: the grid shifted by half a step along every axis (the nodes of the grid of twice the
+    nodes per axis that lie farthest from this grid's), for the check in :func:`adaptive`.
     """
     n_u = grid.n_u(st.mc)
-    omega, al = motion_nodes(st, n_u)
+    if dual:
+        omega, al = motion_nodes(st, 2 * n_u)
+        omega, al = omega[1::2], al[1::2]
+    else:
+        omega, al = motion_nodes(st, n_u)
     Y = frame(st.n)
-    c, s = _psi_trig(grid.n_psi)
+    c, s = _psi_trig(grid.n_psi, dual)
     B = np.empty((grid.n_psi, 3, 3))  # Y R3(psi)
     B[:, :, 0] = Y[:, 0] * c + Y[:, 1] * s
     B[:, :, 1] = Y[:, 1] * c - Y[:, 0] * s
     B[:, :, 2] = Y[:, 2]
     C = B[:, None] @ al[None]  # (n_psi, n_u, 3, 3)
     if st.nu is None:
-        nu, w = nu_nodes(st.orbit.e, grid.n_nu)
+        nu, w = nu_nodes(st.orbit.e, grid.n_nu, dual)
     else:
         nu, w = np.array([st.nu]), np.ones(1)
     shape = (nu.size, grid.n_psi, n_u)
@@ -283,17 +301,17 @@ def _sub(V: np.ndarray, axis: int, step: int) -> np.ndarray:
     return V[::step].mean(axis=(0, 1)) if axis == 0 else V[:, ::step].mean(axis=(0, 1))
 
 
-def _axis_error(n: int, means: tuple[np.ndarray, ...], noise: np.ndarray) -> tuple[Any, Any]:
-    """(error estimate of the full grid, error estimate of the half grid) along one axis, per quantity,
-    from the means on the full, half and quarter grids. ``noise`` is the rounding level of a mean:
+def _axis_error(n: int, means: tuple[np.ndarray, ...], noise: np.ndarray) -> tuple[Any, Any, Any]:
+    """(error estimate of the full grid, of the half grid, of the quarter grid) along one axis, per
+    quantity, from the means on the full, half and quarter grids. ``noise`` is the rounding level of a mean:
     differences below twice it are convergence to rounding."""
     if n == 1:
-        return np.zeros(_NQ), np.zeros(_NQ)
+        return np.zeros(_NQ), np.zeros(_NQ), np.zeros(_NQ)
     m1, m2 = means[0], means[1]
     d2 = np.abs(m2 - m1)
     if n % 4:
         est = np.where(d2 <= 2.0 * noise, noise, 10.0 * d2)
-        return est, np.full(_NQ, np.inf)
+        return est, np.full(_NQ, np.inf), np.full(_NQ, np.inf)
     d1 = np.abs(means[2] - m2)
     with np.errstate(divide="ignore", invalid="ignore"):
         r = d2 / d1
@@ -306,7 +324,7 @@ def _axis_error(n: int, means: tuple[np.ndarray, ...], noise: np.ndarray) -> tup
         ),
     )
     est = np.maximum(est, noise)
-    return est, d2 + est
+    return est, d2 + est, d1 + d2 + est
 
 
 @dataclass
@@ -350,12 +368,27 @@ def adaptive(torque: Any, st: _State, tol: float, grid: Grid | None = None, refi
             "u": (V.shape[1], (m, _sub(V, 1, 2), _sub(V, 1, 4))),
         }
         errs = {k: _axis_error(n, ms, noise) for k, (n, ms) in per_axis.items()}
+        for k, prof in _profiles(st, omega, C, M, w, V).items():
+            floor = _jump_floor(prof)
+            e, e_half, e_quarter = errs[k]
+            errs[k] = (np.maximum(e, floor), e_half + 2.0 * floor, e_quarter + 4.0 * floor)
         err = sum(e[0] for e in errs.values())
         ok = bool(np.all(err <= tol * S))
         bad = [k for k, e in errs.items() if np.any(e[0] > tol * S / 3.0)]
         npts = M.shape[0] * M.shape[1] * M.shape[2]
         if ok or not refine or not bad or npts * 2 ** len(bad) > _MAX_POINTS:
-            break
+            # The nested grids share their nodes: a feature of the torque that falls between all of them (an
+            # eclipse shorter than the orbit step, a shadow between the nodes) leaves them in agreement. The
+            # dual grid, shifted by half a step on every axis, samples between: its disagreement with this
+            # grid is added to the estimate, and refines every axis while the budget allows.
+            Md, wd, omd, Cd = torque_grid(torque, st, g, compact, dual=True)
+            dual = np.abs(quantities(st, omd, Cd, _nu_mean(Md, wd)).mean(axis=(0, 1)) - m)
+            dual = np.where(dual <= 2.0 * noise, 0.0, dual)
+            err = np.maximum(err, dual)
+            ok = bool(np.all(err <= tol * S))
+            bad = [k for k, (n, _) in per_axis.items() if n > 1]
+            if ok or not refine or np.all(dual <= tol * S / 3.0) or npts * 2 ** len(bad) > _MAX_POINTS:
+                break
         for k in bad:
             if k == "nu":
                 g.n_nu *= 2
@@ -364,14 +397,19 @@ def adaptive(torque: Any, st: _State, tol: float, grid: Grid | None = None, refi
             else:
                 g.m_u *= 2.0
     lean = Grid(g.n_psi, g.m_u, g.n_nu)
-    for k, (_, e_half) in errs.items():
-        if np.all(e_half <= tol * S / 3.0):
-            if k == "nu" and g.n_nu >= 4:
-                lean.n_nu //= 2
-            elif k == "psi" and g.n_psi >= 4:
-                lean.n_psi //= 2
-            elif k == "u":
-                lean.m_u /= 2.0
+    for k, (_, e_half, e_quarter) in errs.items():
+        # the coarsest of the nested grids whose estimate meets the tolerance: half the nodes, and along the
+        # orbit (which starts from 16 nodes to see short shadows) a quarter; not along psi and the phase, whose
+        # needs change along a run with k2 and G (a quarter of the phase nodes chosen at the start left 6e-6
+        # at the end of the any-torque example, half of them 3e-9)
+        half = np.all(e_half + dual <= tol * S / 3.0)
+        f = (4 if k == "nu" and np.all(e_quarter + dual <= tol * S / 3.0) else 2) if half else 1
+        if k == "nu":
+            lean.n_nu = max(lean.n_nu // f, min(lean.n_nu, 2))
+        elif k == "psi":
+            lean.n_psi = max(lean.n_psi // f, min(lean.n_psi, 2))
+        else:
+            lean.m_u /= f
     conv = {}
     for k, (n, ms) in per_axis.items():
         if n >= 4 and n % 4 == 0:
@@ -379,6 +417,54 @@ def adaptive(torque: Any, st: _State, tol: float, grid: Grid | None = None, refi
             d1 = float(np.max(np.abs(ms[2] - ms[1]) / S))
             conv[k] = d2 / d1 if d1 > 0 else 0.0
     return Quadrature(m, err, S, g, lean, ok, conv, compact)
+
+
+#: ratio of the largest steps of a profile on the grid and on the half grid above which it jumps
+_JUMP = 0.85
+#: ... and the ratio of the largest step to the median step above which that step is a jump
+_ISOLATED = 5.0
+
+
+def _profiles(st: _State, omega: np.ndarray, C: np.ndarray, M: np.ndarray, w: np.ndarray, V: np.ndarray,
+              ) -> dict[str, np.ndarray]:
+    """The six quantities along each axis, averaged over the other axes (``(n, 6)`` per axis; along nu
+    times ``n w``, so that their plain mean is the weighted one)."""
+    out = {"psi": V.mean(axis=1), "u": V.mean(axis=0)}
+    if M.shape[0] > 1 and M.strides[0] != 0:
+        N = M.shape[1] * M.shape[2]
+        P = np.empty((M.shape[0], _NQ))
+        P[:, 0:3] = np.einsum("puij,kpuj->ki", C, M) / N
+        om = np.einsum("ui,kpui->ki", omega, M) / N  # <omega_i M_i> at each nu
+        a1, a2, a3 = st.a
+        l1, l2, l3 = st.lab
+        P[:, 3] = om.sum(axis=1)
+        P[:, 4] = 2.0 * ((a1 - a2) * om[:, l2] + (a1 - a3) * om[:, l3])
+        P[:, 5] = 2.0 * ((a1 - a3) * om[:, l1] + (a2 - a3) * om[:, l2])
+        out["nu"] = P * (w.size * w)[:, None]
+    return out
+
+
+def _jump_floor(P: np.ndarray) -> np.ndarray:
+    r"""A floor for the error of the mean of a profile ``P`` (``(n, 6)``, periodic) that jumps.
+
+    The largest step between neighbouring nodes of a smooth profile halves when the nodes double (a harmonic
+    of m periods over n nodes: the ratio is 1/(2 cos(pi m/n)), below 0.85 for m < 0.28 n, if the half grid
+    does not alias it), and it is of the size of its neighbours; a jump keeps its size and stands out. Where
+    the largest step on the grid is more than 0.85 of that on the half grid and 5 times the median step,
+    the mean is bounded as for any function of bounded variation, :math:`|E_n| \le V/2n` (the total
+    variation :math:`V` over the period, from the steps: Koksma's inequality with the discrepancy
+    :math:`1/2n` of the uniform grid), and ``V/n`` is returned; zero elsewhere. The differences of nested
+    grids do not bound the error of a jump: its nodes inside change by whole numbers, and often not at all.
+    """
+    n = P.shape[0]
+    if n < 8 or n % 2:
+        return np.zeros(_NQ)
+    step = np.abs(np.roll(P, -1, axis=0) - P)
+    h = P[::2]
+    step2 = np.abs(np.roll(h, -1, axis=0) - h).max(axis=0)
+    top = step.max(axis=0)
+    jump = (top > _JUMP * step2) & (top > _ISOLATED * np.median(step, axis=0))
+    return np.where(jump, step.sum(axis=0) / n, 0.0)
 
 
 def _scale(Vabs: np.ndarray) -> np.ndarray:

@@ -215,7 +215,8 @@ class GravityGradient(_ArrayEq):
     :math:`\boldsymbol\rho = C^T(\cos\nu, \sin\nu, 0)` is the unit radius vector in body axes, :math:`A`
     the inertia tensor and :math:`f = (1+e\cos\nu)^3/(1-e^2)^3` the orbit factor (1 on a circular orbit).
     Source: F. L. Chernousko, "On the motion of a satellite about its centre of mass under the action of
-    gravitational moments", PMM 27(3), 472-483 (1963) (reference [2] of Rachinskaya's paper). Closed-form
+    gravitational moments", Prikl. Mat. Mekh. 27(3), 474-483 (1963) [J. Appl. Math. Mech. 27(3), 708-722]
+    (reference [2] of Rachinskaya's paper, which prints the pages as 472-483). Closed-form
     averages: :math:`N^*` of (6) (no change of :math:`G` and :math:`T` on average).
 
     Parameters
@@ -368,10 +369,11 @@ def _check_same_body(name: str, own: Body, body: Body) -> None:
 class ConstantTorque(_ArrayEq):
     r"""A torque constant in the body axes, :math:`\mathbf M = \mathbf M_0` (thrusters, a misaligned motor).
 
-    The model of M. Romano, "Exact analytic solution for the rotation of a rigid body having spherical
-    ellipsoid of inertia and subjected to a constant torque", Celestial Mechanics and Dynamical Astronomy
-    100, 181-189 (2008). Averaged over the Euler--Poinsot motion (derived here, see ``docs/euler_poinsot.md``,
-    "Any torque"): only the component along the axis of rotation survives,
+    The torque model (not its averages) of M. Romano, "Exact analytic solution for the rotation of a rigid
+    body having spherical ellipsoid of inertia and subjected to a constant torque", Celestial Mechanics and
+    Dynamical Astronomy 100, 181-189 (2008), doi:10.1007/s10569-007-9112-7, who solves the motion of a body
+    with three equal moments exactly. Averaged over the Euler--Poinsot motion (derived here, see
+    ``docs/euler_poinsot.md``, "Any torque"): only the component along the axis of rotation survives,
     :math:`\langle C\mathbf M\rangle = \mathbf n\,a_1\bar\omega_1 M_{0,1}/G`,
     :math:`\langle\boldsymbol\omega\cdot\mathbf M\rangle = \bar\omega_1M_{0,1}` with
     :math:`\bar\omega_1 = \sigma c_{dn}\pi/2K` (labelled axes: 1 is the axis of :math:`A_1` for ``'max'``,
@@ -433,19 +435,23 @@ class ViscousCavity(_ArrayEq):
     with :math:`\dot{\boldsymbol\omega} = A^{-1}(A\boldsymbol\omega\times\boldsymbol\omega)` and
     :math:`\ddot{\boldsymbol\omega}` its derivative along the rigid motion, :math:`P` a symmetric positive
     semi-definite tensor of the cavity's shape times :math:`\rho/\nu` (density over kinematic viscosity).
-    The method is F. L. Chernousko's, "Motion of a solid body with cavities filled with a viscous fluid"
-    (Computing Centre of the USSR Academy of Sciences, Moscow, 1968); averaging over the Euler--Poinsot
-    motion with this torque: L. D. Akulenko, Ya. S. Zinkevich, D. D. Leshchenko, A. L. Rachinskaya, Visnyk of
-    Odesa National University, Mathematics and Mechanics 13(11), 117-131 (2008) (reference [8] of
-    Rachinskaya's paper), and D. D. Leshchenko, L. D. Akulenko, A. L. Rachinskaya, Yu. S. Shchetinina,
-    "Rotational motion of a satellite with viscous fluid under the action of the external resistance torque",
-    Mathematics in Engineering, Science and Aerospace (2015). We did not have these texts: the torque and its
-    averages were derived here (``docs/euler_poinsot.md``, "Any torque") and are checked against the engine
-    and the full equations. The fluid is internal: :math:`G` is conserved on average
+    The method is F. L. Chernousko's: "Motion of a solid body with cavities filled with viscous liquid at
+    small Reynolds numbers", Zh. Vychisl. Mat. Mat. Fiz. 5(6), 1049-1070 (1965), and the book "Motion of a
+    solid body with cavities filled with a viscous fluid" (Computing Centre of the USSR Academy of Sciences,
+    Moscow, 1968). Averaging over the Euler--Poinsot motion with it: L. D. Akulenko, Ya. S. Zinkevich,
+    D. D. Leshchenko, A. L. Rachinskaya, "Rotations of a satellite with a cavity filled with a viscous fluid
+    under the action of gravitational and light torques" (in Russian), Visnyk of Odesa National
+    University, Mathematics and Mechanics 13(11), 117-131 (2008) (reference [7] of Rachinskaya's paper), and
+    D. D. Leshchenko, L. D. Akulenko, A. L. Rachinskaya, Yu. S. Shchetinina, "Rotational motion of a satellite
+    with viscous fluid under the action of the external resistance torque", Mathematics in Engineering,
+    Science and Aerospace (2015). We saw only titles and abstracts of these: the form of the torque (from the
+    relative angular momentum :math:`-P\dot{\boldsymbol\omega}` of the fluid) and its averages were derived
+    here (``docs/euler_poinsot.md``, "Any torque") and are checked against the engine (which averages the
+    torque itself) and the full equations. The fluid is internal: :math:`G` is conserved on average
     (:math:`C\mathbf M = d(CP\dot{\boldsymbol\omega})/dt`), the energy is dissipated,
     :math:`\langle\dot T\rangle = -\langle\dot{\boldsymbol\omega}\cdot P\dot{\boldsymbol\omega}\rangle`, so a
-    spin about the axis of the smallest moment decays towards the separatrix (the mechanism of the flat spin
-    of Explorer 1).
+    spin about the axis of the smallest moment decays towards the separatrix (the energy sink at constant
+    :math:`G` behind the flat spin of Explorer 1).
 
     Parameters
     ----------
@@ -511,11 +517,11 @@ class MagneticDipole(_ArrayEq):
     r"""The torque :math:`\mathbf m\times\mathbf B` of a permanent magnet in a magnetic field.
 
     :math:`\mathbf m` is fixed in the body; :math:`\mathbf B` is given in the orbital axes, constant or as a
-    function of the true anomaly (e.g. the dipole field along the orbit). The torque of passive magnetic
-    attitude control, D. T. Gerhardt, S. E. Palo, "Passive magnetic attitude control for CubeSat spacecraft",
-    24th Annual AIAA/USU Conference on Small Satellites, SSC10 (2010). Averaged over the Euler--Poinsot motion
-    (derived here, ``docs/euler_poinsot.md``, "Any torque"): only the mean of the body vector along
-    :math:`\mathbf G` survives, :math:`\langle C\mathbf m\rangle = \mathbf n\,a_1\bar\omega_1m_1/G`, so
+    function of the true anomaly (e.g. the dipole field along the orbit). The torque model (not its averages)
+    of passive magnetic attitude control, D. T. Gerhardt, S. E. Palo, "Passive magnetic attitude control for
+    CubeSat spacecraft", 24th Annual AIAA/USU Conference on Small Satellites, SSC10 (2010). Averaged over the
+    Euler--Poinsot motion (derived here, ``docs/euler_poinsot.md``, "Any torque"): only the mean of the body vector
+    along :math:`\mathbf G` survives, :math:`\langle C\mathbf m\rangle = \mathbf n\,a_1\bar\omega_1m_1/G`, so
     :math:`\mathbf G` precesses about :math:`\mathbf B` at the rate :math:`a_1\bar\omega_1m_1|\mathbf B|/G^2`
     while :math:`G`, :math:`T` and :math:`k^2` do not change on average (:math:`\bar\omega_1` as in
     :class:`ConstantTorque`; the precession reverses with ``sigma``).
