@@ -22,9 +22,11 @@ over members with :func:`rigidbody.core.batch.integrate_batch`.
 Any torque
 ----------
 With a torque object (``rigidbody.euler_poinsot.LinearDrag``, ..., or a plain function) the integrator evolves
-:math:`(G, k^2, \mathbf n)` with :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle` and the
-:math:`k^2` rate of :mod:`._engine`, the means from the closed forms of the torque's parts where they exist
-and from the averaging engine otherwise (its grid chosen once, at the start). ``_integrate_kind`` integrates
+:math:`(\ln G, \ln k^2, \mathbf n[, \nu])` with :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle` and the
+:math:`k^2` rate of :mod:`._engine` (DOP853 on Python floats, as for a drag tensor: ``rtol`` is the relative accuracy
+of :math:`G` and :math:`k^2`, the unit vector :math:`\mathbf n` is held to ``rtol/10`` per step, to ``rtol`` at
+:math:`\varepsilon = 0`), the means from the closed forms of the torque's parts where they exist and from the
+averaging engine otherwise (its grid chosen once, at the start). ``_integrate_kind`` integrates
 one kind of motion from given :math:`(G, k^2, \mathbf n)`: a run that reaches the separatrix can be
 restarted in the other kind with :math:`G`, :math:`T`, :math:`\mathbf n` continuous. With
 :math:`\varepsilon > 0` the run checks the drift per Euler--Poinsot period (event) and the resonances
@@ -38,6 +40,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from scipy import special
 
 from ..core import kernel as _kn
 from ..core.ode import Event, Solution, integrate
@@ -57,9 +60,7 @@ from ._model import (
     _labels,
     _nstar,
     _nut_freq,
-    _S_over_R,
 )
-from ._motion import EulerPoinsot
 from ._separatrix import K2_SWITCH, SeparatrixCrossing, _check_branch, _choose, _initial_kind, separatrix_crossing
 from ._torques import drag_as_torque, resolve
 
@@ -407,7 +408,7 @@ def _finish(
 ) -> Solution:
     """Evaluate on tau_eval (through dense output) and unwrap lambda along the solver's own steps.
 
-    ``lam_direct(y)``, when given, returns the continuous lambda from the state itself.
+    ``lam_direct(tau, y)``, when given, returns the continuous lambda at the output times (from the state itself).
     """
     tau_steps = res.time
     y_steps = res.y
@@ -418,7 +419,7 @@ def _finish(
             te = np.asarray(tau_eval, dtype=float)
             tau_out = te[(te >= tau_steps[0]) & (te <= tau_steps[-1])] if tau_steps.size else te[:0]
             y_out = res.sol(tau_out) if tau_out.size else np.empty((y_steps.shape[0], 0))
-        lam = lam_direct(y_out)
+        lam = lam_direct(tau_out, y_out)
     elif tau_eval is None:
         tau_out, y_out = tau_steps, y_steps
         lam = _lam_unwrapped(tau_steps, nvec(y_steps), lam0)
@@ -555,8 +556,10 @@ def averaged(
         With a drag tensor ``rtol`` is the relative accuracy of :math:`G`, :math:`T` and :math:`k^2` however far
         they decay (the closed forms are integrated in :math:`\ln G`, :math:`\ln k^2` with absolute control
         ``rtol``) and the angles are held to ``rtol/10`` radians per step (:math:`\lambda` relatively beyond a
-        radian); ``atol`` is then not used. With a torque object the state :math:`(G, k^2, \mathbf n)` is
-        controlled by ``atol + rtol |y|``. ``method``: ``'DOP853'`` (default; run on Python floats) or another
+        radian); ``atol`` is then not used. With a torque object the state is :math:`(\ln G, \ln k^2, \mathbf n)`
+        with the same meaning of ``rtol`` for :math:`G`, :math:`T`, :math:`k^2`, and the unit vector :math:`\mathbf n`
+        of :math:`\mathbf G` held to ``rtol/10`` per step (``rtol`` at ``eps = 0``); ``atol`` is not used either.
+        ``method``: ``'DOP853'`` (default; run on Python floats) or another
         :func:`scipy.integrate.solve_ivp` method (one run only: a batch uses DOP853).
     k2_max : float or None
         The run ends (status 1, event ``'separatrix'``) when :math:`k^2` reaches this value (default
@@ -724,7 +727,8 @@ class _Setup:
 
 @dataclass
 class _Segment:
-    """An averaged run in one kind of motion: the raw solution (state G, k2, n[, nu]) and how it was made."""
+    """An averaged run in one kind of motion: its solution (rows G, k2, n[, nu] of the integrated state, and a dense
+    output of the same rows) and how it was made."""
 
     res: Solution
     setup: _Setup
@@ -732,6 +736,17 @@ class _Segment:
     sigma: int
     tau0: float
     nu0: float
+    charts: list[_Chart]
+
+    def lam(self, tau: np.ndarray) -> np.ndarray:
+        """The continuous lambda at sorted times within the segment, from the chart pieces."""
+        starts = np.array([p.raw.time[0] for p in self.charts])
+        idx = np.clip(np.searchsorted(starts, tau, side="right") - 1, 0, len(self.charts) - 1)
+        out = np.empty(tau.shape)
+        for i in np.unique(idx).tolist():
+            sel = idx == i
+            out[sel] = self.charts[i].lam(tau[sel])
+        return out
 
 
 def _state_of(setup: _Setup, kind: str, sigma: int, tau: float, y: np.ndarray, tau0: float, nu0: float) -> _State:
@@ -757,19 +772,202 @@ def _slow_drift(setup: _Setup, st: _State, m: _Mean) -> float:
     return setup.eps**2 * (2.0 * math.pi / freq) * (abs(dG) / st.G + abs(m.dT) / st.T + dn)
 
 
+#: chart switches of the direction of G (torque objects): the polar angles (delta, lambda) about x3 while
+#: sin(delta) >= _SIN_OFF, the unit vector n near the poles (where lambda is undefined) until sin(delta) > _SIN_ON
+_SIN_OFF, _SIN_ON = 0.1, 0.2
+#: a run whose direction changes chart more often than this ends with a status (it hovers at a chart boundary)
+_MAX_CHARTS = 10_000
+
+
+def _tolerances(rtol: float, chart: str, ecc: bool) -> tuple[list[float], list[float]]:
+    """Per-component ``(rtol, atol)`` of a chart's state: ``ln G`` and ``ln k^2`` absolutely to ``rtol`` (a relative
+    error of G and k^2 however far they decay); the angles, or the components of the unit vector n (an error of n
+    is an angle), absolutely to ``ANGLE_FACTOR * rtol``, lambda and nu also relatively to ``rtol`` (beyond a radian)
+    -- the tolerances of a drag-tensor run (:func:`._kernel.tolerances`)."""
+    r, a = float(rtol), _k.ANGLE_FACTOR * float(rtol)
+    if chart == "angles":  # ln G, ln k2, delta, lambda[, nu]
+        rt, at = [_k.RTOL_FLOOR, _k.RTOL_FLOOR, _k.RTOL_FLOOR, r], [r, r, a, a]
+    else:  # ln G, ln k2, n1, n2, n3[, nu]
+        rt, at = [_k.RTOL_FLOOR] * 5, [r, r, a, a, a]
+    if ecc:
+        rt.append(r)
+        at.append(a)
+    return rt, at
+
+
+@dataclass
+class _Chart:
+    """One piece of a segment integrated in one chart of the direction of G: ``'angles'`` (state ln G, ln k2,
+    delta, lambda[, nu]) or ``'vector'`` (ln G, ln k2, n1, n2, n3[, nu]); ``lam_start`` is the continuous lambda
+    at its start."""
+
+    chart: str
+    raw: Solution
+    z: float
+    c: float
+    ecc: bool
+    lam_start: float
+
+    @property
+    def n_common(self) -> int:
+        return 6 if self.ecc else 5
+
+    def common(self, y: Any) -> np.ndarray:
+        """Rows G, k2, n (unit)[, nu] of raw states (columns, or one state)."""
+        y = np.asarray(y, dtype=float)
+        if self.chart == "angles":
+            sd = np.sin(y[2])
+            n = [sd * np.cos(y[3]), sd * np.sin(y[3]), np.cos(y[2])]
+            rest = [y[4]] if self.ecc else []
+        else:
+            n = list(y[2:5] / np.sqrt((y[2:5] ** 2).sum(axis=0)))
+            rest = [y[5]] if self.ecc else []
+        return np.array([np.exp(y[0]), np.clip(self.z * np.exp(y[1]) - self.c, 0.0, 1.0), *n, *rest])
+
+    def lam(self, tau: np.ndarray) -> np.ndarray:
+        """The continuous lambda at sorted times within the piece: a state of the angle chart; in the vector chart
+        unwrapped from n along the solver's steps and the times asked for, from ``lam_start``."""
+        raw = self.raw
+        if tau.size == 0:
+            return np.empty(0)
+        if self.chart == "angles":
+            return np.asarray(raw.sol(tau), dtype=float)[3].reshape(tau.shape)
+        steps = raw.time
+        tt = np.concatenate([steps, tau])
+        order = np.argsort(tt, kind="stable")
+        yy = np.concatenate([raw.y, np.asarray(raw.sol(tau), dtype=float).reshape(raw.y.shape[0], -1)], axis=1)
+        lam_all = _lam_unwrapped(tt[order], yy[2:5][:, order], self.lam_start)
+        pos = np.empty_like(order)
+        pos[order] = np.arange(order.size)
+        return lam_all[pos[steps.size:]]
+
+    def lam_end(self) -> float:
+        return float(self.lam(self.raw.time[-1:])[0])
+
+
+def _k2_floor(rtol: float) -> float:
+    """The c of the engine's coordinate ln(k2 + c): where the rounding of its dk2, ~10 eps_mach k (measured: 2e-12
+    relative at k2 = 1e-8), is rtol of dk2 ~ k^2 relative, (10 eps_mach / (2 rtol))^2 (1.2e-10 at rtol 1e-10); the
+    largest noise of d ln(k2 + c)/dtau, at k2 = c, is then about rtol."""
+    return (10.0 * _k.RTOL_FLOOR / 100.0 / (2.0 * rtol)) ** 2
+
+
+def _axisymmetric(av: Averager, st: _State, tol: float = 1e-9) -> bool:
+    """Whether the averaged torque is symmetric about the orbit normal x3 (turning G about x3 turns its mean
+    torque alike and leaves dT, dk2 unchanged), probed at the state and at a generic direction, two angles each."""
+    sd = math.sin(1.1)
+    for n in (st.n, np.array([sd * math.cos(0.7), sd * math.sin(0.7), math.cos(1.1)])):
+        m0 = av.mean(_State(st.body, st.kind, st.sigma, st.G, st.k2, n, st.nu, st.orbit))
+        size = float(np.abs(m0.L).max()) + abs(m0.dT) + abs(m0.dk2) + 1e-300
+        for alpha in (1.0, 2.5):
+            c, s = math.cos(alpha), math.sin(alpha)
+            R = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+            m = av.mean(_State(st.body, st.kind, st.sigma, st.G, st.k2, R @ n, st.nu, st.orbit))
+            if (float(np.abs(m.L - R @ m0.L).max()) > tol * size or abs(m.dT - m0.dT) > tol * size
+                    or abs(m.dk2 - m0.dk2) > tol * size):
+                return False
+    return True
+
+
 def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: float, k2_0: float,
-                    n0: Any, nu0: float, tau_eval: Any = None) -> _Segment:
+                    n0: Any, nu0: float, lam0: float, first_step: float | None = None) -> _Segment:
     """Integrate the averaged system of a torque object in one kind of motion from (G0, k2_0, n0) at the
-    start of ``tau_span`` (true anomaly ``nu0`` there). A crossing into the other kind restarts here with
-    G, T, n continuous (k2 from (5) of the other kind)."""
-    tau0 = float(tau_span[0])
-    eps, orb = setup.eps, setup.orbit
-    y0 = [G0, k2_0, *n0]
-    if eps > 0.0 and orb.e != 0.0:
-        y0.append(nu0)
+    start of ``tau_span`` (true anomaly ``nu0`` there, continuous lambda ``lam0``). A crossing into the other kind
+    restarts here with G, T, n continuous (k2 from (5) of the other kind).
+
+    As for a drag tensor (:mod:`._kernel`) the state is ``(ln G, ln k^2, delta, lambda[, nu])`` (``nu`` on an
+    eccentric orbit with eps > 0): ``rtol`` is the relative accuracy of G and k^2 however far they decay, and
+    lambda, a state, is continuous through any number of turns. ``d ln k^2/dtau = (dk^2/dtau)/k^2`` is finite as
+    k -> 0 (the engine's dk^2 is O(k^2) there, without cancellation); a start at k^2 = 0 exactly stays there (an
+    equilibrium of every averaged system: the phase-dependent part of the motion vanishes), carried by the factor
+    z = 0. The polar angles are singular at the poles sin(delta) = 0, where a torque may turn G (the drag tensor's
+    gravity gradient does not): there (sin(delta) < _SIN_OFF, until it exceeds _SIN_ON) the direction is the unit
+    vector n instead. With ``method='DOP853'`` DOP853 runs on Python floats (``engine='python'``), its dense output
+    computed lazily."""
+    tau0, t1 = float(tau_span[0]), float(tau_span[1])
+    eps, orb, body = setup.eps, setup.orbit, setup.body
+    ecc = eps > 0.0 and orb.e != 0.0
     av = setup.averager
-    st0 = _state_of(setup, kind, sigma, tau0, np.asarray(y0), tau0, nu0)
+    nn = np.asarray(n0, dtype=float)
+    nn = nn / math.sqrt(float(nn @ nn))
+    st0 = _State(body, kind, sigma, G0, min(k2_0, 1.0 - 1e-15), nn, None if eps == 0.0 else nu0, orb)
     av.calibrate(st0)
+    # k2 enters as s = ln(k2 + c): c = 0 with closed forms only (a start at k2 = 0 exactly then keeps z = 0); with the
+    # engine, whose dk2 carries rounding ~eps_mach k (zero-mean O(k) products, see _engine) against a size O(k^2),
+    # c = _k2_floor(rtol): the relative accuracy rtol of k2 down to where the engine has it, absolute below
+    c = 0.0 if av.rest is None else _k2_floor(setup.rtol)
+    z = 1.0 if k2_0 > 0.0 or c > 0.0 else 0.0
+    a = _labels(body, kind)
+    exp, sqrt, sin, cos = math.exp, math.sqrt, math.sin, math.cos
+    ie = 1.0 / eps if eps > 0.0 else 0.0
+    k2_top = 1.0 - 1e-15
+    inu = 4  # index of nu in the angle chart's state (5 in the vector chart's)
+
+    def nu_of(tau: float, y: Any, i: int) -> float | None:
+        if eps == 0.0:
+            return None
+        if ecc:
+            return float(y[i])
+        return (tau - tau0) * ie + nu0
+
+    def state(tau: float, y: Any, chart: str) -> _State:
+        k2 = z * exp(y[1]) - c
+        k2 = (k2 if k2 < k2_top else k2_top) if k2 > 0.0 else 0.0
+        if chart == "angles":
+            sd = sin(y[2])
+            n = np.array([sd * cos(y[3]), sd * sin(y[3]), cos(y[2])])
+            return _State(body, kind, sigma, exp(y[0]), k2, n, nu_of(tau, y, inu), orb)
+        n1, n2, n3 = y[2], y[3], y[4]
+        r = sqrt(n1 * n1 + n2 * n2 + n3 * n3)
+        return _State(body, kind, sigma, exp(y[0]), k2, np.array([n1 / r, n2 / r, n3 / r]), nu_of(tau, y, inu + 1),
+                      orb)
+
+    memo: list[Any] = [None, None, None, None]  # the last (chart, tau, y, (state, mean)): the drift event reuses it
+
+    def mean_at(tau: float, y: Any, chart: str) -> tuple[_State, _Mean]:
+        yl = y if isinstance(y, list) else list(y)
+        if memo[1] == tau and memo[0] == chart and memo[2] == yl:
+            return memo[3]  # the cached pair
+        st = state(tau, y, chart)
+        out = (st, av.mean(st))
+        memo[0], memo[1], memo[2], memo[3] = chart, tau, list(yl), out
+        return out
+
+    def rhs_angles(tau: float, y: Any) -> list[float]:
+        st, m = mean_at(tau, y, "angles")
+        L1, L2, L3 = (float(v) for v in m.L)
+        d, la = y[2], y[3]
+        sd, cd, sl, cl = sin(d), cos(d), sin(la), cos(la)
+        iG = 1.0 / st.G
+        out = [(sd * (cl * L1 + sl * L2) + cd * L3) * iG, m.dk2 / (st.k2 + c) if z else 0.0,
+               (cd * (cl * L1 + sl * L2) - sd * L3) * iG, (cl * L2 - sl * L1) * iG / sd]
+        if ecc:
+            out.append(orb.nu_rate(float(y[inu])) * ie)
+        return out
+
+    def rhs_vector(tau: float, y: Any) -> list[float]:
+        st, m = mean_at(tau, y, "vector")
+        L1, L2, L3 = (float(v) for v in m.L)
+        n1, n2, n3 = (float(v) for v in st.n)
+        dG = n1 * L1 + n2 * L2 + n3 * L3
+        iG = 1.0 / st.G
+        out = [dG * iG, m.dk2 / (st.k2 + c) if z else 0.0, (L1 - dG * n1) * iG, (L2 - dG * n2) * iG,
+               (L3 - dG * n3) * iG]
+        if ecc:
+            out.append(orb.nu_rate(float(y[inu + 1])) * ie)
+        return out
+
+    y0: list[float] = [math.log(G0), math.log(k2_0 + c) if z else 0.0, *(float(v) for v in nn)]
+    if ecc:
+        y0.append(nu0)
+    # the polar angles pay where G turns about x3: in the orbit-averaged limit of a torque symmetric about the orbit
+    # normal (the gravity gradient, drag, ...) their rates do not depend on lambda, which drifts as one smooth
+    # state however many turns it makes; elsewhere (a field fixed in space, the orbital motion resolved) the unit
+    # vector follows the turns at least as cheaply (measured), so it is the chart throughout
+    angles = eps == 0.0 and _axisymmetric(av, st0)
+    chart = "angles" if angles and math.hypot(nn[0], nn[1]) >= _SIN_ON else "vector"
+    if chart == "angles":
+        y0[2:] = [math.acos(max(-1.0, min(1.0, float(nn[2])))), lam0]
     if eps > 0.0 and setup.drift_tol is not None and (d0 := _slow_drift(setup, st0, av.mean(st0))) > setup.drift_tol:
         raise ValueError(
             f"the torque is too strong for eps = {eps:g} at this state: the slow variables change by {d0:.3g} of "
@@ -777,45 +975,137 @@ def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: flo
             "separation of time scales. Lower eps or the torque, or pass drift_tol=None to integrate anyway"
         )
 
-    def rhs(tau: float, y: np.ndarray) -> list[float]:
-        st = _state_of(setup, kind, sigma, tau, y, tau0, nu0)
-        m = av.mean(st)
-        n = st.n
-        dG = float(n @ m.L)
-        dn = (m.L - dG * n) / st.G
-        out = [dG, m.dk2, float(dn[0]), float(dn[1]), float(dn[2])]
-        if eps > 0.0 and orb.e != 0.0:
-            out.append(orb.nu_rate(float(y[5])) / eps)
-        return out
-
-    A = _labels(setup.body, kind)
-    events = [
-        Event(lambda t, y: y[1] - setup.k2_max, "separatrix", True, 1.0,
+    lnk_stop = math.log(setup.k2_max + c)
+    common_events = [
+        Event((lambda t, y: y[1] - lnk_stop) if z else (lambda t, y: -1.0), "separatrix", True, 1.0,
               f"k2 reached {setup.k2_max:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
               "where the averaging does not hold"),
     ]
     if eps > 0.0:
-        events.append(Event(lambda t, y: _nut_freq(A, y[0], min(max(y[1], 0.0), setup.spin_cap)) / eps
-                            - setup.min_spin_ratio, "slow_rotation", True, -1.0, _slow_msg(setup.min_spin_ratio)))
-        if setup.drift_tol is not None:
+        cap, ratio = setup.spin_cap, setup.min_spin_ratio
+        common_events.append(Event(lambda t, y: _nut_freq(a, exp(y[0]), min(max(z * exp(y[1]) - c, 0.0), cap)) * ie
+                                   - ratio,
+                                   "slow_rotation", True, -1.0, _slow_msg(ratio)))
+
+    def chart_events(chart: str) -> list[Event]:
+        evs = list(common_events)
+        if eps > 0.0 and setup.drift_tol is not None:
             tol = setup.drift_tol
 
-            def drift(t: float, y: np.ndarray) -> float:
-                st = _state_of(setup, kind, sigma, t, y, tau0, nu0)
-                return _slow_drift(setup, st, av.mean(st)) - tol
+            def drift(t: float, y: Any) -> float:
+                st, m = mean_at(t, y, chart)
+                return _slow_drift(setup, st, m) - tol
 
-            events.append(Event(drift, "fast_drift", True, 1.0,
-                                f"the slow variables change by more than {tol:g} of themselves in one "
-                                "Euler-Poinsot period: no separation of time scales, the averaging does not hold"))
-    res = integrate(rhs, tau_span, y0, rtol=setup.rtol, atol=setup.atol, method=setup.method,
-                    dense_output=True, events=events, time_name="tau")
-    return _Segment(res, setup, kind, sigma, tau0, nu0)
+            evs.append(Event(drift, "fast_drift", True, 1.0,
+                             f"the slow variables change by more than {tol:g} of themselves in one "
+                             "Euler-Poinsot period: no separation of time scales, the averaging does not hold"))
+        if chart == "angles":
+            evs.append(Event(lambda t, y: sin(y[2]) - _SIN_OFF, "chart", True, -1.0))
+        elif angles:
+            evs.append(Event(lambda t, y: math.hypot(y[2], y[3]) / sqrt(y[2] ** 2 + y[3] ** 2 + y[4] ** 2) - _SIN_ON,
+                             "chart", True, 1.0))
+        return evs
+
+    py = setup.method == "DOP853"
+    pieces: list[_Chart] = []
+    lam_s, t_s, step = lam0, tau0, first_step
+    while True:
+        rt: Any
+        rt, at = _tolerances(setup.rtol, chart, ecc)
+        raw = integrate(rhs_angles if chart == "angles" else rhs_vector, (t_s, t1), y0,
+                        rtol=rt if py else _k.RTOL_FLOOR, atol=at, method=setup.method, dense_output=True,
+                        events=chart_events(chart), time_name="tau", engine="python" if py else "scipy",
+                        first_step=step if py else None)
+        piece = _Chart(chart, raw, z, c, ecc, lam_s)
+        pieces.append(piece)
+        if raw.event != "chart" or len(pieces) >= _MAX_CHARTS:
+            break
+        # switch charts at the event: the same G, k2, direction (and nu), lambda continuous
+        t_s = float(raw.t_events["chart"][-1])
+        lam_s = piece.lam_end()
+        yc = piece.common(raw.y[:, -1])
+        n = yc[2:5]
+        chart = "vector" if chart == "angles" else "angles"
+        y0 = [float(raw.y[0, -1]), float(raw.y[1, -1])]
+        if chart == "angles":
+            lam_n = math.atan2(n[1], n[0])
+            lam_n += 2.0 * math.pi * round((lam_s - lam_n) / (2.0 * math.pi))  # the branch of the continuous lambda
+            y0 += [math.acos(max(-1.0, min(1.0, float(n[2])))), lam_n]
+        else:
+            y0 += [float(v) for v in n]
+        if ecc:
+            y0.append(float(yc[5]))
+        step = raw.last_step if py else None
+    return _Segment(_join_charts(pieces), setup, kind, sigma, tau0, nu0, pieces)
 
 
-def _rho(body: Body, kind: str, k2: float) -> float:
-    """Rotation number <dpsi/dt> P / 2 pi of the Euler-Poinsot motion (independent of G and sigma)."""
-    m = EulerPoinsot(body, 1.0, k2, kind)
-    return m.psi_rate_mean() * m.period / (2.0 * math.pi)
+def _join_charts(pieces: list[_Chart]) -> Solution:
+    """One Solution (rows G, k2, n[, nu]) from the chart pieces of a segment: their steps, events (the chart
+    switches left out), status and message of the last, the total nfev, a piecewise dense output."""
+    last = pieces[-1].raw
+    times, ys = [], []
+    for i, p in enumerate(pieces):
+        t, y = p.raw.time, p.raw.y
+        if i:  # the first point of a later piece is the last of its predecessor
+            t, y = t[1:], y[:, 1:]
+        times.append(t)
+        ys.append(p.common(y) if t.size else np.empty((p.n_common, 0)))
+    t_events: dict[str, list[float]] = {}
+    y_events: dict[str, list[np.ndarray]] = {}
+    for p in pieces:
+        for k, v in p.raw.t_events.items():
+            if k == "chart":
+                continue
+            t_events.setdefault(k, []).extend(np.asarray(v, dtype=float).tolist())
+            yv = p.raw.y_events[k]
+            y_events.setdefault(k, []).extend([p.common(row) for row in np.asarray(yv, dtype=float)])
+    n_c = pieces[0].n_common
+    te = {k: np.array(v, dtype=float) for k, v in t_events.items()}
+    ye = {k: (np.array(v, dtype=float).reshape(-1, n_c)) for k, v in y_events.items()}
+    status, message, event = last.status, last.message, last.event
+    if event == "chart":  # only after _MAX_CHARTS switches
+        status, event = -1, None
+        message = (f"the direction of G changed charts {len(pieces)} times (it hovers at sin(delta) = "
+                   f"{_SIN_OFF:g}..{_SIN_ON:g}); integration stopped")
+    dense = _PiecewiseDense([p.raw.time[0] for p in pieces], [lambda t, p=p: p.common(p.raw.sol(t)) for p in pieces],
+                            n_c)
+    res = Solution(last.time_name, np.concatenate(times), np.concatenate(ys, axis=1), {}, status, message, event, te,
+                   ye, dense, sum(p.raw.nfev for p in pieces))
+    res.last_step = last.last_step
+    return res
+
+
+def _rho(body: Body, kind: str, k2: Any) -> Any:
+    r"""Rotation number :math:`\rho = \langle\dot\psi\rangle P/2\pi` of the Euler--Poinsot motion (independent of G
+    and sigma), vectorised over ``k2`` in [0, 1).
+
+    With :math:`\dot\psi = G(2T - g_3^2/A_3)/(G^2 - g_3^2)` (body axes; :math:`g_3 = A_3k c_{cn}\operatorname{cn}u`
+    for 'max', :math:`A_3 c_{dn}\operatorname{dn}u` for 'min') the mean over a period is a complete elliptic
+    integral of the third kind, :math:`\langle 1/(\alpha+\beta\operatorname{sn}^2)\rangle = \Pi(-\beta/\alpha|k^2)/
+    (K\alpha)`; in the labelled moments :math:`a_i` (derived here; checked against the spectral mean of
+    :meth:`EulerPoinsot.psi_rate_mean` in the tests):
+
+    'max': :math:`\langle\dot\psi\rangle/G = [1 - (a_1-a_3)\Pi(n|k^2)/(a_1K)]/a_3`,
+    :math:`n = -k^2a_3(a_1-a_2)/(a_1(a_2-a_3))`; 'min': :math:`\langle\dot\psi\rangle/G = [1 + (a_1-a_3)
+    \Pi(n|k^2)/(a_3K)]/a_1`, :math:`n = -a_1(a_2-a_3)/(a_3(a_1-a_2))`; :math:`P = 4K/\dot u`. Carlson's forms
+    :math:`K = R_F(0, k'^2, 1)`, :math:`\Pi = K + \tfrac n3R_J(0, k'^2, 1, 1-n)` (DLMF 19.25.14).
+    """
+    a1, a2, a3 = _labels(body, kind)
+    k2 = np.asarray(k2, dtype=float)
+    mc = 1.0 - k2
+    R = a1 * (a2 - a3) + a3 * (a1 - a2) * k2
+    rate = np.sqrt((a1 - a2) * (a1 - a3) * (a2 - a3) / (a1 * a2 * a3 * R))  # du/dt at G = 1
+    K = special.elliprf(0.0, mc, 1.0)
+    if kind == "max":
+        n = -k2 * a3 * (a1 - a2) / (a1 * (a2 - a3))
+        Pi = K + n / 3.0 * special.elliprj(0.0, mc, 1.0, 1.0 - n)
+        mean = (K - (a1 - a3) / a1 * Pi) / a3  # <dpsi/dt> K at G = 1
+    else:
+        n = -a1 * (a2 - a3) / (a3 * (a1 - a2))
+        Pi = K + n / 3.0 * special.elliprj(0.0, mc, 1.0, 1.0 - n)
+        mean = (K + (a1 - a3) / a3 * Pi) / a1
+    out = 2.0 * mean / (math.pi * rate)
+    return float(out) if out.ndim == 0 else out
 
 
 def _resonances(seg: _Segment) -> list[dict[str, float]]:
@@ -830,15 +1120,17 @@ def _resonances(seg: _Segment) -> list[dict[str, float]]:
     # within 1 - k2 < 0.01 of the separatrix the rotation number grows without bound (like the period) and the
     # passage there is the separatrix crossing's business, not a resonance's: the search stops at K2_SPIN_CAP
     k2s = np.clip(res.y[1], 0.0, K2_SPIN_CAP)
-    rho = np.array([_rho(body, kind, float(x)) for x in k2s])
+    rho = _rho(body, kind, k2s)
     out = []
 
     def k2_at(t: float) -> float:
         return float(min(max(res.sol(t)[1], 0.0), 1.0 - 1e-12))
 
     for j in (1, 2):
-        for i in range(tau.size - 1):
-            a, b = j * rho[i], j * rho[i + 1]
+        jr = j * rho
+        lo, hi = np.minimum(jr[:-1], jr[1:]), np.maximum(jr[:-1], jr[1:])
+        for i in np.flatnonzero(np.floor(hi) > np.floor(lo)).tolist():  # the steps over which j rho crosses N
+            a, b = float(jr[i]), float(jr[i + 1])
             lo, hi = min(a, b), max(a, b)
             for N in range(math.floor(lo) + 1, math.floor(hi) + 1):
                 if not (lo < N <= hi):
@@ -868,7 +1160,7 @@ def _slow_fields(A: tuple[float, float, float], y: np.ndarray, nvec: Any, nu: An
     G = y[0]
     k2 = np.clip(y[1], 0.0, 1.0)
     n = nvec(y) if y.shape[1] else np.empty((3, 0))
-    T = 0.5 * G**2 * np.array([_S_over_R(A, float(x)) for x in k2])
+    T = 0.5 * G**2 * _k.s_over_r(A, k2)
     return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1.0, 1.0)), "n": n, "nu": nu}
 
 
@@ -905,7 +1197,7 @@ def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
         res = Solution(res.time_name, tcut, ycut, {}, status, message, event, res.t_events, res.y_events,
                        res.sol, res.nfev)
         resonances = [r for r in resonances if r["tau"] <= cut["tau"]]
-    out = _finish(res, tau_eval, make_fields, lam0, nvec)
+    out = _finish(res, tau_eval, make_fields, lam0, nvec, lambda tau, y: seg.lam(tau))
     # the quadrature error along the run (relative to the size of the averaged torque), at the first and the
     # last state (each estimate costs a few right-hand sides on the calibration grid)
     qerr = 0.0
@@ -984,7 +1276,8 @@ class _Generic:
               lam_s: float, k2_stop: float, first_step: float | None = None) -> _Piece:
         if self.drag is not None:
             return _drag_piece(self, self.drag, region, tau_span, G, k2, n, nu0, lam_s, k2_stop, first_step)
-        seg = _integrate_kind(self.setup(k2_stop), region[0], region[1], tau_span, G, k2, n, nu0)
+        seg = _integrate_kind(self.setup(k2_stop), region[0], region[1], tau_span, G, k2, n, nu0, lam_s,
+                              first_step)
 
         def finish(te: Any, lam: float) -> Solution:
             return _finish_kind(seg, te, lam)
@@ -1009,20 +1302,22 @@ class _Generic:
 
 
 class _PiecewiseDense:
-    """Dense output of a run through the separatrix: rows G, k2, n1, n2, n3 from each segment's own."""
+    """Dense output of a run made of pieces (segments through the separatrix, charts of a segment): ``n_rows`` rows
+    (G, k2, n[, nu]) at any times, from the piece that starts last before each; ``parts[i](t)`` evaluates piece i
+    at an array of its times."""
 
-    def __init__(self, pieces: list[_Piece]) -> None:
-        self.pieces = pieces
-        self.starts = np.array([p.res.time[0] for p in pieces])
+    def __init__(self, starts: list[float], parts: list[Any], n_rows: int) -> None:
+        self.starts = np.array(starts, dtype=float)
+        self.parts = parts
+        self.n_rows = n_rows
 
     def __call__(self, t: Any) -> np.ndarray:
         tt = np.atleast_1d(np.asarray(t, dtype=float))
-        out = np.empty((5, tt.size))
-        idx = np.clip(np.searchsorted(self.starts, tt, side="right") - 1, 0, len(self.pieces) - 1)
-        for i in np.unique(idx):
-            p = self.pieces[i]
+        out = np.empty((self.n_rows, tt.size))
+        idx = np.clip(np.searchsorted(self.starts, tt, side="right") - 1, 0, len(self.parts) - 1)
+        for i in np.unique(idx).tolist():
             sel = idx == i
-            out[:, sel] = p.common(p.res.sol(tt[sel]))
+            out[:, sel] = self.parts[i](tt[sel])
         return out[:, 0] if np.ndim(t) == 0 else out
 
 
@@ -1096,7 +1391,9 @@ def _assemble(pieces: list[_Piece], crossings: list[dict[str, Any]], stop: str, 
     t_events["separatrix"] = np.array([c["tau"] for c in crossings])
     y_events["separatrix"] = (np.array([[c["G"], K2_SWITCH, *c["n"]] for c in crossings]) if crossings
                               else np.empty((0, 5)))
-    sol = Solution(res.time_name, tau, y, data, status, message, event, t_events, y_events, _PiecewiseDense(pieces),
+    dense = _PiecewiseDense([p.res.time[0] for p in pieces], [lambda t, p=p: p.common(p.res.sol(t)) for p in pieces],
+                            5)
+    sol = Solution(res.time_name, tau, y, data, status, message, event, t_events, y_events, dense,
                    sum(p.res.nfev for p in pieces))
     sol.crossings = crossings  # type: ignore[attr-defined]  # an extra attribute of this result
     qerr = [getattr(o, "quad_error", 0.0) for o in outs]
