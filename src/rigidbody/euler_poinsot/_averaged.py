@@ -845,6 +845,10 @@ class _Chart:
         return float(self.lam(self.raw.time[-1:])[0])
 
 
+#: a slow state and its means in a torque object's right-hand side: G, k2, n1, n2, n3, nu, L1, L2, L3, dT, dk2
+_Slow = tuple[float, float, float, float, float, Any, float, float, float, float, float]
+
+
 def _k2_floor(rtol: float) -> float:
     """The c of the engine's coordinate ln(k2 + c): where the rounding of its dk2, ~10 eps_mach k (measured: 2e-12
     relative at k2 = 1e-8), is rtol of dk2 ~ k^2 relative, (10 eps_mach / (2 rtol))^2 (1.2e-10 at rtol 1e-10); the
@@ -910,48 +914,56 @@ def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: flo
             return float(y[i])
         return (tau - tau0) * ie + nu0
 
-    def state(tau: float, y: Any, chart: str) -> _State:
-        k2 = z * exp(y[1]) - c
-        k2 = (k2 if k2 < k2_top else k2_top) if k2 > 0.0 else 0.0
-        if chart == "angles":
-            sd = sin(y[2])
-            n = np.array([sd * cos(y[3]), sd * sin(y[3]), cos(y[2])])
-            return _State(body, kind, sigma, exp(y[0]), k2, n, nu_of(tau, y, inu), orb)
-        n1, n2, n3 = y[2], y[3], y[4]
-        r = sqrt(n1 * n1 + n2 * n2 + n3 * n3)
-        return _State(body, kind, sigma, exp(y[0]), k2, np.array([n1 / r, n2 / r, n3 / r]), nu_of(tau, y, inu + 1),
-                      orb)
+    fast = av.fast(kind, sigma, eps > 0.0)  # the engine alone on floats, or None (closed forms: state objects)
+    memo: list[Any] = [None, None, None, None]  # the last (chart, tau, y, means): the drift event reuses them
 
-    memo: list[Any] = [None, None, None, None]  # the last (chart, tau, y, (state, mean)): the drift event reuses it
-
-    def mean_at(tau: float, y: Any, chart: str) -> tuple[_State, _Mean]:
+    def mean_at(tau: float, y: Any, chart: str) -> _Slow:
+        """(G, k2, n1, n2, n3, nu, L1, L2, L3, dT, dk2) at a state of the chart."""
         yl = y if isinstance(y, list) else list(y)
         if memo[1] == tau and memo[0] == chart and memo[2] == yl:
-            return memo[3]  # the cached pair
-        st = state(tau, y, chart)
-        out = (st, av.mean(st))
+            return memo[3]  # the cached tuple
+        G = exp(yl[0])
+        k2 = z * exp(yl[1]) - c
+        k2 = (k2 if k2 < k2_top else k2_top) if k2 > 0.0 else 0.0
+        if chart == "angles":
+            sd = sin(yl[2])
+            n1, n2, n3 = sd * cos(yl[3]), sd * sin(yl[3]), cos(yl[2])
+            nu = nu_of(tau, yl, inu)
+        else:
+            r = sqrt(yl[2] * yl[2] + yl[3] * yl[3] + yl[4] * yl[4])
+            n1, n2, n3 = yl[2] / r, yl[3] / r, yl[4] / r
+            nu = nu_of(tau, yl, inu + 1)
+        if fast is not None:
+            L1, L2, L3, dT, dk2 = fast(G, k2, n1, n2, n3, nu)
+        else:
+            m = av.mean(_State(body, kind, sigma, G, k2, np.array([n1, n2, n3]), nu, orb))
+            L1, L2, L3 = (float(v) for v in m.L)
+            dT, dk2 = m.dT, m.dk2
+        out = (G, k2, n1, n2, n3, nu, L1, L2, L3, dT, dk2)
         memo[0], memo[1], memo[2], memo[3] = chart, tau, list(yl), out
         return out
 
+    def pair(tau: float, y: Any, chart: str) -> tuple[_State, _Mean]:
+        G, k2, n1, n2, n3, nu, L1, L2, L3, dT, dk2 = mean_at(tau, y, chart)
+        return (_State(body, kind, sigma, G, k2, np.array([n1, n2, n3]), nu, orb),
+                _Mean(np.array([L1, L2, L3]), dT, dk2))
+
     def rhs_angles(tau: float, y: Any) -> list[float]:
-        st, m = mean_at(tau, y, "angles")
-        L1, L2, L3 = (float(v) for v in m.L)
+        G, k2, _, _, _, _, L1, L2, L3, _, dk2 = mean_at(tau, y, "angles")
         d, la = y[2], y[3]
         sd, cd, sl, cl = sin(d), cos(d), sin(la), cos(la)
-        iG = 1.0 / st.G
-        out = [(sd * (cl * L1 + sl * L2) + cd * L3) * iG, m.dk2 / (st.k2 + c) if z else 0.0,
+        iG = 1.0 / G
+        out = [(sd * (cl * L1 + sl * L2) + cd * L3) * iG, dk2 / (k2 + c) if z else 0.0,
                (cd * (cl * L1 + sl * L2) - sd * L3) * iG, (cl * L2 - sl * L1) * iG / sd]
         if ecc:
             out.append(orb.nu_rate(float(y[inu])) * ie)
         return out
 
     def rhs_vector(tau: float, y: Any) -> list[float]:
-        st, m = mean_at(tau, y, "vector")
-        L1, L2, L3 = (float(v) for v in m.L)
-        n1, n2, n3 = (float(v) for v in st.n)
+        G, k2, n1, n2, n3, _, L1, L2, L3, _, dk2 = mean_at(tau, y, "vector")
         dG = n1 * L1 + n2 * L2 + n3 * L3
-        iG = 1.0 / st.G
-        out = [dG * iG, m.dk2 / (st.k2 + c) if z else 0.0, (L1 - dG * n1) * iG, (L2 - dG * n2) * iG,
+        iG = 1.0 / G
+        out = [dG * iG, dk2 / (k2 + c) if z else 0.0, (L1 - dG * n1) * iG, (L2 - dG * n2) * iG,
                (L3 - dG * n3) * iG]
         if ecc:
             out.append(orb.nu_rate(float(y[inu + 1])) * ie)
@@ -993,7 +1005,7 @@ def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: flo
             tol = setup.drift_tol
 
             def drift(t: float, y: Any) -> float:
-                st, m = mean_at(t, y, chart)
+                st, m = pair(t, y, chart)
                 return _slow_drift(setup, st, m) - tol
 
             evs.append(Event(drift, "fast_drift", True, 1.0,

@@ -347,15 +347,19 @@ def adaptive(torque: Any, st: _State, tol: float, grid: Grid | None = None, refi
     g = Grid() if grid is None else Grid(grid.n_psi, grid.m_u, grid.n_nu)
     if st.nu is not None:
         g.n_nu = 1
+    first: Any = None  # the first grid's evaluation, when the check below made it
     if compact is None:  # may the torque be called with broadcastable (not equal) leading axes?
-        full = torque_grid(torque, st, g)[0]
+        first = torque_grid(torque, st, g)
         try:
-            small = torque_grid(torque, st, g, compact=True)[0]
-            compact = bool(np.array_equal(small, full))
+            small = torque_grid(torque, st, g, compact=True)
+            compact = bool(np.array_equal(small[0], first[0]))
+            if compact:
+                first = small
         except (ValueError, TypeError, IndexError):
             compact = False
     while True:
-        M, w, omega, C = torque_grid(torque, st, g, compact)
+        M, w, omega, C = first if first is not None else torque_grid(torque, st, g, compact)
+        first = None
         steps = (1, 2, 4) if g.n_nu >= 4 and g.n_nu % 4 == 0 else ((1, 2) if g.n_nu % 2 == 0 else (1,))
         Vs = [quantities(st, omega, C, _nu_mean(M, w, k)) for k in steps]
         V = Vs[0]
@@ -433,8 +437,10 @@ def _profiles(st: _State, omega: np.ndarray, C: np.ndarray, M: np.ndarray, w: np
     if M.shape[0] > 1 and M.strides[0] != 0:
         N = M.shape[1] * M.shape[2]
         P = np.empty((M.shape[0], _NQ))
-        P[:, 0:3] = np.einsum("puij,kpuj->ki", C, M) / N
-        om = np.einsum("ui,kpui->ki", omega, M) / N  # <omega_i M_i> at each nu
+        K = M.shape[0]
+        # sum over p, u, j of C[p, u, i, j] M[k, p, u, j]: one matrix product
+        P[:, 0:3] = (np.ascontiguousarray(M).reshape(K, -1) @ C.transpose(0, 1, 3, 2).reshape(-1, 3)) / N
+        om = (M.sum(axis=1) * omega).sum(axis=1) / N  # <omega_i M_i> at each nu
         a1, a2, a3 = st.a
         l1, l2, l3 = st.lab
         P[:, 3] = om.sum(axis=1)
@@ -459,11 +465,13 @@ def _jump_floor(P: np.ndarray) -> np.ndarray:
     n = P.shape[0]
     if n < 8 or n % 2:
         return np.zeros(_NQ)
-    step = np.abs(np.roll(P, -1, axis=0) - P)
+    step = np.abs(np.diff(P, axis=0, append=P[:1]))  # periodic: the last step closes the period
     h = P[::2]
-    step2 = np.abs(np.roll(h, -1, axis=0) - h).max(axis=0)
+    step2 = np.abs(np.diff(h, axis=0, append=h[:1])).max(axis=0)
     top = step.max(axis=0)
-    jump = (top > _JUMP * step2) & (top > _ISOLATED * np.median(step, axis=0))
+    mid = np.partition(step, (n // 2 - 1, n // 2), axis=0)  # the median of an even number of steps
+    median = 0.5 * (mid[n // 2 - 1] + mid[n // 2])
+    jump = (top > _JUMP * step2) & (top > _ISOLATED * median)
     return np.where(jump, step.sum(axis=0) / n, 0.0)
 
 
@@ -551,6 +559,8 @@ class Averager:
         self.rest: Any = None
         self.grid: Grid | None = None
         self.first: Quadrature | None = None
+        self.lean: Any = None
+        self.first_state: _State | None = None
 
     def calibrate(self, st: _State) -> None:
         closed: list[Any] = []
@@ -562,7 +572,12 @@ class Averager:
         self.rest = _sum_of(rest) if rest else None
         if self.rest is not None:
             self.first = adaptive(self.rest, st, self.tol)
+            self.first_state = st
             self.grid = self.first.lean
+            from ._lean import LeanMean  # the same means on this grid, what does not change along a run done once
+
+            self.lean = LeanMean(self.rest, st.body, st.kind, st.sigma, self.grid, self.first.compact, st.orbit,
+                                 st.nu is not None)
 
     def mean(self, st: _State) -> _Mean:
         total: _Mean | None = None
@@ -572,10 +587,25 @@ class Averager:
         if self.rest is not None:
             assert self.grid is not None
             assert self.first is not None
-            m = mean_of(lean_mean(self.rest, st, self.grid, self.first.compact), st)
+            lm = self.lean
+            if (lm is not None and lm.kind == st.kind and lm.sigma == st.sigma and lm.held == (st.nu is not None)
+                    and st.mc == 1.0 - st.k2):
+                q = np.array(lm(st.G, st.k2, *(float(x) for x in st.n), st.nu))
+            else:
+                q = lean_mean(self.rest, st, self.grid, self.first.compact)
+            m = mean_of(q, st)
             total = m if total is None else total + m
         assert total is not None
         return total
+
+    def fast(self, kind: str, sigma: int, held: bool) -> Any:
+        """The engine's :meth:`._lean.LeanMean.rates` when the whole torque goes through the engine on the grid of the
+        last calibration for this kind, sense and true-anomaly mode (the right-hand sides then skip the state
+        objects), else None."""
+        lm = self.lean
+        if self.closed or lm is None or lm.kind != kind or lm.sigma != sigma or lm.held != held:
+            return None
+        return lm.rates
 
     def report(self, st: _State) -> tuple[_Mean, _Mean]:
         """(mean on the integrators' grid, a bound on its quadrature error) at a state. The bound is
@@ -587,11 +617,24 @@ class Averager:
         err = _Mean(np.zeros(3), 0.0, 0.0)
         if self.rest is not None:
             assert self.first is not None and self.grid is not None
-            q = adaptive(self.rest, st, self.tol, grid=self.first.grid, refine=False, compact=self.first.compact)
+            s0 = self.first_state
+            if s0 is not None and _same_state(s0, st):  # the calibration's own estimate on that grid
+                q = self.first
+            else:
+                q = adaptive(self.rest, st, self.tol, grid=self.first.grid, refine=False, compact=self.first.compact)
             lean = lean_mean(self.rest, st, self.grid, self.first.compact)
             total = total + mean_of(lean, st)
             err = error_of(np.abs(lean - q.mean) + q.error, st)
         return total, err
+
+
+def _same_state(a: _State, b: _State, rel: float = 1e-12) -> bool:
+    """Whether two slow states agree to ``rel`` (the start of a run, and the calibration state it came from)."""
+    return (a.kind == b.kind and a.sigma == b.sigma and a.body is b.body and a.orbit == b.orbit
+            and (a.nu is None) == (b.nu is None)
+            and (a.nu is None or b.nu is None or abs(a.nu - b.nu) <= rel * (1.0 + abs(b.nu)))
+            and abs(a.G - b.G) <= rel * abs(b.G) and abs(a.k2 - b.k2) <= rel
+            and float(np.abs(np.asarray(a.n) - np.asarray(b.n)).max()) <= rel)
 
 
 def harmonic(torque: Any, st: _State, j: int, m: int) -> np.ndarray:

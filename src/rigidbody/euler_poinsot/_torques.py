@@ -255,9 +255,13 @@ class GravityGradient(_ArrayEq):
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
         C = np.asarray(C, dtype=float)
         nu = np.asarray(nu, dtype=float)
-        cn, sn = np.cos(nu)[..., None], np.sin(nu)[..., None]
+        if nu.size == 1 and nu.ndim <= C.ndim - 2:  # one true anomaly (the engine with nu held): Python floats
+            x = float(nu.reshape(()))
+            cn, sn, f = math.cos(x), math.sin(x), self.factor(x)
+        else:
+            cn, sn = np.cos(nu)[..., None], np.sin(nu)[..., None]
+            f = np.asarray(self.factor(nu), dtype=float)
         rho = C[..., 0, :] * cn + C[..., 1, :] * sn  # C^T e_r, e_r = (cos nu, sin nu, 0)
-        f = np.asarray(self.factor(nu), dtype=float)
         A1, A2, A3 = self.body.A1, self.body.A2, self.body.A3
         r1, r2, r3 = rho[..., 0], rho[..., 1], rho[..., 2]
         out = np.empty(rho.shape)
