@@ -13,6 +13,7 @@ import pytest
 from rigidbody import euler_poinsot as ep
 from rigidbody.euler_poinsot._engine import Averager, Grid, _State, adaptive, lean_mean
 from rigidbody.euler_poinsot._lean import LeanMean
+from rigidbody.euler_poinsot._torques import as_torque
 
 BODY = ep.Body(3.2, 2.6, 1.67)
 I_OFF = np.array([[2.322, 0.3, -0.2], [0.1, 1.31, 0.4], [0.25, -0.15, 1.425]])
@@ -81,5 +82,36 @@ def test_the_report_at_the_calibration_state_is_the_calibrations_estimate():
     av.calibrate(st)
     q = adaptive(tq, st, 1e-12, grid=av.first.grid, refine=False, compact=av.first.compact)
     _, err = av.report(st)
-    np.testing.assert_allclose(err.L, np.abs(lean_mean(tq, st, av.grid, av.first.compact) - q.mean)[:3]
-                               + q.error[:3], rtol=1e-6, atol=1e-300)
+    expected = np.abs(lean_mean(tq, st, av.grid, av.first.compact) - q.mean)[:3] + q.error[:3]
+    # the report's lean mean comes from the fast path: equal to the plain one to rounding (the test above)
+    np.testing.assert_allclose(err.L, expected, rtol=0, atol=1e-15 * np.abs(q.mean[:3]).max())
+    # elsewhere the report re-estimates: at another state it is not the calibration's estimate
+    st2 = _State(BODY, "max", 1, 0.8, 0.5, N_DIR, None, ep.Orbit(0.0))
+    q2 = adaptive(tq, st2, 1e-12, grid=av.first.grid, refine=False, compact=av.first.compact)
+    _, err2 = av.report(st2)
+    expected2 = np.abs(lean_mean(tq, st2, av.grid, av.first.compact) - q2.mean)[:3] + q2.error[:3]
+    np.testing.assert_allclose(err2.L, expected2, rtol=0, atol=1e-15 * np.abs(q2.mean[:3]).max())
+
+
+def _declared():
+    body = BODY
+    return [ep.LinearDrag(I_OFF), ep.GravityGradient(body, ep.Orbit(0.2)), ep.ConstantTorque([0.3, -0.2, 0.5]),
+            ep.ViscousCavity(body, [[0.4, 0.1, 0.0], [0.1, 0.7, 0.05], [0.0, 0.05, 0.3]])]
+
+
+@pytest.mark.parametrize("i", range(4))
+@pytest.mark.parametrize("nu", [None, 0.7])
+def test_torques_that_declare_broadcasting_broadcast(i, nu):
+    # the engine skips its compact-evaluation check for these: their compact and full evaluations must agree
+    from rigidbody.euler_poinsot._engine import torque_grid
+
+    tq = _declared()[i]
+    assert tq._broadcasts
+    st = _State(BODY, "max", 1, 1.3, 0.6, N_DIR, nu, ep.Orbit(0.2))
+    grid = Grid(8, 1.0, 8)
+    full = torque_grid(tq, st, grid)[0]
+    compact = torque_grid(tq, st, grid, compact=True)[0]
+    np.testing.assert_array_equal(compact, full)
+    # and a plain function, or a torque calling a user's field, is checked by the engine instead
+    assert not ep.MagneticDipole([0.5, -0.3, 0.2], lambda v: np.zeros((*np.shape(v), 3)))._broadcasts
+    assert not as_torque(skewed)._broadcasts

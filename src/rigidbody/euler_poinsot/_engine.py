@@ -571,7 +571,8 @@ class Averager:
         self.closed = closed
         self.rest = _sum_of(rest) if rest else None
         if self.rest is not None:
-            self.first = adaptive(self.rest, st, self.tol)
+            compact = True if all(getattr(p, "_broadcasts", False) for p in rest) else None
+            self.first = adaptive(self.rest, st, self.tol, compact=compact)
             self.first_state = st
             self.grid = self.first.lean
             from ._lean import LeanMean  # the same means on this grid, what does not change along a run done once
@@ -622,7 +623,11 @@ class Averager:
                 q = self.first
             else:
                 q = adaptive(self.rest, st, self.tol, grid=self.first.grid, refine=False, compact=self.first.compact)
-            lean = lean_mean(self.rest, st, self.grid, self.first.compact)
+            lm = self.lean
+            if lm is not None and lm.kind == st.kind and lm.sigma == st.sigma and lm.held == (st.nu is not None):
+                lean = np.array(lm(st.G, st.k2, *(float(x) for x in st.n), st.nu))
+            else:
+                lean = lean_mean(self.rest, st, self.grid, self.first.compact)
             total = total + mean_of(lean, st)
             err = error_of(np.abs(lean - q.mean) + q.error, st)
         return total, err

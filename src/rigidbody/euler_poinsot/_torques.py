@@ -41,7 +41,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field, fields
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 from scipy import special
@@ -67,6 +67,11 @@ class Torque:
     Subclasses implement ``__call__(omega, C, nu)``. Adding two torques (or a torque and a plain function)
     gives a :class:`TorqueSum`.
     """
+
+    #: whether ``__call__`` broadcasts the leading axes of its arguments (declared by the catalogue torques that
+    #: call no user function; tested): the engine then passes compact arguments at once, other torques it
+    #: checks first, on its first grid
+    _broadcasts: ClassVar[bool] = False
 
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
         raise NotImplementedError
@@ -193,6 +198,8 @@ class LinearDrag(_ArrayEq):
         entries); its symmetric part must be positive definite (as for :class:`Drag`).
     """
 
+    _broadcasts: ClassVar[bool] = True
+
     I: Any = field()
 
     def __post_init__(self) -> None:
@@ -229,6 +236,8 @@ class GravityGradient(_ArrayEq):
         The orbital mean motion in the units of the torque: 1 (default) in the module's scaling (the
         torque divided by :math:`\varepsilon^2`); the dimensional :math:`\omega_0` for dimensional torques.
     """
+
+    _broadcasts: ClassVar[bool] = True
 
     body: Body
     orbit: Orbit | None = None
@@ -390,6 +399,8 @@ class ConstantTorque(_ArrayEq):
         The three body components (section-3 scaling divided by :math:`\varepsilon^2`).
     """
 
+    _broadcasts: ClassVar[bool] = True
+
     M: Any = field()
 
     def __post_init__(self) -> None:
@@ -465,6 +476,8 @@ class ViscousCavity(_ArrayEq):
         The tensor :math:`\tilde P = \rho P\Omega_0^2/(\nu G_0\varepsilon^2)` in body axes (3x3 symmetric
         positive semi-definite, or its 3 diagonal entries). Only the diagonal enters the averages.
     """
+
+    _broadcasts: ClassVar[bool] = True
 
     body: Body
     P: Any = field()
