@@ -4,8 +4,11 @@ Ratios measured in one run (the machine's other load moves absolute times; ratio
 
 * overhead: a sweep of a trivial function (serial, and on local processes) against a plain Python loop
   over the same points (the baseline a user writes today); the results are identical (difference printed);
-* a compute-bound function (``rigidbody.studies.spin_end``, one averaged Euler-Poinsot evolution per point):
-  local processes against the serial sweep (the speed-up is bounded by the number of cores);
+* a compute-bound function (``rigidbody.studies.averaging_error_euler_poinsot``, an averaged and a full
+  Euler-Poinsot evolution per point, 0.03-0.7 s each): local processes against the serial sweep (the speed-up
+  is bounded by the number of cores, less the second it takes to start the workers);
+* a batched study (``rigidbody.studies.spin_end``: a chunk of points is one batch of averaged evolutions,
+  about half a millisecond per point): the same comparison, where the workers' start is most of the cost;
 * batching: ``rigidbody.sweep.gyrostat_stability`` (one vectorised ``gyrostat.stability_map`` call per
   chunk) against the same sweep calling ``gyrostat.stability`` point by point;
 * memory: the bytes of the returned Dataset per point.
@@ -57,14 +60,23 @@ def main() -> None:
           f"us/pt incl. worker start ({t_proc / t_loop:.1f}x); max |difference| = {diff:g}")
     print(f"memory of the Dataset: {ds.nbytes / n:.0f} bytes per point (2 float outputs + status + message)")
 
+    grid = {"eps": np.geomspace(0.01, 0.05, 6), "k2_0": np.linspace(0.1, 0.9, 6)}
+    t_ser, ds = timed(lambda: sweep(studies.averaging_error_euler_poinsot, grid, executor="serial", progress=False))
+    t_proc, dp = timed(lambda: sweep(studies.averaging_error_euler_poinsot, grid, progress=False, chunk_size=1))
+    same = bool(np.array_equal(ds["error"].values, dp["error"].values))
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(f"averaging_error_euler_poinsot (an averaged and a full evolution per point), 36 points: serial "
+          f"{t_ser:.2f} s, local processes ({local_cpu_count()} workers) {t_proc:.2f} s: speed-up "
+          f"{t_ser / t_proc:.2f}x; identical: {same}; load average {load:.1f} on {os.cpu_count()} CPUs")
+
     grid = {"r1": np.linspace(0.2, 2.4, 16), "r3": np.linspace(0.2, 2.4, 16)}
     t_ser, ds = timed(lambda: sweep(studies.spin_end, grid, executor="serial", progress=False))
     t_proc, dp = timed(lambda: sweep(studies.spin_end, grid, progress=False))
     same = bool(np.array_equal(ds["regime"].values, dp["regime"].values))
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    print(f"spin_end (one averaged evolution per point), 256 points: serial {t_ser:.2f} s, local processes "
-          f"({local_cpu_count()} workers) {t_proc:.2f} s: speed-up {t_ser / t_proc:.2f}x; identical: {same}; "
-          f"load average {load:.1f} on {os.cpu_count()} CPUs (other jobs take their share)")
+    print(f"spin_end (batched: one batch of averaged evolutions per chunk), 256 points: serial {t_ser:.2f} s, "
+          f"local processes ({local_cpu_count()} workers) {t_proc:.2f} s: speed-up {t_ser / t_proc:.2f}x; "
+          f"identical: {same}; load average {load:.1f} on {os.cpu_count()} CPUs (other jobs take their share)")
 
     sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
     g = {"theta0": np.linspace(-1.2, 1.2, 100), "k2": np.linspace(-0.05, 0.05, 50)}
