@@ -62,7 +62,7 @@ def main() -> None:
 
     grid = {"eps": np.geomspace(0.01, 0.05, 6), "k2_0": np.linspace(0.1, 0.9, 6)}
     t_ser, ds = timed(lambda: sweep(studies.averaging_error_euler_poinsot, grid, executor="serial", progress=False))
-    t_proc, dp = timed(lambda: sweep(studies.averaging_error_euler_poinsot, grid, progress=False, chunk_size=1))
+    t_proc, dp = timed(lambda: sweep(studies.averaging_error_euler_poinsot, grid, progress=False))
     same = bool(np.array_equal(ds["error"].values, dp["error"].values))
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
     print(f"averaging_error_euler_poinsot (an averaged and a full evolution per point), 36 points: serial "
