@@ -57,6 +57,29 @@ def test_torques_are_vectorised_over_leading_axes():
     np.testing.assert_allclose(ep.LinearDrag(I_OFF)(omega[0, 0, 0], C[0, 0, 0], 0.0), -I_OFF @ omega[0, 0, 0])
 
 
+@pytest.mark.parametrize("c_shape, nu_shape", [
+    ((1, 4, 60), (4, 1, 1)),  # the engine's compact grids, small and large (two code paths)
+    ((1, 8, 120), (16, 1, 1)),
+    ((1, 4, 60), (1, 1, 1)),  # nu held
+    ((16, 8, 20), (16, 8, 20)),  # full arrays
+    ((3000,), ()),
+    ((), ()),
+])
+def test_gravity_gradient_broadcasts_on_small_and_large_grids(c_shape, nu_shape):
+    # every element against the single-state evaluation of the projections test above
+    rng = np.random.default_rng(3)
+    gg = ep.GravityGradient(BODY, ep.Orbit(0.25))
+    n_c = math.prod(c_shape)
+    C = random_attitudes(rng, n_c).reshape(*c_shape, 3, 3)
+    nu = rng.uniform(-3, 3, nu_shape)
+    M = gg(None, C, nu)
+    shape = np.broadcast_shapes(c_shape, nu_shape)
+    assert M.shape == (*shape, 3)
+    Cb, nub = np.broadcast_to(C, (*shape, 3, 3)), np.broadcast_to(nu, shape)
+    for idx in list(np.ndindex(shape))[:: max(1, math.prod(shape) // 200)]:
+        np.testing.assert_allclose(M[idx], gg(None, Cb[idx], float(nub[idx])), rtol=0, atol=1e-13)
+
+
 def test_sums_flatten_and_accept_plain_functions():
     def const(omega, C, nu):
         return np.broadcast_to([0.1, 0.0, -0.2], np.shape(omega))

@@ -264,16 +264,27 @@ class GravityGradient(_ArrayEq):
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
         C = np.asarray(C, dtype=float)
         nu = np.asarray(nu, dtype=float)
-        if nu.size == 1 and nu.ndim <= C.ndim - 2:  # one true anomaly (the engine with nu held): Python floats
+        cn: Any
+        sn: Any
+        A1, A2, A3 = self.body.A1, self.body.A2, self.body.A3
+        held = nu.size == 1 and nu.ndim <= C.ndim - 2  # one true anomaly (the engine with nu held)
+        if held:
             x = float(nu.reshape(()))
             cn, sn, f = math.cos(x), math.sin(x), self.factor(x)
         else:
-            cn, sn = np.cos(nu)[..., None], np.sin(nu)[..., None]
+            cn, sn = np.cos(nu), np.sin(nu)
             f = np.asarray(self.factor(nu), dtype=float)
-        rho = C[..., 0, :] * cn + C[..., 1, :] * sn  # C^T e_r, e_r = (cos nu, sin nu, 0)
-        A1, A2, A3 = self.body.A1, self.body.A2, self.body.A3
-        r1, r2, r3 = rho[..., 0], rho[..., 1], rho[..., 2]
-        out = np.empty(rho.shape)
+        # the number of points, or more (a choice of code path only): arrays that broadcast against each other
+        n_c = C.size // 9
+        if (n_c if nu.size in (1, n_c) else n_c * nu.size) < 2048:
+            c1, s1 = (cn, sn) if held else (cn[..., None], sn[..., None])
+            rho = C[..., 0, :] * c1 + C[..., 1, :] * s1  # C^T e_r, e_r = (cos nu, sin nu, 0)
+            r1, r2, r3 = rho[..., 0], rho[..., 1], rho[..., 2]
+        else:  # large grids: component by component (NumPy's loops over a trailing axis of 3 are slow)
+            r1 = C[..., 0, 0] * cn + C[..., 1, 0] * sn
+            r2 = C[..., 0, 1] * cn + C[..., 1, 1] * sn
+            r3 = C[..., 0, 2] * cn + C[..., 1, 2] * sn
+        out = np.empty((*r1.shape, 3))
         out[..., 0] = f * (A3 - A2) * r2 * r3  # rho x (A rho)
         out[..., 1] = f * (A1 - A3) * r3 * r1
         out[..., 2] = f * (A2 - A1) * r1 * r2
