@@ -1,4 +1,4 @@
-"""Adversarial input for the public functions of rigidbody.euler_poinsot (review, issue 4).
+"""Adversarial input for the public functions of rigidbody.euler_poinsot.
 
 Each case used to return a silent number (NaN, a negative ratio, a misclassified state, an empty result)
 or a cryptic error from deep inside; it must now be a ValueError/TypeError naming the parameter.
