@@ -698,7 +698,10 @@ def averaged(
         gen.torque._check_setup(body, orb)
     gen.spin_cap = K2_SPIN_CAP if through else 1.0
     _check_spin(_labels(body, kind), G0, min(k2_0, gen.spin_cap), eps, min_spin_ratio)
-    first = gen.piece(region0, tau_span, G0, k2_0, np.array(_unit(delta0, lam0)), nu0, lam0, k2_stop)
+    # the true anomaly at the start: nu = tau/eps + nu0 on a circular orbit (as the drag tensor's closed forms and
+    # simulate take it, also when tau_span starts after 0); on an eccentric orbit nu is a state starting at nu0
+    nu_start = nu0 + float(tau_span[0]) / eps if eps > 0.0 and orb.e == 0.0 else nu0
+    first = gen.piece(region0, tau_span, G0, k2_0, np.array(_unit(delta0, lam0)), nu_start, lam0, k2_stop)
     rng = np.random.default_rng(seed) if branch == "random" else None  # the only branch rule that draws
     return _through(first, gen, tau_span, tau_eval, through, branch, rng)
 
