@@ -342,3 +342,19 @@ def test_one_lean_mean_along_changing_moduli_equals_the_engines_grid(kind, held)
             # the same sums in another order: rounding (measured 2.4e-15 of the largest mean)
             assert np.abs(fast - plain).max() <= 1e-13 * np.abs(plain).max()
         assert len(lm.tables) >= 4
+
+
+def test_the_fast_drift_event_ends_the_run_where_the_drift_per_period_reaches_drift_tol():
+    # a spin-down torque with eps = 0.05: G falls and the period grows until eps^2 P (|dG|/G + |dT|/T + |dn|)
+    # reaches drift_tol = 0.5. Recomputed at the run's end from ep.averaged_rates (closed forms) and the period of
+    # ep.EulerPoinsot, with |dn| = |(ddelta, sin(delta) dlam)|
+    tq = ep.ConstantTorque([-1.0, 0.5, 0.2]) + ep.MagneticDipole([0.3, 0.2, 0.5], [0.0, 2.0, 1.0])
+    eps = 0.05
+    sol = ep.averaged(BODY, tq, eps, 1.0, 0.4, 0.7, 0.3, (0.0, 5.0), min_spin_ratio=0, resonance_tol=None, rtol=RTOL)
+    assert sol.status == 1 and sol.event == "fast_drift" and 0.0 < sol.tau[-1] < 5.0
+    G, k2, d, lam, nu, T = (float(getattr(sol, f)[-1]) for f in ("G", "k2", "delta", "lam", "nu", "T"))
+    r = ep.averaged_rates(BODY, tq, G, k2, d, lam, nu)
+    P = ep.EulerPoinsot(BODY, G, k2, "max", 1).period
+    drift = eps**2 * P * (abs(r["dG"]) / G + abs(r["dT"]) / T + math.hypot(r["ddelta"], math.sin(d) * r["dlam"]))
+    # the event's root is found to rounding in tau; the state there to rtol: the drift to ~1e-9
+    assert drift == pytest.approx(0.5, rel=1e-8, abs=0)
