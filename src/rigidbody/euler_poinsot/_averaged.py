@@ -582,7 +582,7 @@ def averaged(
         engine for every part, also where a closed form exists (for checks and benchmarks).
     quad_tol : float
         Relative tolerance of the engine's quadrature, to which its grid is chosen at the start.
-        ``sol.quad_error`` reports the estimated error along the run.
+        ``sol.quad_error`` reports the estimated error of the mean torque at the first and last states.
     drift_tol : float or None
         Torque objects, ``eps > 0``: the run ends (event ``'fast_drift'``) when the slow variables change
         by more than this fraction in one Euler--Poinsot period,
@@ -623,9 +623,11 @@ def averaged(
         ``(kind, sigma)`` before and after), ``probabilities`` (capture probability of each region) and
         ``drifts`` (see :class:`SeparatrixCrossing`). A run that crossed the separatrix has as raw state
         ``sol.y`` the rows ``G, k2, n1, n2, n3`` (and a piecewise dense output ``sol.sol``).
-        With a torque object the result also has ``sol.quad_error`` (the largest estimated quadrature error
-        of the engine along the run, relative to the size of the averaged torque; 0 when only closed forms
-        are used), ``sol.resonances`` (the resonance crossings with their predicted jumps: dicts with
+        With a torque object the result also has ``sol.quad_error`` (the estimated quadrature error of the
+        engine's mean torque :math:`\langle C\mathbf M\rangle` on the run's grid, relative to the size of the
+        averaged torque, the larger of those at the first and the last state of each segment; the errors of the
+        :math:`T` and :math:`k^2` rates are not included; 0 when only closed forms are used),
+        ``sol.resonances`` (the resonance crossings with their predicted jumps: dicts with
         ``tau``, ``j``, ``m``, ``rho``, ``jump``, ``jump_G``, ``jump_T``, ``jump_n``), ``sol.kind`` and
         ``sol.sigma``.
 
@@ -698,7 +700,10 @@ def averaged(
         gen.torque._check_setup(body, orb)
     gen.spin_cap = K2_SPIN_CAP if through else 1.0
     _check_spin(_labels(body, kind), G0, min(k2_0, gen.spin_cap), eps, min_spin_ratio)
-    first = gen.piece(region0, tau_span, G0, k2_0, np.array(_unit(delta0, lam0)), nu0, lam0, k2_stop)
+    # the true anomaly at the start: nu = tau/eps + nu0 on a circular orbit (as the drag tensor's closed forms and
+    # simulate take it, also when tau_span starts after 0); on an eccentric orbit nu is a state starting at nu0
+    nu_start = nu0 + float(tau_span[0]) / eps if eps > 0.0 and orb.e == 0.0 else nu0
+    first = gen.piece(region0, tau_span, G0, k2_0, np.array(_unit(delta0, lam0)), nu_start, lam0, k2_stop)
     rng = np.random.default_rng(seed) if branch == "random" else None  # the only branch rule that draws
     return _through(first, gen, tau_span, tau_eval, through, branch, rng)
 
