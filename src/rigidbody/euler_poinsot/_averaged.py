@@ -582,7 +582,7 @@ def averaged(
         engine for every part, also where a closed form exists (for checks and benchmarks).
     quad_tol : float
         Relative tolerance of the engine's quadrature, to which its grid is chosen at the start.
-        ``sol.quad_error`` reports the estimated error of the mean torque at the first and last states.
+        ``sol.quad_error`` reports the estimated error of the averages at the first and last states.
     drift_tol : float or None
         Torque objects, ``eps > 0``: the run ends (event ``'fast_drift'``) when the slow variables change
         by more than this fraction in one Euler--Poinsot period,
@@ -624,9 +624,10 @@ def averaged(
         ``drifts`` (see :class:`SeparatrixCrossing`). A run that crossed the separatrix has as raw state
         ``sol.y`` the rows ``G, k2, n1, n2, n3`` (and a piecewise dense output ``sol.sol``).
         With a torque object the result also has ``sol.quad_error`` (the estimated quadrature error of the
-        engine's mean torque :math:`\langle C\mathbf M\rangle` on the run's grid, relative to the size of the
-        averaged torque, the larger of those at the first and the last state of each segment; the errors of the
-        :math:`T` and :math:`k^2` rates are not included; 0 when only closed forms are used),
+        engine's averages on the run's grid: the largest of those of the mean torque
+        :math:`\langle C\mathbf M\rangle`, of :math:`dT/d\tau` times :math:`G/T` and of :math:`dk^2/d\tau`
+        times :math:`G`, relative to the size of the averaged torque, at the first and the last state of each
+        segment; 0 when only closed forms are used),
         ``sol.resonances`` (the resonance crossings with their predicted jumps: dicts with
         ``tau``, ``j``, ``m``, ``rho``, ``jump``, ``jump_G``, ``jump_T``, ``jump_n``), ``sol.kind`` and
         ``sol.sigma``.
@@ -1222,8 +1223,10 @@ def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
         for t in np.unique([res.time[0], res.time[-1]]):
             st = _state_of(setup, seg.kind, seg.sigma, float(t), res.sol(t), seg.tau0, seg.nu0)
             m, e = setup.averager.report(st)
-            size = float(np.abs(m.L).max()) + abs(m.dT) / max(st.T, 1e-300) * st.G + 1e-300
-            qerr = max(qerr, float(np.abs(e.L).max()) / size)
+            # every rate in torque units: <C M> itself, dT/dtau times G/T, dk2/dtau times G
+            GT = st.G / max(st.T, 1e-300)
+            size = float(np.abs(m.L).max()) + abs(m.dT) * GT + 1e-300
+            qerr = max(qerr, max(float(np.abs(e.L).max()), abs(e.dT) * GT, abs(e.dk2) * st.G) / size)
     data = {f: getattr(out, f) for f in out.fields}
     data["kind"] = np.full(out.time.shape, seg.kind)
     data["sigma"] = np.full(out.time.shape, seg.sigma)
