@@ -22,10 +22,11 @@ over members with :func:`rigidbody.core.batch.integrate_batch`.
 Any torque
 ----------
 With a torque object (``rigidbody.euler_poinsot.LinearDrag``, ..., or a plain function) the integrator evolves
-:math:`(\ln G, \ln k^2, \mathbf n[, \nu])` with :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle` and the
-:math:`k^2` rate of :mod:`._engine` (DOP853 on Python floats, as for a drag tensor: ``rtol`` is the relative accuracy
-of :math:`G` and :math:`k^2`, the unit vector :math:`\mathbf n` is held to ``rtol/10`` per step, to ``rtol`` at
-:math:`\varepsilon = 0`), the means from the closed forms of the torque's parts where they exist and from the
+:math:`(\ln G, \ln(k^2 + c), \mathbf n[, \nu])` (the direction of :math:`\mathbf G` as the angles
+:math:`(\delta, \lambda)` or the unit vector :math:`\mathbf n`, see ``_integrate_kind``) with
+:math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle` and the :math:`k^2` rate of :mod:`._engine` (DOP853 on
+Python floats, as for a drag tensor: ``rtol`` is the relative accuracy of :math:`G` and :math:`k^2`, the direction
+is held to ``rtol/10`` per step), the means from the closed forms of the torque's parts where they exist and from the
 averaging engine otherwise (its grid chosen once, at the start). ``_integrate_kind`` integrates
 one kind of motion from given :math:`(G, k^2, \mathbf n)`: a run that reaches the separatrix can be
 restarted in the other kind with :math:`G`, :math:`T`, :math:`\mathbf n` continuous. With
@@ -558,7 +559,7 @@ def averaged(
         ``rtol``) and the angles are held to ``rtol/10`` radians per step (:math:`\lambda` relatively beyond a
         radian); ``atol`` is then not used. With a torque object the state is :math:`(\ln G, \ln k^2, \mathbf n)`
         with the same meaning of ``rtol`` for :math:`G`, :math:`T`, :math:`k^2`, and the unit vector :math:`\mathbf n`
-        of :math:`\mathbf G` held to ``rtol/10`` per step (``rtol`` at ``eps = 0``); ``atol`` is not used either.
+        of :math:`\mathbf G` held to ``rtol/10`` per step; ``atol`` is not used either.
         ``method``: ``'DOP853'`` (default; run on Python floats) or another
         :func:`scipy.integrate.solve_ivp` method (one run only: a batch uses DOP853).
     k2_max : float or None
