@@ -75,7 +75,40 @@ def check_fits(sat: Satellite, R0: float) -> None:
         )
 
 
-def sin_cos(theta: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+class Scratch:
+    """Named work arrays for the ``out=`` of ufuncs, kept from call to call (keyed by name and shape).
+
+    A map is evaluated in blocks of the same shape: with a ``Scratch`` every block writes its quantities into
+    the arrays of the previous one instead of allocating (and page-faulting) fresh ones.  ``Scratch(keep=False)``
+    allocates on every request (a single evaluation).  The arrays a function returns live in the scratch:
+    the next evaluation with the same scratch overwrites them.
+    """
+
+    def __init__(self, keep: bool = True) -> None:
+        self._keep = keep
+        self._arrays: dict[tuple[str, tuple[int, ...]], np.ndarray] = {}
+
+    def __call__(self, name: str, shape: tuple[int, ...], dtype: Any = float) -> np.ndarray:
+        if not self._keep:
+            return np.empty(shape, dtype)
+        a = self._arrays.get((name, shape))
+        if a is None or a.dtype != dtype:
+            a = self._arrays[(name, shape)] = np.empty(shape, dtype)
+        return a
+
+    def put(self, name: str, a: np.ndarray) -> None:
+        """Let ``name`` (at the shape of ``a``) be written into ``a`` (an output array, or a view of one)."""
+        self._arrays[(name, a.shape)] = a
+
+
+def lean(c: dict[str, Any]) -> dict[str, Any]:
+    """Factors with one element as Python floats (an operation with a float skips the broadcast of a 1-element
+    array; the arithmetic is the same IEEE double arithmetic).  Only for factors that multiply arrays of at least
+    their own number of dimensions, so that the float leaves the shape of the result unchanged."""
+    return {k: float(np.asarray(v).item()) if np.size(v) == 1 else v for k, v in c.items()}
+
+
+def sin_cos(theta: Any, work: Scratch | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """``sin theta, cos theta, cos 2 theta`` to a couple of ulp (relative), from tangents.
 
     ``np.sin`` and ``np.cos`` of float64 arrays cost several times ``np.tan`` (no SIMD loops), and a map
@@ -84,21 +117,51 @@ def sin_cos(theta: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     ``T tan(theta/2)`` (``tan theta = 2 u / (1 - u^2)`` with ``u = tan(theta/2)``, and ``cos theta`` has the sign
     of ``1 - u^2``); ``cos 2 theta`` likewise from ``X = tan 2 theta``, with the sign of ``X T``.  Not as
     ``cos^2 - sin^2``: that has an absolute error of an ulp, so no correct digit at theta = pi/4, where the
-    stable W_g2g2 needs it.  At theta = 0 the product of the tangents is +0 (positive sign).
+    stable W_g2g2 needs it.  At theta = 0 the product of the tangents is +0 (positive sign).  ``work``: see
+    :class:`Scratch`.
     """
     th = np.asarray(theta, dtype=float)
-    T = np.tan(th)
-    X = np.tan(2 * th)
-    ct = 1.0 / np.sqrt(1.0 + T * T)
-    if th.size and not np.max(np.abs(th)) <= 0.5 * np.pi:  # cos > 0 for abs(theta) <= fl(pi/2) < pi/2
-        ct = np.copysign(ct, T * np.tan(0.5 * th))
-    st = T * ct
-    c2t = np.copysign(1.0 / np.sqrt(1.0 + X * X), X * T)
+    w = Scratch(keep=False) if work is None else work
+    s = th.shape
+    T = np.tan(th, out=w("tan_t", s))
+    X = np.multiply(th, 2.0, out=w("tan_2t", s))
+    np.tan(X, out=X)
+    ct = np.multiply(T, T, out=w("cos_t", s))
+    ct += 1.0
+    np.sqrt(ct, out=ct)
+    np.divide(1.0, ct, out=ct)
+    if th.size and not np.max(np.abs(th, out=w("sc_u", s))) <= 0.5 * np.pi:  # cos > 0 for abs(theta) <= fl(pi/2)
+        u = np.multiply(th, 0.5, out=w("sc_u", s))
+        np.tan(u, out=u)
+        u *= T
+        np.copysign(ct, u, out=ct)
+    st = np.multiply(T, ct, out=w("sin_t", s))
+    c2t = np.multiply(X, X, out=w("cos_2t", s))
+    c2t += 1.0
+    np.sqrt(c2t, out=c2t)
+    np.divide(1.0, c2t, out=c2t)
+    X *= T
+    np.copysign(c2t, X, out=c2t)
     return st, ct, c2t
 
 
+def family_constants(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any) -> dict[str, Any]:
+    """The factors of :func:`family_side` that involve only the body, mu and R0 (once per map, not per point)."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        M, A1, A2, A3, mu, R0 = (np.asarray(v, dtype=float) for v in (M, A1, A2, A3, mu, R0))
+        n0 = mu / R0**3
+        MR2 = M * R0**2
+        return {
+            "n0": n0, "MR2": MR2, "A2": A2, "A3": A3, "A2-A3": A2 - A3, "3n0": 3 * n0,
+            "n2:st2": 4.5 / MR2 * (A2 - A3) * -n0,  # n2 = n2:st2 sin^2 theta0 + n2:1
+            "n2:1": n0 * (1 - 4.5 / MR2 * (2 * A3 - A1 - A2) / 3),
+            "tk:stct": 3 * n0 * (A2 - A3) / MR2,  # tan kappa0 = tk:stct sin theta0 cos theta0 / n2
+        }
+
+
 def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any,
-                omega_sign: Any = 1) -> dict[str, np.ndarray]:
+                omega_sign: Any = 1, *, const: dict[str, Any] | None = None,
+                work: Scratch | None = None) -> dict[str, np.ndarray]:
     """The part of the closed-form solution of (2.4) that does not involve the gyrostatic momentum.
 
     Returns arrays (broadcast over the inputs): ``n0 = mu / R0^3``, ``n2`` (the right-hand side of the second
@@ -110,38 +173,62 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
     ``tan kappa0 = 3/2 (A2 - A3) mu R0^-3 sin 2 theta0 / (M R0^2 n2)`` (third relation divided by the second,
     kappa0 in (-pi/2, pi/2)), so ``cos kappa0 = 1 / sqrt(1 + tan^2)``, ``sin kappa0 = tan kappa0 cos kappa0``
     and the angle theta0 + kappa0 by the addition formulas.
+
+    ``const``: :func:`family_constants` of the body (computed here if not given); ``work``: see :class:`Scratch`
+    (a map passes both, once for all its blocks).  The quantities of theta0 alone keep its shape.
     """
+    c = family_constants(M, A1, A2, A3, mu, R0) if const is None else const
+    w = Scratch(keep=False) if work is None else work
+    mul = np.multiply
     with np.errstate(divide="ignore", invalid="ignore"):
-        M, A1, A2, A3, mu, R0 = (np.asarray(v, dtype=float) for v in (M, A1, A2, A3, mu, R0))
         th = np.asarray(theta0, dtype=float)
-        n0 = mu / R0**3
-        MR2 = M * R0**2
-        st, ct, c2t = sin_cos(th)
-        st2, stct = st * st, st * ct
-        n2 = (4.5 / MR2 * (A2 - A3) * -n0) * st2 + n0 * (1 - 4.5 / MR2 * (2 * A3 - A1 - A2) / 3)
-        exists = n2 > 0
-        n2p = np.where(exists, n2, np.nan)
-        tk = (3 * n0 * (A2 - A3) / MR2) * stct / n2p
-        kap = np.arctan(tk)
-        sec2 = 1.0 + tk * tk
-        ck = 1.0 / np.sqrt(sec2)
-        sk = tk * ck
-        om2 = n2p * sec2
-        om = np.sqrt(om2)
-        if np.any(np.asarray(omega_sign) != 1):
-            om = om * np.asarray(omega_sign, dtype=float)
-        sp, cp = st * ck + ct * sk, ct * ck - st * sk
-        cp2 = cp * cp
-        # gravity moment about y1, exact form 3/2 mu R0^-3 (A2 - A3) sin 2 theta0, and the centrifugal term
-        rest = (A2 - A3) * (om2 * (sp * cp) + (3 * n0) * stct)
-        ck2 = ck * ck
-        S0 = MR2 * ck2 + A2 * cp2 + A3 * (sp * sp)
-    return {"n0": n0, "n2": n2, "exists": exists, "theta0": th, "kappa0": kap, "omega0": om, "sin_t": st,
+        sgn = omega_sign if isinstance(omega_sign, int) else np.asarray(omega_sign, dtype=float)
+        ts = th.shape
+        s = np.broadcast_shapes(ts, np.shape(sgn), *(np.shape(v) for v in c.values()))
+        st, ct, c2t = sin_cos(th, w)
+        st2, stct = mul(st, st, out=w("st2", ts)), mul(st, ct, out=w("stct", ts))
+        n2 = mul(c["n2:st2"], st2, out=w("n2", s))
+        n2 += c["n2:1"]
+        exists = np.greater(n2, 0, out=w("exists", s, bool))
+        n2p = n2 if exists.all() else np.where(exists, n2, np.nan)
+        tk = mul(c["tk:stct"], stct, out=w("tk", s))
+        tk /= n2p
+        kap = np.arctan(tk, out=w("kappa0", s))
+        sec2 = mul(tk, tk, out=w("sec2", s))
+        sec2 += 1.0
+        ck = np.sqrt(sec2, out=w("cos_k", s))
+        np.divide(1.0, ck, out=ck)
+        sk = mul(tk, ck, out=w("sin_k", s))
+        om2 = mul(n2p, sec2, out=w("om2", s))
+        om = np.sqrt(om2, out=w("omega0", s))
+        if not (isinstance(sgn, int) and sgn == 1) and np.any(sgn != 1):
+            om *= sgn
+        t = w("fs_t", s)
+        sp = mul(st, ck, out=w("sin_tk", s))
+        sp += mul(ct, sk, out=t)
+        cp = mul(ct, ck, out=w("cos_tk", s))
+        cp -= mul(st, sk, out=t)
+        cp2 = mul(cp, cp, out=w("cp2", s))
+        # gravity moment about y1, exact form 3/2 mu R0^-3 (A2 - A3) sin 2 theta0, and the centrifugal term:
+        # rest = (A2 - A3) (omega0^2 sin(theta0 + kappa0) cos(theta0 + kappa0) + 3 n0 sin theta0 cos theta0)
+        rest = mul(sp, cp, out=w("rest", s))
+        rest *= om2
+        rest += mul(c["3n0"], stct, out=t)
+        rest *= c["A2-A3"]
+        ck2 = mul(ck, ck, out=w("ck2", s))
+        S0 = mul(c["MR2"], ck2, out=w("S0", s))  # M R0^2 cos^2 kappa0 + A2 cos^2(theta0 + kappa0) + A3 sin^2(..)
+        S0 += mul(c["A2"], cp2, out=t)
+        mul(sp, sp, out=t)
+        t *= c["A3"]
+        S0 += t
+        ct2 = mul(ct, ct, out=w("ct2", ts))
+        icp = np.divide(1.0, cp, out=w("icp", s))
+    return {"n0": c["n0"], "n2": n2, "exists": exists, "theta0": th, "kappa0": kap, "omega0": om, "sin_t": st,
             "cos_t": ct, "cos_2t": c2t, "sin_k": sk, "cos_k": ck, "sin_tk": sp, "cos_tk": cp, "S0": S0,
             "rest": rest,
             # the same under the short names of the bundle that gyrostat._stability._entries reads
             "st": st, "ct": ct, "c2t": c2t, "sk": sk, "ck": ck, "tk": tk, "sp": sp, "cp": cp, "om": om, "om2": om2,
-            "S": S0, "st2": st2, "stct": stct, "ct2": ct * ct, "icp": 1.0 / cp, "ck2": ck2, "cp2": cp2}
+            "S": S0, "st2": st2, "stct": stct, "ct2": ct2, "icp": icp, "ck2": ck2, "cp2": cp2}
 
 
 def family_momentum(f: dict[str, np.ndarray], k2: Any = None, k3: Any = None
