@@ -278,7 +278,8 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
         sl = slice(i0, i0 + step)
         p = {n: cut(pad[n], sl) for n in pad}
         blk: Any = (slice(None),) * ax + (sl,) if nd else ...  # (a 0-d map: its one element as a 0-d view)
-        out: dict[str, np.ndarray] = {"s2": full["s2"][blk], "s3": full["s3"][blk], "n_neg": degree[blk], "code": code[blk]}
+        out: dict[str, np.ndarray] = {"s2": full["s2"][blk], "s3": full["s3"][blk], "n_neg": degree[blk],
+                                      "code": code[blk]}
         with np.errstate(all="ignore"):
             f, d, valid = side_part(p, sl) if side_cut else shared
             if kname == "k2":

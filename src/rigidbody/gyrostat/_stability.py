@@ -10,7 +10,7 @@ import numpy as np
 
 from ..core.quadform import inertia
 from ._model import Satellite
-from ._stationary import SINGULAR_TOL, Scratch, StationaryMotion, family_side
+from ._stationary import SINGULAR_TOL, Scratch, StationaryMotion, common_shape, family_side
 
 __all__ = [
     "VERDICTS",
@@ -111,8 +111,7 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
     mul = np.multiply
     st, ct, sk, ck, sp = b["st"], b["ct"], b["sk"], b["ck"], b["sp"]
     om2, S, ck2, icp, stct = b["om2"], b["S"], b["ck2"], b["icp"], b["stct"]
-    s = np.broadcast_shapes(*(np.shape(v) for v in (st, sk, sp, om2, S, icp, b["n2"])),
-                            *(np.shape(v) for v in c.values()))
+    s = common_shape(st, sk, sp, om2, S, icp, b["n2"], *c.values())
     t = w("e_t", s)
     iS = np.divide(1.0, S, out=w("iS", s))
     s2k = mul(2.0, sk, out=w("s2k", s))
@@ -354,7 +353,7 @@ def verdicts(d: dict[str, np.ndarray], k2: np.ndarray, valid: np.ndarray, rtol: 
     """
     w = Scratch(keep=False) if work is None else work
     o = {} if out is None else out
-    shape = np.broadcast_shapes(np.shape(k2), np.shape(d["C"]))
+    shape = common_shape(np.asarray(k2), d["C"])
     mul = np.multiply
 
     def res(name: str, dtype: Any = float) -> np.ndarray:

@@ -101,6 +101,14 @@ class Scratch:
         self._arrays[(name, a.shape)] = a
 
 
+def common_shape(*vals: Any) -> tuple[int, ...]:
+    """``np.broadcast_shapes`` of the arrays among ``vals`` (floats have no shape), quick when they share one."""
+    shapes = {v.shape for v in vals if isinstance(v, np.ndarray)}
+    if len(shapes) == 1:
+        return shapes.pop()
+    return np.broadcast_shapes(*shapes) if shapes else ()
+
+
 def lean(c: dict[str, Any]) -> dict[str, Any]:
     """Factors with one element as Python floats (an operation with a float skips the broadcast of a 1-element
     array; the arithmetic is the same IEEE double arithmetic).  Only for factors that multiply arrays of at least
@@ -130,7 +138,9 @@ def sin_cos(theta: Any, work: Scratch | None = None) -> tuple[np.ndarray, np.nda
     ct += 1.0
     np.sqrt(ct, out=ct)
     np.divide(1.0, ct, out=ct)
-    if th.size and not np.max(np.abs(th, out=w("sc_u", s))) <= 0.5 * np.pi:  # cos > 0 for abs(theta) <= fl(pi/2)
+    # cos > 0 for abs(theta) <= fl(pi/2) < pi/2 (a NaN takes the general route too)
+    if th.size and not (np.maximum.reduce(th, axis=None) <= 0.5 * np.pi
+                        and np.minimum.reduce(th, axis=None) >= -0.5 * np.pi):
         u = np.multiply(th, 0.5, out=w("sc_u", s))
         np.tan(u, out=u)
         u *= T
@@ -184,7 +194,7 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
         th = np.asarray(theta0, dtype=float)
         sgn = omega_sign if isinstance(omega_sign, int) else np.asarray(omega_sign, dtype=float)
         ts = th.shape
-        s = np.broadcast_shapes(ts, np.shape(sgn), *(np.shape(v) for v in c.values()))
+        s = common_shape(th, sgn, *c.values())
         st, ct, c2t = sin_cos(th, w)
         st2, stct = mul(st, st, out=w("st2", ts)), mul(st, ct, out=w("stct", ts))
         n2 = mul(c["n2:st2"], st2, out=w("n2", s))
