@@ -112,9 +112,9 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
     st, ct, sk, ck, sp = b["st"], b["ct"], b["sk"], b["ck"], b["sp"]
     om2, S, ck2, icp, stct = b["om2"], b["S"], b["ck2"], b["icp"], b["stct"]
     s = common_shape(st, sk, sp, om2, S, icp, b["n2"], *c.values())
-    t = w("e_t", s)
-    iS = np.divide(1.0, S, out=w("iS", s))
-    s2k = mul(2.0, sk, out=w("s2k", s))
+    t = w("_t0", s)
+    iS = np.divide(1.0, S, out=w("_t1", s))
+    s2k = mul(2.0, sk, out=w("_t2", s))
     s2k *= ck
     Q = mul(s2k, icp, out=w("Q", s))  # M R0^2 sin 2 kappa0 / (2 cos(theta0 + kappa0)) - (A2 - A3) sin(..)
     Q *= c["MR2/2"]
@@ -157,7 +157,7 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
         e["b3b3"] = e["Lsticp"] * (icp * icp) + c["A2-A3"] * om2 + om2iS * (Q * Q)
         e["b3g2"] = (L * sk) * icp / -ct
     e["b1g1"] = L
-    MRom2s2k = mul(om2, s2k, out=w("MRom2s2k", s))
+    MRom2s2k = mul(om2, s2k, out=w("_t3", s))
     MRom2s2k *= c["MR"]
     Rk = e["Rk"] = mul(c["2MR2"], ck2, out=w("Rk", s))
     np.subtract(S, Rk, out=Rk)
@@ -252,7 +252,7 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         e = _entries(f, M, A1, A2, A3, mu, R0, gamma2=False, const=c, work=w)
         s = e["RR"].shape
-        t, u = w("sv_t", s), w("sv_u", s)
+        t, u = w("_t3", s), w("_t4", s)
         bt = w("sv_b", s, bool)
         # (2.5) in closed form with the stable entries: with h = cos^2 theta0 W_g2g2 = G (cos 2 theta0 - sin
         # theta0 cos theta0 tan kappa0) and lambda0 sin kappa0 = G sin theta0 cos theta0 tan kappa0 (G =
@@ -261,15 +261,15 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
         #   a33 = W_b3b3 + (h + 2 lambda0 sin kappa0) / cos^2(theta0 + kappa0)   (W_b3b3 written out below)
         # (checked against a_matrix(hessian_entries(...)) in tests/gyrostat/test_gyrostat_map_evaluation.py)
         G = c["G'"]
-        Gstct_tk = mul(f["stct"], f["tk"], out=w("Gstct_tk", s))
+        Gstct_tk = mul(f["stct"], f["tk"], out=w("_t0", s))
         Gstct_tk *= G
-        Gc2t = mul(G, f["c2t"], out=w("Gc2t", s))
+        Gc2t = mul(G, f["c2t"], out=w("_t1", s))
         icp2 = mul(icp, icp, out=w("icp2", s))
         w1 = mul(f["om"], icp, out=w("w1", s))
         a11 = e["RR"]
         a22 = sub(Gc2t, Gstct_tk, out=w("a22", s))
         a22 += e["kk"]
-        Rg2ct = mul(c["Rg2:st"], f["stct"], out=w("Rg2ct", s))  # cos theta0 W_Rg2
+        Rg2ct = mul(c["Rg2:st"], f["stct"], out=w("_t2", s))  # cos theta0 W_Rg2
         a12 = np.add(e["Rk"], Rg2ct, out=w("a12", s))
         a13 = sub(e["Rb3"], mul(Rg2ct, icp, out=t), out=w("a13", s))
         a23 = sub(e["kb3"], mul(Gc2t, icp, out=t), out=w("a23", s))
@@ -281,15 +281,15 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
         mul(e["Q"], e["Q"], out=t)
         t *= e["om2iS"]
         a33_0 += t
-        a12sq = mul(a12, a12, out=w("a12sq", s))
-        a11a22 = mul(a11, a22, out=w("a11a22", s))
+        a12sq = mul(a12, a12, out=w("_t2", s))
+        a11a22 = mul(a11, a22, out=w("_t0", s))
         C = sub(a11a22, a12sq, out=w("C", s))
-        a12a23a13 = mul(2.0, a12, out=w("a12a23a13", s))
+        a12a23a13 = mul(2.0, a12, out=w("_t1", s))
         a12a23a13 *= a23
         a12a23a13 *= a13
-        a11a23sq = mul(a23, a23, out=w("a11a23sq", s))
+        a11a23sq = mul(a23, a23, out=w("_t5", s))
         a11a23sq *= a11
-        a22a13sq = mul(a13, a13, out=w("a22a13sq", s))
+        a22a13sq = mul(a13, a13, out=w("_t6", s))
         a22a13sq *= a22
         # certainty of the signs (see verdicts): the rounding error of a determinant expansion is below a
         # small multiple of eps times the permanent of abs(a); F and E0 are its parts without a33
@@ -360,16 +360,16 @@ def verdicts(d: dict[str, np.ndarray], k2: np.ndarray, valid: np.ndarray, rtol: 
         return o[name] if name in o else w(name, shape, dtype)
 
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        b1b1 = mul(d["w1"], k2, out=w("b1b1_k", shape))
+        b1b1 = mul(d["w1"], k2, out=w("_t0", shape))
         b1b1 += d["b1b1_0"]
-        a33 = mul(d["w3"], k2, out=w("a33_k", shape))
+        a33 = mul(d["w3"], k2, out=w("_t1", shape))
         a33 += d["a33_0"]
-        gb = mul(d["g1g1"], b1b1, out=w("gb", shape))
+        gb = mul(d["g1g1"], b1b1, out=w("_t2", shape))
         s2 = np.subtract(gb, d["b1g1_sq"], out=res("s2"))
         s3 = mul(d["C"], a33, out=res("s3"))
         s3 += d["D0"]
         tol = np.sqrt(rtol)
-        t, u = w("vd_t", shape), w("vd_u", shape)
+        t, u = w("_t3", shape), w("_t4", shape)
         bt = w("vd_b", shape, bool)
         np.abs(gb, out=t)  # tol (abs(gb) + b1g1^2)
         t += d["b1g1_sq"]

@@ -131,8 +131,8 @@ def sin_cos(theta: Any, work: Scratch | None = None) -> tuple[np.ndarray, np.nda
     th = np.asarray(theta, dtype=float)
     w = Scratch(keep=False) if work is None else work
     s = th.shape
-    T = np.tan(th, out=w("tan_t", s))
-    X = np.multiply(th, 2.0, out=w("tan_2t", s))
+    T = np.tan(th, out=w("_t0", s))
+    X = np.multiply(th, 2.0, out=w("_t1", s))
     np.tan(X, out=X)
     ct = np.multiply(T, T, out=w("cos_t", s))
     ct += 1.0
@@ -141,7 +141,7 @@ def sin_cos(theta: Any, work: Scratch | None = None) -> tuple[np.ndarray, np.nda
     # cos > 0 for abs(theta) <= fl(pi/2) < pi/2 (a NaN takes the general route too)
     if th.size and not (np.maximum.reduce(th, axis=None) <= 0.5 * np.pi
                         and np.minimum.reduce(th, axis=None) >= -0.5 * np.pi):
-        u = np.multiply(th, 0.5, out=w("sc_u", s))
+        u = np.multiply(th, 0.5, out=w("_t2", s))
         np.tan(u, out=u)
         u *= T
         np.copysign(ct, u, out=ct)
@@ -204,7 +204,7 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
         tk = mul(c["tk:stct"], stct, out=w("tk", s))
         tk /= n2p
         kap = np.arctan(tk, out=w("kappa0", s))
-        sec2 = mul(tk, tk, out=w("sec2", s))
+        sec2 = mul(tk, tk, out=w("_t0", s))
         sec2 += 1.0
         ck = np.sqrt(sec2, out=w("cos_k", s))
         np.divide(1.0, ck, out=ck)
@@ -213,7 +213,7 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
         om = np.sqrt(om2, out=w("omega0", s))
         if not (isinstance(sgn, int) and sgn == 1) and np.any(sgn != 1):
             om *= sgn
-        t = w("fs_t", s)
+        t = w("_t1", s)
         sp = mul(st, ck, out=w("sin_tk", s))
         sp += mul(ct, sk, out=t)
         cp = mul(ct, ck, out=w("cos_tk", s))
