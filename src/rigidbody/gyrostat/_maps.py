@@ -248,7 +248,7 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
     side = {n: np.empty(side_shape) for n in ("kappa0", "omega0", "s1")}
 
     def cut(a: Any, sl: slice) -> Any:
-        if nd == 0 or not isinstance(a, np.ndarray) or a.shape[ax] != n_ax or n_ax == 1:
+        if nd == 0 or not isinstance(a, np.ndarray) or a.ndim == 0 or a.shape[ax] != n_ax or n_ax == 1:
             return a
         return a[(slice(None),) * ax + (sl,)]
 

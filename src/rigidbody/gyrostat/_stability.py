@@ -10,7 +10,7 @@ import numpy as np
 
 from ..core.quadform import inertia
 from ._model import Satellite
-from ._stationary import SINGULAR_TOL, Scratch, StationaryMotion, common_shape, family_side
+from ._stationary import ONE, SINGULAR_TOL, TWO, ZERO, Scratch, StationaryMotion, common_shape, family_side, fixed
 
 __all__ = [
     "VERDICTS",
@@ -113,8 +113,8 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
     om2, S, ck2, icp, stct = b["om2"], b["S"], b["ck2"], b["icp"], b["stct"]
     s = common_shape(st, sk, sp, om2, S, icp, b["n2"], *c.values())
     t = w("_t0", s)
-    iS = np.divide(1.0, S, out=w("_t1", s))
-    s2k = mul(2.0, sk, out=w("_t2", s))
+    iS = np.divide(ONE, S, out=w("_t1", s))
+    s2k = mul(TWO, sk, out=w("_t2", s))
     s2k *= ck
     Q = mul(s2k, icp, out=w("Q", s))  # M R0^2 sin 2 kappa0 / (2 cos(theta0 + kappa0)) - (A2 - A3) sin(..)
     Q *= c["MR2/2"]
@@ -284,7 +284,7 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
         a12sq = mul(a12, a12, out=w("_t2", s))
         a11a22 = mul(a11, a22, out=w("_t0", s))
         C = sub(a11a22, a12sq, out=w("C", s))
-        a12a23a13 = mul(2.0, a12, out=w("_t1", s))
+        a12a23a13 = mul(TWO, a12, out=w("_t1", s))
         a12a23a13 *= a23
         a12a23a13 *= a13
         a11a23sq = mul(a23, a23, out=w("_t5", s))
@@ -296,17 +296,17 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
         F = np.abs(a11a22, out=w("F", s))
         F += a12sq
         g1g1 = e["g1g1"]
-        tol = np.sqrt(rtol)
-        s1neg = np.less(g1g1, 0, out=w("s1neg", s, bool))
-        a11neg = np.less(a11, 0, out=w("a11neg", s, bool))
-        Cneg = np.less(C, 0, out=w("Cneg", s, bool))
+        tol = fixed(np.sqrt(rtol))
+        s1neg = np.less(g1g1, ZERO, out=w("s1neg", s, bool))
+        a11neg = np.less(a11, ZERO, out=w("a11neg", s, bool))
+        Cneg = np.less(C, ZERO, out=w("Cneg", s, bool))
         D0 = sub(a12a23a13, a11a23sq, out=w("D0", s))
         D0 -= a22a13sq
         E0 = np.abs(a12a23a13, out=w("E0", s))
         E0 += np.abs(a11a23sq, out=t)
         E0 += np.abs(a22a13sq, out=t)
         # (a product that underflows: not sure)
-        sure_T = np.not_equal(mul(g1g1, a11, out=t), 0, out=w("sure_T", s, bool))
+        sure_T = np.not_equal(mul(g1g1, a11, out=t), ZERO, out=w("sure_T", s, bool))
         sure_T &= np.greater(np.abs(C, out=t), mul(tol, F, out=u), out=bt)
         # degree of the leading part: sign changes in (1, s1) and in (1, a11, a11 a22 - a12^2)
         neg_T = np.add(s1neg, a11neg, out=w("neg_T", s, np.int8), dtype=np.int8)
@@ -317,12 +317,14 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
             "b1g1_sq": mul(e["b1g1"], e["b1g1"], out=w("b1g1_sq", s)), "F": F, "E0": E0, "sure_T": sure_T,
             "neg_T": neg_T, "s1neg": s1neg, "Cneg": Cneg,
         }
-        tol2 = SINGULAR_TOL**2
-        valid = d["valid"] = np.greater(f["cp2"], tol2, out=w("valid", s, bool))
+        valid = d["valid"] = np.greater(f["cp2"], _TOL2, out=w("valid", s, bool))
         valid &= f["exists"]
-        valid &= np.greater(f["ct2"], tol2, out=w("sv_b_t", f["ct2"].shape, bool))
+        valid &= np.greater(f["ct2"], _TOL2, out=w("sv_b_t", f["ct2"].shape, bool))
     return d
 
+
+#: below this cos^2 theta0 or cos^2(theta0 + kappa0) the chart (beta1, beta3, gamma1, gamma2) is singular
+_TOL2 = fixed(SINGULAR_TOL**2)
 
 #: verdict code of a nondegenerate form by its degree of instability (number of negative eigenvalues, 0..5)
 _CODE_OF_DEGREE = np.array([0, 1, 2, 1, 2, 1], dtype=np.int8)
@@ -368,7 +370,7 @@ def verdicts(d: dict[str, np.ndarray], k2: np.ndarray, valid: np.ndarray, rtol: 
         s2 = np.subtract(gb, d["b1g1_sq"], out=res("s2"))
         s3 = mul(d["C"], a33, out=res("s3"))
         s3 += d["D0"]
-        tol = np.sqrt(rtol)
+        tol = fixed(np.sqrt(rtol))
         t, u = w("_t3", shape), w("_t4", shape)
         bt = w("vd_b", shape, bool)
         np.abs(gb, out=t)  # tol (abs(gb) + b1g1^2)
@@ -381,9 +383,9 @@ def verdicts(d: dict[str, np.ndarray], k2: np.ndarray, valid: np.ndarray, rtol: 
         t *= tol
         sure &= np.greater(np.abs(s3, out=u), t, out=bt)
         sure &= d["sure_T"]
-        n_neg = np.add(d["neg_T"], np.logical_xor(np.less(s2, 0, out=bt), d["s1neg"], out=bt),
+        n_neg = np.add(d["neg_T"], np.logical_xor(np.less(s2, ZERO, out=bt), d["s1neg"], out=bt),
                        out=res("n_neg", np.int8))
-        n_neg += np.logical_xor(np.less(s3, 0, out=bt), d["Cneg"], out=bt)
+        n_neg += np.logical_xor(np.less(s3, ZERO, out=bt), d["Cneg"], out=bt)
     code = _CODE_OF_DEGREE.take(n_neg, out=res("code", np.int8), mode="clip")  # n_neg in 0..5
     valid = np.broadcast_to(valid, shape)
     n_zero: np.ndarray | None = None

@@ -110,10 +110,21 @@ def common_shape(*vals: Any) -> tuple[int, ...]:
 
 
 def lean(c: dict[str, Any]) -> dict[str, Any]:
-    """Factors with one element as Python floats (an operation with a float skips the broadcast of a 1-element
-    array; the arithmetic is the same IEEE double arithmetic).  Only for factors that multiply arrays of at least
-    their own number of dimensions, so that the float leaves the shape of the result unchanged."""
-    return {k: float(np.asarray(v).item()) if np.size(v) == 1 else v for k, v in c.items()}
+    """Factors with one element as 0-d arrays (an operation with a 0-d array skips both the broadcast of a
+    1-element array and the conversion of a Python float; the arithmetic is the same).  Only for factors that
+    multiply arrays of at least their own number of dimensions, so that the shape of the result stays."""
+    return {k: fixed(v) if np.size(v) == 1 else v for k, v in c.items()}
+
+
+def fixed(x: Any) -> np.ndarray:
+    """``x`` (one number) as a read-only 0-d float array: the quickest scalar operand of a ufunc."""
+    a = np.array(np.asarray(x, dtype=float).reshape(()))
+    a.flags.writeable = False
+    return a
+
+
+#: scalar operands of the ufunc calls below
+ZERO, HALF, ONE, TWO = fixed(0.0), fixed(0.5), fixed(1.0), fixed(2.0)
 
 
 def sin_cos(theta: Any, work: Scratch | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -132,24 +143,24 @@ def sin_cos(theta: Any, work: Scratch | None = None) -> tuple[np.ndarray, np.nda
     w = Scratch(keep=False) if work is None else work
     s = th.shape
     T = np.tan(th, out=w("_t0", s))
-    X = np.multiply(th, 2.0, out=w("_t1", s))
+    X = np.multiply(th, TWO, out=w("_t1", s))
     np.tan(X, out=X)
     ct = np.multiply(T, T, out=w("cos_t", s))
-    ct += 1.0
+    ct += ONE
     np.sqrt(ct, out=ct)
-    np.divide(1.0, ct, out=ct)
+    np.divide(ONE, ct, out=ct)
     # cos > 0 for abs(theta) <= fl(pi/2) < pi/2 (a NaN takes the general route too)
     if th.size and not (np.maximum.reduce(th, axis=None) <= 0.5 * np.pi
                         and np.minimum.reduce(th, axis=None) >= -0.5 * np.pi):
-        u = np.multiply(th, 0.5, out=w("_t2", s))
+        u = np.multiply(th, HALF, out=w("_t2", s))
         np.tan(u, out=u)
         u *= T
         np.copysign(ct, u, out=ct)
     st = np.multiply(T, ct, out=w("sin_t", s))
     c2t = np.multiply(X, X, out=w("cos_2t", s))
-    c2t += 1.0
+    c2t += ONE
     np.sqrt(c2t, out=c2t)
-    np.divide(1.0, c2t, out=c2t)
+    np.divide(ONE, c2t, out=c2t)
     X *= T
     np.copysign(c2t, X, out=c2t)
     return st, ct, c2t
@@ -199,15 +210,15 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
         st2, stct = mul(st, st, out=w("st2", ts)), mul(st, ct, out=w("stct", ts))
         n2 = mul(c["n2:st2"], st2, out=w("n2", s))
         n2 += c["n2:1"]
-        exists = np.greater(n2, 0, out=w("exists", s, bool))
+        exists = np.greater(n2, ZERO, out=w("exists", s, bool))
         n2p = n2 if exists.all() else np.where(exists, n2, np.nan)
         tk = mul(c["tk:stct"], stct, out=w("tk", s))
         tk /= n2p
         kap = np.arctan(tk, out=w("kappa0", s))
         sec2 = mul(tk, tk, out=w("_t0", s))
-        sec2 += 1.0
+        sec2 += ONE
         ck = np.sqrt(sec2, out=w("cos_k", s))
-        np.divide(1.0, ck, out=ck)
+        np.divide(ONE, ck, out=ck)
         sk = mul(tk, ck, out=w("sin_k", s))
         om2 = mul(n2p, sec2, out=w("om2", s))
         om = np.sqrt(om2, out=w("omega0", s))
@@ -232,7 +243,7 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
         t *= c["A3"]
         S0 += t
         ct2 = mul(ct, ct, out=w("ct2", ts))
-        icp = np.divide(1.0, cp, out=w("icp", s))
+        icp = np.divide(ONE, cp, out=w("icp", s))
     return {"n0": c["n0"], "n2": n2, "exists": exists, "theta0": th, "kappa0": kap, "omega0": om, "sin_t": st,
             "cos_t": ct, "cos_2t": c2t, "sin_k": sk, "cos_k": ck, "sin_tk": sp, "cos_tk": cp, "S0": S0,
             "rest": rest,
