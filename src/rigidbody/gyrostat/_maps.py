@@ -287,7 +287,7 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
                 # k3 by the first relation (2.4) (NaN where cos(theta0 + kappa0) = 0, see below):
                 # k2 sin(theta0 + kappa0) / cos(..) + rest / (cos(..) omega0)
                 icp = f["icp"]
-                t = work("_t0", icp.shape)
+                t = work.at(icp.shape)["_t0"]
                 kc = np.multiply(k2, np.multiply(f["sin_tk"], icp, out=t), out=full[kfull][blk])
                 np.multiply(f["rest"], icp, out=t)
                 t /= f["omega0"]

@@ -112,32 +112,33 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
     st, ct, sk, ck, sp = b["st"], b["ct"], b["sk"], b["ck"], b["sp"]
     om2, S, ck2, icp, stct = b["om2"], b["S"], b["ck2"], b["icp"], b["stct"]
     s = common_shape(st, sk, sp, om2, S, icp, b["n2"], *c.values())
-    t = w("_t0", s)
-    iS = np.divide(ONE, S, out=w("_t1", s))
-    s2k = mul(TWO, sk, out=w("_t2", s))
+    wf = w.at(s)
+    t = wf["_t0"]
+    iS = np.divide(ONE, S, out=wf["_t1"])
+    s2k = mul(TWO, sk, out=wf["_t2"])
     s2k *= ck
-    Q = mul(s2k, icp, out=w("Q", s))  # M R0^2 sin 2 kappa0 / (2 cos(theta0 + kappa0)) - (A2 - A3) sin(..)
+    Q = mul(s2k, icp, out=wf["Q"])  # M R0^2 sin 2 kappa0 / (2 cos(theta0 + kappa0)) - (A2 - A3) sin(..)
     Q *= c["MR2/2"]
     Q -= mul(c["A2-A3"], sp, out=t)
-    om2iS = mul(om2, iS, out=w("om2iS", s))
+    om2iS = mul(om2, iS, out=wf["om2iS"])
     e = {"Q": Q, "om2iS": om2iS}
     # M omega0^2 cos^2 kappa0 = M n2 (second relation (2.4))
-    RR = e["RR"] = mul(c["4MR2"], ck2, out=w("RR", s))
+    RR = e["RR"] = mul(c["4MR2"], ck2, out=wf["RR"])
     RR -= S
     RR *= iS
     RR *= mul(c["M"], b["n2"], out=t)
     RR += mul(c["RR:st2"], b["st2"], out=t)
     RR += c["RR:1"]
-    kk = e["kk"] = mul(S, ck2, out=w("kk", s))
+    kk = e["kk"] = mul(S, ck2, out=wf["kk"])
     mul(s2k, s2k, out=t)
     t *= c["MR2"]
     kk += t
     kk *= mul(c["MR2"], om2iS, out=t)
     if form == "stable":
         G = c["G"]
-        L = mul(G, stct, out=w("L", s))  # = lambda0 = M R0^2 omega0^2 sin kappa0 by the third relation (2.4)
+        L = mul(G, stct, out=wf["L"])  # = lambda0 = M R0^2 omega0^2 sin kappa0 by the third relation (2.4)
         L /= ck
-        g1g1 = e["g1g1"] = mul(st, sp, out=w("g1g1", s))
+        g1g1 = e["g1g1"] = mul(st, sp, out=wf["g1g1"])
         g1g1 *= G
         g1g1 /= ck
         np.subtract(c["3n0(A1-A3)"], g1g1, out=g1g1)
@@ -149,24 +150,24 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
         if gamma2:
             e["g2g2"] = -L * sp / (b["ct2"] * ct) + c["3n0(A2-A3)"]
     e["L"] = L
-    Lsticp = e["Lsticp"] = mul(L, st, out=w("Lsticp", s))
+    Lsticp = e["Lsticp"] = mul(L, st, out=wf["Lsticp"])
     Lsticp *= icp
-    b1b1 = e["b1b1"] = mul(c["A2-A1"], om2, out=w("b1b1", s))
+    b1b1 = e["b1b1"] = mul(c["A2-A1"], om2, out=wf["b1b1"])
     b1b1 += Lsticp
     if gamma2:
         e["b3b3"] = e["Lsticp"] * (icp * icp) + c["A2-A3"] * om2 + om2iS * (Q * Q)
         e["b3g2"] = (L * sk) * icp / -ct
     e["b1g1"] = L
-    MRom2s2k = mul(om2, s2k, out=w("_t3", s))
+    MRom2s2k = mul(om2, s2k, out=wf["_t3"])
     MRom2s2k *= c["MR"]
-    Rk = e["Rk"] = mul(c["2MR2"], ck2, out=w("Rk", s))
+    Rk = e["Rk"] = mul(c["2MR2"], ck2, out=wf["Rk"])
     np.subtract(S, Rk, out=Rk)
     Rk *= iS
     Rk *= MRom2s2k
-    Rb3 = e["Rb3"] = mul(om2iS, ck2, out=w("Rb3", s))
+    Rb3 = e["Rb3"] = mul(om2iS, ck2, out=wf["Rb3"])
     Rb3 *= c["2MR"]
     Rb3 *= Q
-    kb3 = e["kb3"] = mul(c["-R"], iS, out=w("kb3", s))
+    kb3 = e["kb3"] = mul(c["-R"], iS, out=wf["kb3"])
     kb3 *= MRom2s2k
     kb3 *= Q
     if gamma2:
@@ -252,8 +253,9 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         e = _entries(f, M, A1, A2, A3, mu, R0, gamma2=False, const=c, work=w)
         s = e["RR"].shape
-        t, u = w("_t3", s), w("_t4", s)
-        bt = w("sv_b", s, bool)
+        wf, wb = w.at(s), w.at(s, bool)
+        t, u = wf["_t3"], wf["_t4"]
+        bt = wb["sv_b"]
         # (2.5) in closed form with the stable entries: with h = cos^2 theta0 W_g2g2 = G (cos 2 theta0 - sin
         # theta0 cos theta0 tan kappa0) and lambda0 sin kappa0 = G sin theta0 cos theta0 tan kappa0 (G =
         # 3 mu R0^-3 (A2 - A3)), the three a_ij that hold W_g2g2 and W_b3g2 reduce to
@@ -261,65 +263,65 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
         #   a33 = W_b3b3 + (h + 2 lambda0 sin kappa0) / cos^2(theta0 + kappa0)   (W_b3b3 written out below)
         # (checked against a_matrix(hessian_entries(...)) in tests/gyrostat/test_gyrostat_map_evaluation.py)
         G = c["G'"]
-        Gstct_tk = mul(f["stct"], f["tk"], out=w("_t0", s))
+        Gstct_tk = mul(f["stct"], f["tk"], out=wf["_t0"])
         Gstct_tk *= G
-        Gc2t = mul(G, f["c2t"], out=w("_t1", s))
-        icp2 = mul(icp, icp, out=w("icp2", s))
-        w1 = mul(f["om"], icp, out=w("w1", s))
+        Gc2t = mul(G, f["c2t"], out=wf["_t1"])
+        icp2 = mul(icp, icp, out=wf["icp2"])
+        w1 = mul(f["om"], icp, out=wf["w1"])
         a11 = e["RR"]
-        a22 = sub(Gc2t, Gstct_tk, out=w("a22", s))
+        a22 = sub(Gc2t, Gstct_tk, out=wf["a22"])
         a22 += e["kk"]
-        Rg2ct = mul(c["Rg2:st"], f["stct"], out=w("_t2", s))  # cos theta0 W_Rg2
-        a12 = np.add(e["Rk"], Rg2ct, out=w("a12", s))
-        a13 = sub(e["Rb3"], mul(Rg2ct, icp, out=t), out=w("a13", s))
-        a23 = sub(e["kb3"], mul(Gc2t, icp, out=t), out=w("a23", s))
+        Rg2ct = mul(c["Rg2:st"], f["stct"], out=wf["_t2"])  # cos theta0 W_Rg2
+        a12 = np.add(e["Rk"], Rg2ct, out=wf["a12"])
+        a13 = sub(e["Rb3"], mul(Rg2ct, icp, out=t), out=wf["a13"])
+        a23 = sub(e["kb3"], mul(Gc2t, icp, out=t), out=wf["a23"])
         # a33_0 = icp2 (Lsticp + Gc2t + Gstct_tk) + (A2 - A3) omega0^2 + om2iS Q^2
-        a33_0 = np.add(Gc2t, Gstct_tk, out=w("a33_0", s))
+        a33_0 = np.add(Gc2t, Gstct_tk, out=wf["a33_0"])
         a33_0 += e["Lsticp"]
         a33_0 *= icp2
         a33_0 += mul(c["A2-A3"], f["om2"], out=t)
         mul(e["Q"], e["Q"], out=t)
         t *= e["om2iS"]
         a33_0 += t
-        a12sq = mul(a12, a12, out=w("_t2", s))
-        a11a22 = mul(a11, a22, out=w("_t0", s))
-        C = sub(a11a22, a12sq, out=w("C", s))
-        a12a23a13 = mul(TWO, a12, out=w("_t1", s))
+        a12sq = mul(a12, a12, out=wf["_t2"])
+        a11a22 = mul(a11, a22, out=wf["_t0"])
+        C = sub(a11a22, a12sq, out=wf["C"])
+        a12a23a13 = mul(TWO, a12, out=wf["_t1"])
         a12a23a13 *= a23
         a12a23a13 *= a13
-        a11a23sq = mul(a23, a23, out=w("_t5", s))
+        a11a23sq = mul(a23, a23, out=wf["_t5"])
         a11a23sq *= a11
-        a22a13sq = mul(a13, a13, out=w("_t6", s))
+        a22a13sq = mul(a13, a13, out=wf["_t6"])
         a22a13sq *= a22
         # certainty of the signs (see verdicts): the rounding error of a determinant expansion is below a
         # small multiple of eps times the permanent of abs(a); F and E0 are its parts without a33
-        F = np.abs(a11a22, out=w("F", s))
+        F = np.abs(a11a22, out=wf["F"])
         F += a12sq
         g1g1 = e["g1g1"]
         tol = fixed(np.sqrt(rtol))
-        s1neg = np.less(g1g1, ZERO, out=w("s1neg", s, bool))
-        a11neg = np.less(a11, ZERO, out=w("a11neg", s, bool))
-        Cneg = np.less(C, ZERO, out=w("Cneg", s, bool))
-        D0 = sub(a12a23a13, a11a23sq, out=w("D0", s))
+        s1neg = np.less(g1g1, ZERO, out=wb["s1neg"])
+        a11neg = np.less(a11, ZERO, out=wb["a11neg"])
+        Cneg = np.less(C, ZERO, out=wb["Cneg"])
+        D0 = sub(a12a23a13, a11a23sq, out=wf["D0"])
         D0 -= a22a13sq
-        E0 = np.abs(a12a23a13, out=w("E0", s))
+        E0 = np.abs(a12a23a13, out=wf["E0"])
         E0 += np.abs(a11a23sq, out=t)
         E0 += np.abs(a22a13sq, out=t)
         # (a product that underflows: not sure)
-        sure_T = np.not_equal(mul(g1g1, a11, out=t), ZERO, out=w("sure_T", s, bool))
+        sure_T = np.not_equal(mul(g1g1, a11, out=t), ZERO, out=wb["sure_T"])
         sure_T &= np.greater(np.abs(C, out=t), mul(tol, F, out=u), out=bt)
         # degree of the leading part: sign changes in (1, s1) and in (1, a11, a11 a22 - a12^2)
-        neg_T = np.add(s1neg, a11neg, out=w("neg_T", s, np.int8), dtype=np.int8)
+        neg_T = np.add(s1neg, a11neg, out=w.at(s, np.int8)["neg_T"], dtype=np.int8)
         neg_T += np.logical_xor(a11neg, Cneg, out=bt)
         d = {
             "g1g1": g1g1, "b1g1": e["b1g1"], "b1b1_0": e["b1b1"], "w1": w1, "a11": a11, "a22": a22, "a12": a12,
-            "a13": a13, "a23": a23, "a33_0": a33_0, "w3": mul(w1, icp2, out=w("w3", s)), "C": C, "D0": D0,
-            "b1g1_sq": mul(e["b1g1"], e["b1g1"], out=w("b1g1_sq", s)), "F": F, "E0": E0, "sure_T": sure_T,
+            "a13": a13, "a23": a23, "a33_0": a33_0, "w3": mul(w1, icp2, out=wf["w3"]), "C": C, "D0": D0,
+            "b1g1_sq": mul(e["b1g1"], e["b1g1"], out=wf["b1g1_sq"]), "F": F, "E0": E0, "sure_T": sure_T,
             "neg_T": neg_T, "s1neg": s1neg, "Cneg": Cneg,
         }
-        valid = d["valid"] = np.greater(f["cp2"], _TOL2, out=w("valid", s, bool))
+        valid = d["valid"] = np.greater(f["cp2"], _TOL2, out=wb["valid"])
         valid &= f["exists"]
-        valid &= np.greater(f["ct2"], _TOL2, out=w("sv_b_t", f["ct2"].shape, bool))
+        valid &= np.greater(f["ct2"], _TOL2, out=w.at(f["ct2"].shape, bool)["sv_b_t"])
     return d
 
 
@@ -356,27 +358,28 @@ def verdicts(d: dict[str, np.ndarray], k2: np.ndarray, valid: np.ndarray, rtol: 
     w = Scratch(keep=False) if work is None else work
     o = {} if out is None else out
     shape = common_shape(np.asarray(k2), d["C"])
+    wf, wb = w.at(shape), w.at(shape, bool)
     mul = np.multiply
 
     def res(name: str, dtype: Any = float) -> np.ndarray:
-        return o[name] if name in o else w(name, shape, dtype)
+        return o[name] if name in o else w.at(shape, dtype)[name]
 
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        b1b1 = mul(d["w1"], k2, out=w("_t0", shape))
+        b1b1 = mul(d["w1"], k2, out=wf["_t0"])
         b1b1 += d["b1b1_0"]
-        a33 = mul(d["w3"], k2, out=w("_t1", shape))
+        a33 = mul(d["w3"], k2, out=wf["_t1"])
         a33 += d["a33_0"]
-        gb = mul(d["g1g1"], b1b1, out=w("_t2", shape))
+        gb = mul(d["g1g1"], b1b1, out=wf["_t2"])
         s2 = np.subtract(gb, d["b1g1_sq"], out=res("s2"))
         s3 = mul(d["C"], a33, out=res("s3"))
         s3 += d["D0"]
         tol = fixed(np.sqrt(rtol))
-        t, u = w("_t3", shape), w("_t4", shape)
-        bt = w("vd_b", shape, bool)
+        t, u = wf["_t3"], wf["_t4"]
+        bt = wb["vd_b"]
         np.abs(gb, out=t)  # tol (abs(gb) + b1g1^2)
         t += d["b1g1_sq"]
         t *= tol
-        sure = np.greater(np.abs(s2, out=u), t, out=w("sure", shape, bool))
+        sure = np.greater(np.abs(s2, out=u), t, out=wb["sure"])
         np.abs(a33, out=t)  # tol (abs(a33) F + E0)
         t *= d["F"]
         t += d["E0"]

@@ -75,30 +75,47 @@ def check_fits(sat: Satellite, R0: float) -> None:
         )
 
 
+class Arrays(dict[str, np.ndarray]):
+    """Work arrays of one shape and dtype by name, created on first use (kept if ``keep``)."""
+
+    def __init__(self, shape: tuple[int, ...], dtype: np.dtype, keep: bool) -> None:
+        super().__init__()
+        self.shape, self.dtype, self.keep = shape, dtype, keep
+
+    def __missing__(self, name: str) -> np.ndarray:
+        a = np.empty(self.shape, self.dtype)
+        if self.keep:
+            self[name] = a
+        return a
+
+
 class Scratch:
-    """Named work arrays for the ``out=`` of ufuncs, kept from call to call (keyed by name and shape).
+    """Named work arrays for the ``out=`` of ufuncs, kept from call to call.
 
     A map is evaluated in blocks of the same shape: with a ``Scratch`` every block writes its quantities into
-    the arrays of the previous one instead of allocating (and page-faulting) fresh ones.  ``Scratch(keep=False)``
-    allocates on every request (a single evaluation).  The arrays a function returns live in the scratch:
-    the next evaluation with the same scratch overwrites them.
+    the arrays of the previous one instead of allocating (and page-faulting) fresh ones.  ``at(shape, dtype)``
+    gives the arrays of that shape and dtype by name.  ``Scratch(keep=False)`` allocates on every request (a
+    single evaluation).  The arrays a function returns live in the scratch: the next evaluation with the same
+    scratch overwrites them.  Names starting with ``_t`` are temporaries that a function does not return (each
+    function may reuse them; it calls no other user of the scratch while it holds them).
     """
 
     def __init__(self, keep: bool = True) -> None:
         self._keep = keep
-        self._arrays: dict[tuple[str, tuple[int, ...]], np.ndarray] = {}
+        self._sets: dict[tuple[tuple[int, ...], np.dtype], Arrays] = {}
 
-    def __call__(self, name: str, shape: tuple[int, ...], dtype: Any = float) -> np.ndarray:
-        if not self._keep:
-            return np.empty(shape, dtype)
-        a = self._arrays.get((name, shape))
-        if a is None or a.dtype != dtype:
-            a = self._arrays[(name, shape)] = np.empty(shape, dtype)
+    def at(self, shape: tuple[int, ...], dtype: Any = float) -> Arrays:
+        key = (shape, np.dtype(dtype))
+        a = self._sets.get(key)
+        if a is None:
+            a = Arrays(shape, key[1], self._keep)
+            if self._keep:
+                self._sets[key] = a
         return a
 
     def put(self, name: str, a: np.ndarray) -> None:
-        """Let ``name`` (at the shape of ``a``) be written into ``a`` (an output array, or a view of one)."""
-        self._arrays[(name, a.shape)] = a
+        """Let ``name`` (at the shape and dtype of ``a``) be written into ``a`` (an output array, or a view of one)."""
+        self.at(a.shape, a.dtype)[name] = a
 
 
 def common_shape(*vals: Any) -> tuple[int, ...]:
@@ -140,24 +157,23 @@ def sin_cos(theta: Any, work: Scratch | None = None) -> tuple[np.ndarray, np.nda
     :class:`Scratch`.
     """
     th = np.asarray(theta, dtype=float)
-    w = Scratch(keep=False) if work is None else work
-    s = th.shape
-    T = np.tan(th, out=w("_t0", s))
-    X = np.multiply(th, TWO, out=w("_t1", s))
+    wf = (Scratch(keep=False) if work is None else work).at(th.shape)
+    T = np.tan(th, out=wf["_t0"])
+    X = np.multiply(th, TWO, out=wf["_t1"])
     np.tan(X, out=X)
-    ct = np.multiply(T, T, out=w("cos_t", s))
+    ct = np.multiply(T, T, out=wf["cos_t"])
     ct += ONE
     np.sqrt(ct, out=ct)
     np.divide(ONE, ct, out=ct)
     # cos > 0 for abs(theta) <= fl(pi/2) < pi/2 (a NaN takes the general route too)
     if th.size and not (np.maximum.reduce(th, axis=None) <= 0.5 * np.pi
                         and np.minimum.reduce(th, axis=None) >= -0.5 * np.pi):
-        u = np.multiply(th, HALF, out=w("_t2", s))
+        u = np.multiply(th, HALF, out=wf["_t2"])
         np.tan(u, out=u)
         u *= T
         np.copysign(ct, u, out=ct)
-    st = np.multiply(T, ct, out=w("sin_t", s))
-    c2t = np.multiply(X, X, out=w("cos_2t", s))
+    st = np.multiply(T, ct, out=wf["sin_t"])
+    c2t = np.multiply(X, X, out=wf["cos_2t"])
     c2t += ONE
     np.sqrt(c2t, out=c2t)
     np.divide(ONE, c2t, out=c2t)
@@ -207,43 +223,44 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
         ts = th.shape
         s = common_shape(th, sgn, *c.values())
         st, ct, c2t = sin_cos(th, w)
-        st2, stct = mul(st, st, out=w("st2", ts)), mul(st, ct, out=w("stct", ts))
-        n2 = mul(c["n2:st2"], st2, out=w("n2", s))
+        wf, wb, wt = w.at(s), w.at(s, bool), w.at(ts)
+        st2, stct = mul(st, st, out=wt["st2"]), mul(st, ct, out=wt["stct"])
+        n2 = mul(c["n2:st2"], st2, out=wf["n2"])
         n2 += c["n2:1"]
-        exists = np.greater(n2, ZERO, out=w("exists", s, bool))
+        exists = np.greater(n2, ZERO, out=wb["exists"])
         n2p = n2 if exists.all() else np.where(exists, n2, np.nan)
-        tk = mul(c["tk:stct"], stct, out=w("tk", s))
+        tk = mul(c["tk:stct"], stct, out=wf["tk"])
         tk /= n2p
-        kap = np.arctan(tk, out=w("kappa0", s))
-        sec2 = mul(tk, tk, out=w("_t0", s))
+        kap = np.arctan(tk, out=wf["kappa0"])
+        sec2 = mul(tk, tk, out=wf["_t0"])
         sec2 += ONE
-        ck = np.sqrt(sec2, out=w("cos_k", s))
+        ck = np.sqrt(sec2, out=wf["cos_k"])
         np.divide(ONE, ck, out=ck)
-        sk = mul(tk, ck, out=w("sin_k", s))
-        om2 = mul(n2p, sec2, out=w("om2", s))
-        om = np.sqrt(om2, out=w("omega0", s))
+        sk = mul(tk, ck, out=wf["sin_k"])
+        om2 = mul(n2p, sec2, out=wf["om2"])
+        om = np.sqrt(om2, out=wf["omega0"])
         if not (isinstance(sgn, int) and sgn == 1) and np.any(sgn != 1):
             om *= sgn
-        t = w("_t1", s)
-        sp = mul(st, ck, out=w("sin_tk", s))
+        t = wf["_t1"]
+        sp = mul(st, ck, out=wf["sin_tk"])
         sp += mul(ct, sk, out=t)
-        cp = mul(ct, ck, out=w("cos_tk", s))
+        cp = mul(ct, ck, out=wf["cos_tk"])
         cp -= mul(st, sk, out=t)
-        cp2 = mul(cp, cp, out=w("cp2", s))
+        cp2 = mul(cp, cp, out=wf["cp2"])
         # gravity moment about y1, exact form 3/2 mu R0^-3 (A2 - A3) sin 2 theta0, and the centrifugal term:
         # rest = (A2 - A3) (omega0^2 sin(theta0 + kappa0) cos(theta0 + kappa0) + 3 n0 sin theta0 cos theta0)
-        rest = mul(sp, cp, out=w("rest", s))
+        rest = mul(sp, cp, out=wf["rest"])
         rest *= om2
         rest += mul(c["3n0"], stct, out=t)
         rest *= c["A2-A3"]
-        ck2 = mul(ck, ck, out=w("ck2", s))
-        S0 = mul(c["MR2"], ck2, out=w("S0", s))  # M R0^2 cos^2 kappa0 + A2 cos^2(theta0 + kappa0) + A3 sin^2(..)
+        ck2 = mul(ck, ck, out=wf["ck2"])
+        S0 = mul(c["MR2"], ck2, out=wf["S0"])  # M R0^2 cos^2 kappa0 + A2 cos^2(theta0 + kappa0) + A3 sin^2(..)
         S0 += mul(c["A2"], cp2, out=t)
         mul(sp, sp, out=t)
         t *= c["A3"]
         S0 += t
-        ct2 = mul(ct, ct, out=w("ct2", ts))
-        icp = np.divide(ONE, cp, out=w("icp", s))
+        ct2 = mul(ct, ct, out=wt["ct2"])
+        icp = np.divide(ONE, cp, out=wf["icp"])
     return {"n0": c["n0"], "n2": n2, "exists": exists, "theta0": th, "kappa0": kap, "omega0": om, "sin_t": st,
             "cos_t": ct, "cos_2t": c2t, "sin_k": sk, "cos_k": ck, "sin_tk": sp, "cos_tk": cp, "S0": S0,
             "rest": rest,
