@@ -10,7 +10,20 @@ import numpy as np
 
 from ..core.quadform import inertia
 from ._model import Satellite
-from ._stationary import ONE, SINGULAR_TOL, TWO, ZERO, Scratch, StationaryMotion, common_shape, family_side, fixed
+from ._stationary import (
+    FRESH,
+    ONE,
+    SINGULAR_TOL,
+    TWO,
+    ZERO,
+    Scratch,
+    StationaryMotion,
+    common_shape,
+    constants,
+    family_side,
+    fixed,
+    own,
+)
 
 __all__ = [
     "VERDICTS",
@@ -106,42 +119,42 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
     (:func:`second_variation_side` uses the a_ij they combine into, in closed form).  ``work``: see
     :class:`~rigidbody.gyrostat._stationary.Scratch`.
     """
-    c = entry_constants(M, A1, A2, A3, mu, R) if const is None else const
-    w = Scratch(keep=False) if work is None else work
-    mul = np.multiply
+    c = constants(entry_constants, M, A1, A2, A3, mu, R) if const is None else const
+    w = FRESH if work is None else work
     st, ct, sk, ck, sp = b["st"], b["ct"], b["sk"], b["ck"], b["sp"]
     om2, S, ck2, icp, stct = b["om2"], b["S"], b["ck2"], b["icp"], b["stct"]
     s = common_shape(st, sk, sp, om2, S, icp, b["n2"], *c.values())
-    wf = w.at(s)
-    t = wf["_t0"]
-    iS = np.divide(ONE, S, out=wf["_t1"])
+    wf, xp = w.at(s), w.ops(s)
+    mul = xp.multiply
+    t = wf["_t0"]  # (a work array or None, never rebound: see Scratch)
+    iS = xp.divide(ONE, S, out=wf["_t1"])
     s2k = mul(TWO, sk, out=wf["_t2"])
     s2k *= ck
     Q = mul(s2k, icp, out=wf["Q"])  # M R0^2 sin 2 kappa0 / (2 cos(theta0 + kappa0)) - (A2 - A3) sin(..)
     Q *= c["MR2/2"]
     Q -= mul(c["A2-A3"], sp, out=t)
     om2iS = mul(om2, iS, out=wf["om2iS"])
-    e = {"Q": Q, "om2iS": om2iS}
     # M omega0^2 cos^2 kappa0 = M n2 (second relation (2.4))
-    RR = e["RR"] = mul(c["4MR2"], ck2, out=wf["RR"])
+    RR = mul(c["4MR2"], ck2, out=wf["RR"])
     RR -= S
     RR *= iS
     RR *= mul(c["M"], b["n2"], out=t)
     RR += mul(c["RR:st2"], b["st2"], out=t)
     RR += c["RR:1"]
-    kk = e["kk"] = mul(S, ck2, out=wf["kk"])
-    mul(s2k, s2k, out=t)
-    t *= c["MR2"]
-    kk += t
+    kk = mul(S, ck2, out=wf["kk"])
+    x = mul(s2k, s2k, out=t)
+    x *= c["MR2"]
+    kk += x
     kk *= mul(c["MR2"], om2iS, out=t)
+    e = {"Q": Q, "om2iS": om2iS, "RR": RR, "kk": kk}
     if form == "stable":
         G = c["G"]
         L = mul(G, stct, out=wf["L"])  # = lambda0 = M R0^2 omega0^2 sin kappa0 by the third relation (2.4)
         L /= ck
-        g1g1 = e["g1g1"] = mul(st, sp, out=wf["g1g1"])
+        g1g1 = mul(st, sp, out=wf["g1g1"])
         g1g1 *= G
         g1g1 /= ck
-        np.subtract(c["3n0(A1-A3)"], g1g1, out=g1g1)
+        e["g1g1"] = xp.subtract(c["3n0(A1-A3)"], g1g1, out=own(g1g1))
         if gamma2:
             e["g2g2"] = G * (b["c2t"] - stct * b["tk"]) / b["ct2"]
     else:
@@ -150,26 +163,28 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
         if gamma2:
             e["g2g2"] = -L * sp / (b["ct2"] * ct) + c["3n0(A2-A3)"]
     e["L"] = L
-    Lsticp = e["Lsticp"] = mul(L, st, out=wf["Lsticp"])
+    Lsticp = mul(L, st, out=wf["Lsticp"])
     Lsticp *= icp
-    b1b1 = e["b1b1"] = mul(c["A2-A1"], om2, out=wf["b1b1"])
+    b1b1 = mul(c["A2-A1"], om2, out=wf["b1b1"])
     b1b1 += Lsticp
+    e["Lsticp"], e["b1b1"] = Lsticp, b1b1
     if gamma2:
-        e["b3b3"] = e["Lsticp"] * (icp * icp) + c["A2-A3"] * om2 + om2iS * (Q * Q)
+        e["b3b3"] = Lsticp * (icp * icp) + c["A2-A3"] * om2 + om2iS * (Q * Q)
         e["b3g2"] = (L * sk) * icp / -ct
     e["b1g1"] = L
     MRom2s2k = mul(om2, s2k, out=wf["_t3"])
     MRom2s2k *= c["MR"]
-    Rk = e["Rk"] = mul(c["2MR2"], ck2, out=wf["Rk"])
-    np.subtract(S, Rk, out=Rk)
+    Rk = mul(c["2MR2"], ck2, out=wf["Rk"])
+    Rk = xp.subtract(S, Rk, out=own(Rk))
     Rk *= iS
     Rk *= MRom2s2k
-    Rb3 = e["Rb3"] = mul(om2iS, ck2, out=wf["Rb3"])
+    Rb3 = mul(om2iS, ck2, out=wf["Rb3"])
     Rb3 *= c["2MR"]
     Rb3 *= Q
-    kb3 = e["kb3"] = mul(c["-R"], iS, out=wf["kb3"])
+    kb3 = mul(c["-R"], iS, out=wf["kb3"])
     kb3 *= MRom2s2k
     kb3 *= Q
+    e["Rk"], e["Rb3"], e["kb3"] = Rk, Rb3, kb3
     if gamma2:
         e["Rg2"] = c["Rg2:st"] * st
     return e
@@ -246,14 +261,14 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
     kappa0)) > 1e-6).  ``const``: :func:`entry_constants` of the body; ``work``: see
     :class:`~rigidbody.gyrostat._stationary.Scratch`.
     """
-    c = entry_constants(M, A1, A2, A3, mu, R0) if const is None else const
-    w = Scratch(keep=False) if work is None else work
-    mul, sub = np.multiply, np.subtract
+    c = constants(entry_constants, M, A1, A2, A3, mu, R0) if const is None else const
+    w = FRESH if work is None else work
     icp = f["icp"]
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         e = _entries(f, M, A1, A2, A3, mu, R0, gamma2=False, const=c, work=w)
         s = e["RR"].shape
-        wf, wb = w.at(s), w.at(s, bool)
+        wf, wb, xp = w.at(s), w.at(s, bool), w.ops(s)
+        mul, sub = xp.multiply, xp.subtract
         t, u = wf["_t3"], wf["_t4"]
         bt = wb["sv_b"]
         # (2.5) in closed form with the stable entries: with h = cos^2 theta0 W_g2g2 = G (cos 2 theta0 - sin
@@ -272,17 +287,17 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
         a22 = sub(Gc2t, Gstct_tk, out=wf["a22"])
         a22 += e["kk"]
         Rg2ct = mul(c["Rg2:st"], f["stct"], out=wf["_t2"])  # cos theta0 W_Rg2
-        a12 = np.add(e["Rk"], Rg2ct, out=wf["a12"])
+        a12 = xp.add(e["Rk"], Rg2ct, out=wf["a12"])
         a13 = sub(e["Rb3"], mul(Rg2ct, icp, out=t), out=wf["a13"])
         a23 = sub(e["kb3"], mul(Gc2t, icp, out=t), out=wf["a23"])
         # a33_0 = icp2 (Lsticp + Gc2t + Gstct_tk) + (A2 - A3) omega0^2 + om2iS Q^2
-        a33_0 = np.add(Gc2t, Gstct_tk, out=wf["a33_0"])
+        a33_0 = xp.add(Gc2t, Gstct_tk, out=wf["a33_0"])
         a33_0 += e["Lsticp"]
         a33_0 *= icp2
         a33_0 += mul(c["A2-A3"], f["om2"], out=t)
-        mul(e["Q"], e["Q"], out=t)
-        t *= e["om2iS"]
-        a33_0 += t
+        x = mul(e["Q"], e["Q"], out=t)
+        x *= e["om2iS"]
+        a33_0 += x
         a12sq = mul(a12, a12, out=wf["_t2"])
         a11a22 = mul(a11, a22, out=wf["_t0"])
         C = sub(a11a22, a12sq, out=wf["C"])
@@ -295,33 +310,34 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
         a22a13sq *= a22
         # certainty of the signs (see verdicts): the rounding error of a determinant expansion is below a
         # small multiple of eps times the permanent of abs(a); F and E0 are its parts without a33
-        F = np.abs(a11a22, out=wf["F"])
+        F = xp.abs(a11a22, out=wf["F"])
         F += a12sq
         g1g1 = e["g1g1"]
-        tol = fixed(np.sqrt(rtol))
-        s1neg = np.less(g1g1, ZERO, out=wb["s1neg"])
-        a11neg = np.less(a11, ZERO, out=wb["a11neg"])
-        Cneg = np.less(C, ZERO, out=wb["Cneg"])
+        tol = fixed(xp.sqrt(rtol))
+        s1neg = xp.less(g1g1, ZERO, out=wb["s1neg"])
+        a11neg = xp.less(a11, ZERO, out=wb["a11neg"])
+        Cneg = xp.less(C, ZERO, out=wb["Cneg"])
         D0 = sub(a12a23a13, a11a23sq, out=wf["D0"])
         D0 -= a22a13sq
-        E0 = np.abs(a12a23a13, out=wf["E0"])
-        E0 += np.abs(a11a23sq, out=t)
-        E0 += np.abs(a22a13sq, out=t)
+        E0 = xp.abs(a12a23a13, out=wf["E0"])
+        E0 += xp.abs(a11a23sq, out=t)
+        E0 += xp.abs(a22a13sq, out=t)
         # (a product that underflows: not sure)
-        sure_T = np.not_equal(mul(g1g1, a11, out=t), ZERO, out=wb["sure_T"])
-        sure_T &= np.greater(np.abs(C, out=t), mul(tol, F, out=u), out=bt)
+        sure_T = xp.not_equal(mul(g1g1, a11, out=t), ZERO, out=wb["sure_T"])
+        sure_T &= xp.greater(xp.abs(C, out=t), mul(tol, F, out=u), out=bt)
         # degree of the leading part: sign changes in (1, s1) and in (1, a11, a11 a22 - a12^2)
-        neg_T = np.add(s1neg, a11neg, out=w.at(s, np.int8)["neg_T"], dtype=np.int8)
-        neg_T += np.logical_xor(a11neg, Cneg, out=bt)
+        neg_T = xp.add(s1neg, a11neg, out=w.at(s, np.int8)["neg_T"], dtype=np.int8)
+        neg_T += xp.logical_xor(a11neg, Cneg, out=bt)
         d = {
             "g1g1": g1g1, "b1g1": e["b1g1"], "b1b1_0": e["b1b1"], "w1": w1, "a11": a11, "a22": a22, "a12": a12,
             "a13": a13, "a23": a23, "a33_0": a33_0, "w3": mul(w1, icp2, out=wf["w3"]), "C": C, "D0": D0,
             "b1g1_sq": mul(e["b1g1"], e["b1g1"], out=wf["b1g1_sq"]), "F": F, "E0": E0, "sure_T": sure_T,
             "neg_T": neg_T, "s1neg": s1neg, "Cneg": Cneg,
         }
-        valid = d["valid"] = np.greater(f["cp2"], _TOL2, out=wb["valid"])
+        valid = xp.greater(f["cp2"], _TOL2, out=wb["valid"])
         valid &= f["exists"]
-        valid &= np.greater(f["ct2"], _TOL2, out=w.at(f["ct2"].shape, bool)["sv_b_t"])
+        valid &= xp.greater(f["ct2"], _TOL2, out=w.at(f["ct2"].shape, bool)["sv_b_t"])
+        d["valid"] = valid
     return d
 
 
@@ -355,11 +371,11 @@ def verdicts(d: dict[str, np.ndarray], k2: np.ndarray, valid: np.ndarray, rtol: 
     type) and ``code`` (int8), e.g. views into a map's outputs; ``work``: see
     :class:`~rigidbody.gyrostat._stationary.Scratch`.
     """
-    w = Scratch(keep=False) if work is None else work
+    w = FRESH if work is None else work
     o = {} if out is None else out
     shape = common_shape(np.asarray(k2), d["C"])
-    wf, wb = w.at(shape), w.at(shape, bool)
-    mul = np.multiply
+    wf, wb, xp = w.at(shape), w.at(shape, bool), w.ops(shape)
+    mul = xp.multiply
 
     def res(name: str, dtype: Any = float) -> np.ndarray:
         return o[name] if name in o else w.at(shape, dtype)[name]
@@ -370,34 +386,36 @@ def verdicts(d: dict[str, np.ndarray], k2: np.ndarray, valid: np.ndarray, rtol: 
         a33 = mul(d["w3"], k2, out=wf["_t1"])
         a33 += d["a33_0"]
         gb = mul(d["g1g1"], b1b1, out=wf["_t2"])
-        s2 = np.subtract(gb, d["b1g1_sq"], out=res("s2"))
+        s2 = xp.subtract(gb, d["b1g1_sq"], out=res("s2"))
         s3 = mul(d["C"], a33, out=res("s3"))
         s3 += d["D0"]
-        tol = fixed(np.sqrt(rtol))
+        tol = fixed(xp.sqrt(rtol))
         t, u = wf["_t3"], wf["_t4"]
         bt = wb["vd_b"]
-        np.abs(gb, out=t)  # tol (abs(gb) + b1g1^2)
-        t += d["b1g1_sq"]
-        t *= tol
-        sure = np.greater(np.abs(s2, out=u), t, out=wb["sure"])
-        np.abs(a33, out=t)  # tol (abs(a33) F + E0)
-        t *= d["F"]
-        t += d["E0"]
-        t *= tol
-        sure &= np.greater(np.abs(s3, out=u), t, out=bt)
+        x = xp.abs(gb, out=t)  # tol (abs(gb) + b1g1^2)
+        x += d["b1g1_sq"]
+        x *= tol
+        sure = xp.greater(xp.abs(s2, out=u), x, out=wb["sure"])
+        y = xp.abs(a33, out=t)  # tol (abs(a33) F + E0)
+        y *= d["F"]
+        y += d["E0"]
+        y *= tol
+        sure &= xp.greater(xp.abs(s3, out=u), y, out=bt)
         sure &= d["sure_T"]
-        n_neg = np.add(d["neg_T"], np.logical_xor(np.less(s2, ZERO, out=bt), d["s1neg"], out=bt),
+        n_neg = xp.add(d["neg_T"], xp.logical_xor(xp.less(s2, ZERO, out=bt), d["s1neg"], out=bt),
                        out=res("n_neg", np.int8))
-        n_neg += np.logical_xor(np.less(s3, ZERO, out=bt), d["Cneg"], out=bt)
+        n_neg += xp.logical_xor(xp.less(s3, ZERO, out=bt), d["Cneg"], out=bt)
     code = _CODE_OF_DEGREE.take(n_neg, out=res("code", np.int8), mode="clip")  # n_neg in 0..5
+    if not isinstance(code, np.ndarray):  # one point without a scratch: a numpy scalar
+        code = np.array(code)
     valid = np.broadcast_to(valid, shape)
     n_zero: np.ndarray | None = None
-    slow = np.logical_not(sure, out=sure)
+    slow = np.logical_not(sure, out=own(sure))
     slow &= valid
     if slow.any():
-        B = np.stack([_take(d["g1g1"], slow), _take(d["b1g1"], slow), _take(d["b1g1"], slow), b1b1[slow]],
+        B = np.stack([_take(d["g1g1"], slow), _take(d["b1g1"], slow), _take(d["b1g1"], slow), _take(b1b1, slow)],
                      axis=-1).reshape(-1, 2, 2)
-        a = np.stack([_take(d[n], slow) if n != "a33" else a33[slow]
+        a = np.stack([_take(d[n], slow) if n != "a33" else _take(a33, slow)
                       for n in ("a11", "a12", "a13", "a12", "a22", "a23", "a13", "a23", "a33")],
                      axis=-1).reshape(-1, 3, 3)
         fin = np.all(np.isfinite(B), axis=(1, 2)) & np.all(np.isfinite(a), axis=(1, 2))
@@ -410,6 +428,8 @@ def verdicts(d: dict[str, np.ndarray], k2: np.ndarray, valid: np.ndarray, rtol: 
         cc = _verdict_codes(nn, nz)
         cc[~fin] = -1
         n_zero = np.zeros(shape, dtype=np.int8)
+        if not isinstance(n_neg, np.ndarray):
+            n_neg = np.array(n_neg)
         n_neg[slow], n_zero[slow], code[slow] = nn, nz, cc
         valid = valid & ~(slow & (code == -1))
     if not valid.all():

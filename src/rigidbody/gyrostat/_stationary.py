@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import collections
+import functools
 import math
 import warnings
 from dataclasses import dataclass, replace
@@ -75,10 +77,11 @@ def check_fits(sat: Satellite, R0: float) -> None:
         )
 
 
-class Arrays(dict[str, np.ndarray]):
-    """Work arrays of one shape and dtype by name, created on first use (kept if ``keep``)."""
+class Arrays(dict[str, Any]):
+    """Work arrays of one shape and dtype by name, created on first use and kept if ``keep``, else new on
+    each request."""
 
-    def __init__(self, shape: tuple[int, ...], dtype: np.dtype, keep: bool) -> None:
+    def __init__(self, shape: tuple[int, ...], dtype: Any, keep: bool) -> None:
         super().__init__()
         self.shape, self.dtype, self.keep = shape, dtype, keep
 
@@ -89,33 +92,105 @@ class Arrays(dict[str, np.ndarray]):
         return a
 
 
+#: the "arrays" of a single point without a scratch: None for every name (the ufunc returns a numpy scalar)
+_NO_ARRAYS: dict[str, Any] = collections.defaultdict(type(None))
+#: the dtypes the users of a Scratch name (float, bool, np.int8), by their numpy dtype
+_DTYPES = {np.dtype(t): t for t in (float, bool, np.int8)}
+
+
 class Scratch:
     """Named work arrays for the ``out=`` of ufuncs, kept from call to call.
 
     A map is evaluated in blocks of the same shape: with a ``Scratch`` every block writes its quantities into
     the arrays of the previous one instead of allocating (and page-faulting) fresh ones.  ``at(shape, dtype)``
-    gives the arrays of that shape and dtype by name.  ``Scratch(keep=False)`` allocates on every request (a
-    single evaluation).  The arrays a function returns live in the scratch: the next evaluation with the same
-    scratch overwrites them.  Names starting with ``_t`` are temporaries that a function does not return (each
-    function may reuse them; it calls no other user of the scratch while it holds them).
+    gives the arrays of that shape and dtype by name (``dtype`` one of float, bool, np.int8).
+    ``Scratch(keep=False)`` allocates on every request (a single evaluation), and gives None for the shape
+    (): each ufunc then returns a numpy scalar, and :meth:`ops` gives operators on numpy scalars, much
+    quicker than ufunc calls (one point, as in ``stability``).  The code that uses a scratch therefore always
+    takes the result an operation returns, and writes into a variable in place only through :func:`own`.
+    The arrays a function returns live in the scratch: the next evaluation with the same scratch overwrites
+    them.  Names starting with ``_t`` are temporaries that a function does not return (each function may
+    reuse them; it calls no other user of the scratch while it holds them).
     """
 
     def __init__(self, keep: bool = True) -> None:
         self._keep = keep
-        self._sets: dict[tuple[tuple[int, ...], np.dtype], Arrays] = {}
+        self._sets: dict[tuple[tuple[int, ...], Any], Any] = {}
 
-    def at(self, shape: tuple[int, ...], dtype: Any = float) -> Arrays:
-        key = (shape, np.dtype(dtype))
+    def at(self, shape: tuple[int, ...], dtype: Any = float) -> Any:
+        if not self._keep:  # (nothing to keep: no growing cache of shapes)
+            return _NO_ARRAYS if shape == () else Arrays(shape, dtype, False)
+        key = (shape, dtype)
         a = self._sets.get(key)
         if a is None:
-            a = Arrays(shape, key[1], self._keep)
-            if self._keep:
-                self._sets[key] = a
+            a = self._sets[key] = Arrays(shape, dtype, True)
         return a
+
+    def ops(self, shape: tuple[int, ...]) -> Any:
+        """The ufuncs for quantities of this shape: NumPy's, or :class:`ScalarOps` for one point without a
+        scratch (where the results are numpy scalars)."""
+        return ScalarOps if not self._keep and shape == () else np
 
     def put(self, name: str, a: np.ndarray) -> None:
         """Let ``name`` (at the shape and dtype of ``a``) be written into ``a`` (an output array, or a view of one)."""
-        self.at(a.shape, a.dtype)[name] = a
+        self.at(a.shape, _DTYPES[a.dtype])[name] = a
+
+
+#: the scratch of the evaluations without one (it keeps no arrays)
+FRESH = Scratch(keep=False)
+
+
+class ScalarOps:
+    """The ufuncs the users of a :class:`Scratch` call, as Python operators on numpy scalars (``out`` is None):
+    a ufunc call on a numpy scalar costs about 1 us, an operator a tenth of that; the IEEE operations are the
+    same."""
+
+    tan, arctan, sqrt, copysign = np.tan, np.arctan, np.sqrt, np.copysign
+
+    @staticmethod
+    def multiply(a: Any, b: Any, out: None = None) -> Any:
+        return a * b
+
+    @staticmethod
+    def divide(a: Any, b: Any, out: None = None) -> Any:
+        return a / b
+
+    @staticmethod
+    def add(a: Any, b: Any, out: None = None, dtype: Any = None) -> Any:
+        return a + b if dtype is None else dtype(a) + dtype(b)
+
+    @staticmethod
+    def subtract(a: Any, b: Any, out: None = None) -> Any:
+        return a - b
+
+    @staticmethod
+    def abs(a: Any, out: None = None) -> Any:
+        return abs(a)
+
+    @staticmethod
+    def greater(a: Any, b: Any, out: None = None) -> Any:
+        return a > b
+
+    @staticmethod
+    def less(a: Any, b: Any, out: None = None) -> Any:
+        return a < b
+
+    @staticmethod
+    def not_equal(a: Any, b: Any, out: None = None) -> Any:
+        return a != b
+
+    @staticmethod
+    def logical_xor(a: Any, b: Any, out: None = None) -> Any:
+        return a ^ b
+
+    @staticmethod
+    def logical_not(a: Any, out: None = None) -> Any:
+        return ~a
+
+
+def own(x: Any) -> np.ndarray | None:
+    """``x`` as the ``out=`` of an operation on itself if it is an array (a scalar is replaced instead)."""
+    return x if isinstance(x, np.ndarray) else None
 
 
 def common_shape(*vals: Any) -> tuple[int, ...]:
@@ -157,28 +232,29 @@ def sin_cos(theta: Any, work: Scratch | None = None) -> tuple[np.ndarray, np.nda
     :class:`Scratch`.
     """
     th = np.asarray(theta, dtype=float)
-    wf = (Scratch(keep=False) if work is None else work).at(th.shape)
-    T = np.tan(th, out=wf["_t0"])
-    X = np.multiply(th, TWO, out=wf["_t1"])
-    np.tan(X, out=X)
-    ct = np.multiply(T, T, out=wf["cos_t"])
+    w = FRESH if work is None else work
+    wf, xp = w.at(th.shape), w.ops(th.shape)
+    T = xp.tan(th, out=wf["_t0"])
+    X = xp.multiply(th, TWO, out=wf["_t1"])
+    X = xp.tan(X, out=own(X))
+    ct = xp.multiply(T, T, out=wf["cos_t"])
     ct += ONE
-    np.sqrt(ct, out=ct)
-    np.divide(ONE, ct, out=ct)
+    ct = xp.sqrt(ct, out=own(ct))
+    ct = xp.divide(ONE, ct, out=own(ct))
     # cos > 0 for abs(theta) <= fl(pi/2) < pi/2 (a NaN takes the general route too)
     if th.size and not (np.maximum.reduce(th, axis=None) <= 0.5 * np.pi
                         and np.minimum.reduce(th, axis=None) >= -0.5 * np.pi):
-        u = np.multiply(th, HALF, out=wf["_t2"])
-        np.tan(u, out=u)
+        u = xp.multiply(th, HALF, out=wf["_t2"])
+        u = xp.tan(u, out=own(u))
         u *= T
-        np.copysign(ct, u, out=ct)
-    st = np.multiply(T, ct, out=wf["sin_t"])
-    c2t = np.multiply(X, X, out=wf["cos_2t"])
+        ct = xp.copysign(ct, u, out=own(ct))
+    st = xp.multiply(T, ct, out=wf["sin_t"])
+    c2t = xp.multiply(X, X, out=wf["cos_2t"])
     c2t += ONE
-    np.sqrt(c2t, out=c2t)
-    np.divide(ONE, c2t, out=c2t)
+    c2t = xp.sqrt(c2t, out=own(c2t))
+    c2t = xp.divide(ONE, c2t, out=own(c2t))
     X *= T
-    np.copysign(c2t, X, out=c2t)
+    c2t = xp.copysign(c2t, X, out=own(c2t))
     return st, ct, c2t
 
 
@@ -194,6 +270,20 @@ def family_constants(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any) -> dic
             "n2:1": n0 * (1 - 4.5 / MR2 * (2 * A3 - A1 - A2) / 3),
             "tk:stct": 3 * n0 * (A2 - A3) / MR2,  # tan kappa0 = tk:stct sin theta0 cos theta0 / n2
         }
+
+
+@functools.lru_cache(maxsize=32)
+def _scalar_constants(fn: Any, *body: float) -> dict[str, Any]:
+    return {k: np.float64(v) for k, v in fn(*body).items()}
+
+
+def constants(fn: Any, M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any) -> dict[str, Any]:
+    """``fn(M, A1, A2, A3, mu, R0)`` (:func:`family_constants` or ``_stability.entry_constants``), remembered as
+    numpy scalars for a body of Python floats (the scalar API evaluates one body point after point)."""
+    body = (M, A1, A2, A3, mu, R0)
+    if all(type(v) is float for v in body):
+        return _scalar_constants(fn, *body)
+    return fn(*body)
 
 
 def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any,
@@ -214,9 +304,8 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
     ``const``: :func:`family_constants` of the body (computed here if not given); ``work``: see :class:`Scratch`
     (a map passes both, once for all its blocks).  The quantities of theta0 alone keep its shape.
     """
-    c = family_constants(M, A1, A2, A3, mu, R0) if const is None else const
-    w = Scratch(keep=False) if work is None else work
-    mul = np.multiply
+    c = constants(family_constants, M, A1, A2, A3, mu, R0) if const is None else const
+    w = FRESH if work is None else work
     with np.errstate(divide="ignore", invalid="ignore"):
         th = np.asarray(theta0, dtype=float)
         sgn = omega_sign if isinstance(omega_sign, int) else np.asarray(omega_sign, dtype=float)
@@ -224,21 +313,23 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
         s = common_shape(th, sgn, *c.values())
         st, ct, c2t = sin_cos(th, w)
         wf, wb, wt = w.at(s), w.at(s, bool), w.at(ts)
+        xp = w.ops(s)
+        mul = xp.multiply
         st2, stct = mul(st, st, out=wt["st2"]), mul(st, ct, out=wt["stct"])
         n2 = mul(c["n2:st2"], st2, out=wf["n2"])
         n2 += c["n2:1"]
-        exists = np.greater(n2, ZERO, out=wb["exists"])
+        exists = xp.greater(n2, ZERO, out=wb["exists"])
         n2p = n2 if exists.all() else np.where(exists, n2, np.nan)
         tk = mul(c["tk:stct"], stct, out=wf["tk"])
         tk /= n2p
-        kap = np.arctan(tk, out=wf["kappa0"])
+        kap = xp.arctan(tk, out=wf["kappa0"])
         sec2 = mul(tk, tk, out=wf["_t0"])
         sec2 += ONE
-        ck = np.sqrt(sec2, out=wf["cos_k"])
-        np.divide(ONE, ck, out=ck)
+        ck = xp.sqrt(sec2, out=wf["cos_k"])
+        ck = xp.divide(ONE, ck, out=own(ck))
         sk = mul(tk, ck, out=wf["sin_k"])
         om2 = mul(n2p, sec2, out=wf["om2"])
-        om = np.sqrt(om2, out=wf["omega0"])
+        om = xp.sqrt(om2, out=wf["omega0"])
         if not (isinstance(sgn, int) and sgn == 1) and np.any(sgn != 1):
             om *= sgn
         t = wf["_t1"]
@@ -256,11 +347,11 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
         ck2 = mul(ck, ck, out=wf["ck2"])
         S0 = mul(c["MR2"], ck2, out=wf["S0"])  # M R0^2 cos^2 kappa0 + A2 cos^2(theta0 + kappa0) + A3 sin^2(..)
         S0 += mul(c["A2"], cp2, out=t)
-        mul(sp, sp, out=t)
-        t *= c["A3"]
-        S0 += t
+        x = mul(sp, sp, out=t)
+        x *= c["A3"]
+        S0 += x
         ct2 = mul(ct, ct, out=wt["ct2"])
-        icp = np.divide(ONE, cp, out=wf["icp"])
+        icp = xp.divide(ONE, cp, out=wf["icp"])
     return {"n0": c["n0"], "n2": n2, "exists": exists, "theta0": th, "kappa0": kap, "omega0": om, "sin_t": st,
             "cos_t": ct, "cos_2t": c2t, "sin_k": sk, "cos_k": ck, "sin_tk": sp, "cos_tk": cp, "S0": S0,
             "rest": rest,
