@@ -237,7 +237,7 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
     side_cut = nd > 0 and side_shape[ax] == n_ax  # the side quantities vary along the blocked axis
     body = [pad[n] for n in ("M", "A1", "A2", "A3", "mu", "R0")]
     physical_all = _physical(*body) if all(b.size == 1 for b in body) else None  # once for a fixed body
-    # (1-element factors as floats: the padded theta0 has all nd axes, so the shapes of the results stay)
+    # (1-element factors as 0-d arrays: the padded theta0 has all nd axes, so the shapes of the results stay)
     const = (lean(family_constants(*body)), lean(entry_constants(*body)))
     work = Scratch()
 
@@ -289,9 +289,9 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
                 icp = f["icp"]
                 t = work.at(icp.shape)["_t0"]
                 kc = np.multiply(k2, np.multiply(f["sin_tk"], icp, out=t), out=full[kfull][blk])
-                np.multiply(f["rest"], icp, out=t)
-                t /= f["omega0"]
-                kc += t
+                x = np.multiply(f["rest"], icp, out=t)
+                x /= f["omega0"]
+                kc += x
             else:
                 # k2 from k3 divides by sin(theta0 + kappa0): ill-conditioned near theta0 = 0, pi
                 k2, _, _ = family_momentum(f, k3=p["k3"])

@@ -39,6 +39,9 @@ __all__ = [
 #: verdict codes used by the vectorised routines; -1 marks "no motion / singular chart"
 VERDICTS = {0: "stable", 1: "unstable", 2: "undecided", -1: "invalid"}
 
+#: below this cos^2 theta0 or cos^2(theta0 + kappa0) the chart (beta1, beta3, gamma1, gamma2) is singular
+_TOL2 = fixed(SINGULAR_TOL**2)
+
 #: order of the coordinates of the 6x6 Hessian
 COORDS = ("R", "kappa", "beta1", "beta3", "gamma1", "gamma2")
 #: order of the independent coordinates of the constrained 5x5 second variation
@@ -340,9 +343,6 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
         d["valid"] = valid
     return d
 
-
-#: below this cos^2 theta0 or cos^2(theta0 + kappa0) the chart (beta1, beta3, gamma1, gamma2) is singular
-_TOL2 = fixed(SINGULAR_TOL**2)
 
 #: verdict code of a nondegenerate form by its degree of instability (number of negative eigenvalues, 0..5)
 _CODE_OF_DEGREE = np.array([0, 1, 2, 1, 2, 1], dtype=np.int8)
