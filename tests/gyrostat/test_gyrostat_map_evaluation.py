@@ -116,3 +116,41 @@ def test_closed_form_a_ij_equal_the_elimination_of_the_printed_entries():
     for name, (i, j) in where.items():
         err = np.abs(got[name][use] - ref[use][:, i, j]) / scale
         assert np.max(err) < 1e-12, (name, np.max(err))
+
+
+@pytest.mark.parametrize("layout", ["scattered bodies", "A1 along the blocks"])
+def test_blocks_with_a_varying_body_do_not_change_the_map(monkeypatch, layout):
+    """The factors that involve only the body, mu and R0 are computed once per map and cut into blocks with
+    the points; with a body that varies along the blocked axis (per point, or one grid axis) and blocks of a
+    few dozen points, every quantity equals the single-block evaluation and, at sampled points, the scalar
+    stationary_motion + stability of that body."""
+    rng = np.random.default_rng(4)
+    if layout == "scattered bodies":
+        n = 400
+        a = rng.uniform(0.3, 1.0, (n, 3))
+        A = a / a.mean(axis=1, keepdims=True) * rng.uniform(0.05, 0.3, n)[:, None] ** 2
+        args = (rng.uniform(1.0, 1.5, n), rng.uniform(-3, 3, n))
+        kw = {"k2": rng.uniform(-0.2, 0.2, n), "A1": A[:, 0], "A2": A[:, 1], "A3": A[:, 2], "grid": False,
+              "omega_sign": -1}
+    else:
+        args = (1.0, np.linspace(-1.5, 1.5, 9))
+        kw = {"k2": np.linspace(-0.2, 0.2, 5), "A1": np.linspace(0.01, 0.032, 70)}
+    one = gyrostat.stability_map(SAT, *args, **kw)
+    monkeypatch.setattr(_maps, "_BLOCK", 32)
+    many = gyrostat.stability_map(SAT, *args, **kw)
+    for name in ("code", "degree", "s1", "s2", "s3", "k2", "k3", "kappa0", "omega0", "minors"):
+        # the same operations on the same numbers: equal up to the last bit (NaN at the same invalid points)
+        np.testing.assert_array_equal(getattr(many, name), getattr(one, name), err_msg=name)
+    assert len(np.unique(one.code)) >= 3
+    P = one.params
+    for idx in zip(*(rng.integers(0, n, 40) for n in one.shape)):
+        if one.code[idx] == -1:
+            continue
+        sat = gyrostat.Satellite(M=1.0, A1=float(P["A1"][idx]), A2=float(P["A2"][idx]), A3=float(P["A3"][idx]))
+        m = gyrostat.stationary_motion(sat, float(P["R0"][idx]), float(P["theta0"][idx]), k2=float(P["k2"][idx]),
+                                       omega_sign=kw.get("omega_sign", 1))
+        st = gyrostat.stability(m.satellite, m)
+        assert (st.verdict, st.degree) == (one.verdict[idx], one.degree[idx])
+        # the same float64 formulas, evaluated vectorised (SIMD loops may round tan, sqrt differently in the last bit)
+        assert one.s3[idx] == pytest.approx(st.s3, rel=1e-12, abs=0)
+        assert one.kappa0[idx] == pytest.approx(m.kappa0, rel=1e-13, abs=0)

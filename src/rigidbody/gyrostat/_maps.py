@@ -14,6 +14,7 @@ from ._model import Satellite
 from ._stability import (
     VERDICTS,
     a_matrix,
+    entry_constants,
     hessian_entries,
     restricted_conditions,
     second_variation_side,
@@ -21,13 +22,16 @@ from ._stability import (
 )
 from ._stationary import (
     SINGULAR_TOL,
+    Scratch,
     broadcast_shape,
     check_fits,
     check_omega_sign,
     family_arrays,
+    family_constants,
     family_momentum,
     family_side,
     float_arrays,
+    lean,
 )
 
 __all__ = ["StabilityMap", "exact_boundaries", "normalized_stability_map", "stability_map"]
@@ -205,9 +209,12 @@ def _physical(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any) -> Any:
         )
 
 
-def _side(p: dict[str, np.ndarray], omega_sign: int, rtol: float) -> tuple[dict, dict]:
-    f = family_side(p["M"], p["A1"], p["A2"], p["A3"], p["mu"], p["R0"], p["theta0"], omega_sign)
-    return f, second_variation_side(f, p["M"], p["A1"], p["A2"], p["A3"], p["mu"], p["R0"], rtol=rtol)
+def _side(p: dict[str, np.ndarray], omega_sign: int, rtol: float, const: tuple[dict, dict] | None = None,
+          work: Scratch | None = None) -> tuple[dict, dict]:
+    fc, ec = (None, None) if const is None else const
+    f = family_side(p["M"], p["A1"], p["A2"], p["A3"], p["mu"], p["R0"], p["theta0"], omega_sign, const=fc, work=work)
+    return f, second_variation_side(f, p["M"], p["A1"], p["A2"], p["A3"], p["mu"], p["R0"], rtol=rtol, const=ec,
+                                    work=work)
 
 
 def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, omega_sign: int,
@@ -216,7 +223,9 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
 
     Per block: the k2-free part of the family (2.4) and of the second variation on the shape of the
     parameters other than k2 / k3 (once per theta0 on a (theta0, k2) grid), then the few operations that
-    involve k2 on the block.
+    involve k2 on the block.  The factors that involve only the body, mu and R0 are computed once; every
+    block writes its intermediate quantities into the work arrays of the previous one (a :class:`Scratch`)
+    and its results straight into the map's arrays.
     """
     nd = len(shape)
     pad = {n: a.reshape((1,) * (nd - a.ndim) + a.shape) for n, a in arrs.items()}
@@ -228,6 +237,9 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
     side_cut = nd > 0 and side_shape[ax] == n_ax  # the side quantities vary along the blocked axis
     body = [pad[n] for n in ("M", "A1", "A2", "A3", "mu", "R0")]
     physical_all = _physical(*body) if all(b.size == 1 for b in body) else None  # once for a fixed body
+    # (1-element factors as 0-d arrays: the padded theta0 has all nd axes, so the shapes of the results stay)
+    const = (lean(family_constants(*body)), lean(entry_constants(*body)))
+    work = Scratch()
 
     kfull = "k3" if kname == "k2" else "k2"  # the computed component; the given one is returned as a view
     full = {n: np.empty(shape) for n in (kfull, "s2", "s3")}
@@ -235,13 +247,23 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
     code = np.empty(shape, dtype=np.int8)
     side = {n: np.empty(side_shape) for n in ("kappa0", "omega0", "s1")}
 
-    def cut(a: np.ndarray, sl: slice) -> np.ndarray:
-        if nd == 0 or a.shape[ax] != n_ax or n_ax == 1:
+    def cut(a: Any, sl: slice) -> Any:
+        if nd == 0 or not isinstance(a, np.ndarray) or a.ndim == 0 or a.shape[ax] != n_ax or n_ax == 1:
             return a
         return a[(slice(None),) * ax + (sl,)]
 
-    def side_part(p: dict[str, np.ndarray]) -> tuple[dict, dict, np.ndarray]:
-        f, d = _side(p, omega_sign, rtol)
+    def side_part(p: dict[str, np.ndarray], sl: slice) -> tuple[dict, dict, np.ndarray]:
+        # kappa0, omega0 and s1 = W_g1g1 straight into the map's arrays
+        outs = {"kappa0": cut(side["kappa0"], sl), "omega0": cut(side["omega0"], sl), "g1g1": cut(side["s1"], sl)}
+        for n, a in outs.items():
+            work.put(n, a)
+        fc, ec = const
+        if physical_all is None:  # the body varies: its factors too
+            fc, ec = {k: cut(v, sl) for k, v in fc.items()}, {k: cut(v, sl) for k, v in ec.items()}
+        f, d = _side(p, omega_sign, rtol, (fc, ec), work)
+        for n, a in (("kappa0", f["kappa0"]), ("omega0", f["omega0"]), ("g1g1", d["g1g1"])):
+            if a is not outs[n]:  # (a work array of another shape: copy)
+                outs[n][...] = a
         if physical_all is None:
             valid = d["valid"] & _physical(*(p[n] for n in ("M", "A1", "A2", "A3", "mu", "R0")))
         else:
@@ -250,47 +272,47 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
 
     if not side_cut:  # the side quantities do not vary along the blocked axis: compute them once
         with np.errstate(all="ignore"):
-            shared = side_part(pad)
+            shared = side_part(pad, slice(None))
+    any_bad = False
     for i0 in range(0, n_ax, step):
         sl = slice(i0, i0 + step)
         p = {n: cut(pad[n], sl) for n in pad}
+        blk: Any = (slice(None),) * ax + (sl,) if nd else ...  # (a 0-d map: its one element as a 0-d view)
+        out: dict[str, np.ndarray] = {"s2": full["s2"][blk], "s3": full["s3"][blk], "n_neg": degree[blk],
+                                      "code": code[blk]}
         with np.errstate(all="ignore"):
-            f, d, valid = side_part(p) if side_cut else shared
+            f, d, valid = side_part(p, sl) if side_cut else shared
             if kname == "k2":
                 k2 = p["k2"]
-                # k3 by the first relation (2.4) (NaN where cos(theta0 + kappa0) = 0, see below)
-                kc = k2 * (f["sin_tk"] * f["icp"]) + f["rest"] * f["icp"] / f["omega0"]
+                # k3 by the first relation (2.4) (NaN where cos(theta0 + kappa0) = 0, see below):
+                # k2 sin(theta0 + kappa0) / cos(..) + rest / (cos(..) omega0)
+                icp = f["icp"]
+                t = work.at(icp.shape)["_t0"]
+                kc = np.multiply(k2, np.multiply(f["sin_tk"], icp, out=t), out=full[kfull][blk])
+                x = np.multiply(f["rest"], icp, out=t)
+                x /= f["omega0"]
+                kc += x
             else:
                 # k2 from k3 divides by sin(theta0 + kappa0): ill-conditioned near theta0 = 0, pi
                 k2, _, _ = family_momentum(f, k3=p["k3"])
-                kc = k2
+                full[kfull][blk] = k2
                 valid = valid & (np.abs(f["sin_tk"]) > SINGULAR_TOL)
             # (a k2 or k3 that is not finite makes s2, s3 non-finite: verdicts() marks the point invalid)
-            v = verdicts(d, k2, valid, rtol=rtol)
-            blk = (slice(None),) * ax + (sl,) if nd else ()
-            full[kfull][blk] = kc
-            full["s2"][blk] = v["s2"]
-            full["s3"][blk] = v["s3"]
-            degree[blk] = v["n_neg"]
-            code[blk] = v["code"]
-            bad = ~v["valid"]
-            if np.any(bad):  # invalid points: NaN quantities, degree -1
+            v = verdicts(d, k2, valid, rtol=rtol, out=out, work=work)
+            if not v["valid"].all():  # invalid points: NaN quantities, degree -1
+                any_bad = True
+                bad = ~v["valid"]
                 if kname == "k2":
                     full[kfull][blk][bad & (f["cos_tk"] == 0)] = np.nan
                 full["s2"][blk][bad] = np.nan
                 full["s3"][blk][bad] = np.nan
                 degree[blk][bad] = -1
-            if side_cut or i0 == 0:
-                sblk = blk if side_cut else (slice(None),) * nd
-                side["kappa0"][sblk] = f["kappa0"]
-                side["omega0"][sblk] = f["omega0"]
-                side["s1"][sblk] = d["g1g1"]
 
     def b(x: np.ndarray) -> np.ndarray:
         return np.broadcast_to(x, shape)
 
     s1 = b(side["s1"])
-    if np.any(code == -1):
+    if any_bad:
         s1 = np.where(code == -1, np.nan, s1)
     P = {n: np.broadcast_to(v, shape) for n, v in arrs.items()}
     ks = {kname: P[kname], kfull: full[kfull]}
