@@ -47,6 +47,18 @@ def timed(fun):
     return time.perf_counter() - t0, out
 
 
+def serial_vs_processes(label: str, func, grid: dict, output: str) -> None:
+    """One sweep serially and on local processes: the speed-up, and whether the results are identical."""
+    n = int(np.prod([len(v) for v in grid.values()]))
+    t_ser, ds = timed(lambda: sweep(func, grid, executor="serial", progress=False))
+    t_proc, dp = timed(lambda: sweep(func, grid, progress=False))
+    same = bool(np.array_equal(ds[output].values, dp[output].values))
+    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
+    print(f"{label}, {n} points: serial {t_ser:.2f} s, local processes ({local_cpu_count()} workers) "
+          f"{t_proc:.2f} s: speed-up {t_ser / t_proc:.2f}x; identical: {same}; load average {load:.1f} on "
+          f"{os.cpu_count()} CPUs (other jobs take their share)")
+
+
 def main() -> None:
     sweep(trivial, {"a": [0.0], "b": [0.0]}, executor="serial", progress=False)  # imports xarray once
     a, b = np.linspace(0.0, 1.0, 200), np.linspace(-1.0, 1.0, 100)  # 2e4 points
@@ -60,23 +72,11 @@ def main() -> None:
           f"us/pt incl. worker start ({t_proc / t_loop:.1f}x); max |difference| = {diff:g}")
     print(f"memory of the Dataset: {ds.nbytes / n:.0f} bytes per point (2 float outputs + status + message)")
 
-    grid = {"eps": np.geomspace(0.01, 0.05, 6), "k2_0": np.linspace(0.1, 0.9, 6)}
-    t_ser, ds = timed(lambda: sweep(studies.averaging_error_euler_poinsot, grid, executor="serial", progress=False))
-    t_proc, dp = timed(lambda: sweep(studies.averaging_error_euler_poinsot, grid, progress=False))
-    same = bool(np.array_equal(ds["error"].values, dp["error"].values))
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    print(f"averaging_error_euler_poinsot (an averaged and a full evolution per point), 36 points: serial "
-          f"{t_ser:.2f} s, local processes ({local_cpu_count()} workers) {t_proc:.2f} s: speed-up "
-          f"{t_ser / t_proc:.2f}x; identical: {same}; load average {load:.1f} on {os.cpu_count()} CPUs")
-
-    grid = {"r1": np.linspace(0.2, 2.4, 16), "r3": np.linspace(0.2, 2.4, 16)}
-    t_ser, ds = timed(lambda: sweep(studies.spin_end, grid, executor="serial", progress=False))
-    t_proc, dp = timed(lambda: sweep(studies.spin_end, grid, progress=False))
-    same = bool(np.array_equal(ds["regime"].values, dp["regime"].values))
-    load = os.getloadavg()[0] if hasattr(os, "getloadavg") else float("nan")
-    print(f"spin_end (batched: one batch of averaged evolutions per chunk), 256 points: serial {t_ser:.2f} s, "
-          f"local processes ({local_cpu_count()} workers) {t_proc:.2f} s: speed-up {t_ser / t_proc:.2f}x; "
-          f"identical: {same}; load average {load:.1f} on {os.cpu_count()} CPUs (other jobs take their share)")
+    serial_vs_processes("averaging_error_euler_poinsot (an averaged and a full evolution per point)",
+                        studies.averaging_error_euler_poinsot,
+                        {"eps": np.geomspace(0.01, 0.05, 6), "k2_0": np.linspace(0.1, 0.9, 6)}, "error")
+    serial_vs_processes("spin_end (batched: one batch of averaged evolutions per chunk)", studies.spin_end,
+                        {"r1": np.linspace(0.2, 2.4, 16), "r3": np.linspace(0.2, 2.4, 16)}, "regime")
 
     sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
     g = {"theta0": np.linspace(-1.2, 1.2, 100), "k2": np.linspace(-0.05, 0.05, 50)}
