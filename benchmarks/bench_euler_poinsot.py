@@ -37,6 +37,7 @@ import math
 import time
 
 import numpy as np
+from common import BASELINE_RTOLS, cpu_time, time_at_accuracy
 from scipy.integrate import solve_ivp
 from scipy.special import ellipe, ellipk
 
@@ -153,14 +154,6 @@ def baseline(eps: float, y0: list[float], T: float, te: np.ndarray, rtol: float)
     return solve_ivp(rhs, (0.0, T), y0, method="DOP853", rtol=rtol, atol=0.0, t_eval=te)
 
 
-def cpu_time(f, repeat: int = 5, number: int = 1) -> float:
-    best = math.inf
-    for _ in range(repeat):
-        t0 = time.process_time()
-        for _ in range(number):
-            f()
-        best = min(best, (time.process_time() - t0) / number)
-    return best
 
 
 def errors(G, T, k2, delta, lam, ref) -> float:
@@ -182,21 +175,14 @@ def bench_vs_baseline(eps: float, T: float = 3.0, rtol: float = 1e-10) -> None:
     t_p = cpu_time(lambda: ep.averaged(BODY, I, eps, **kw), repeat=5, number=3 if eps == 0 else 1)
     print(f"euler_poinsot.averaged, eps = {eps:g}, rtol {rtol:g}: {t_p * 1e3:.2f} ms, nfev {s.nfev}, error {e_p:.1e}")
     runs = []
-    for rt in (1e-8, 1e-9, 3e-10, 1e-10, 3e-11, 1e-11, 3e-12, 1e-12):
+    for rt in BASELINE_RTOLS:
         sb = baseline(eps, y0, T, te, rt)
         G, k2, d, lam = sb.y
         e_b = errors(G, ep.T_from(BODY, G, k2), k2, d, lam, ref)
         t_b = cpu_time(lambda rt=rt: baseline(eps, y0, T, te, rt), repeat=3, number=3 if eps == 0 else 1)
         runs.append((e_b, t_b))
         print(f"  baseline rtol {rt:g}: {t_b * 1e3:.2f} ms, nfev {sb.nfev}, error {e_b:.1e}")
-    errs = np.array([e for e, _ in runs])
-    times = np.array([t for _, t in runs])
-    order = np.argsort(errs)
-    if e_p <= errs.min():
-        t_eq, note = float(times[order][0]), " (the baseline's best is still less accurate: a lower bound)"
-    else:
-        t_eq = float(np.exp(np.interp(np.log(e_p), np.log(errs[order]), np.log(times[order]))))
-        note = ""
+    t_eq, note = time_at_accuracy(e_p, runs)
     print(f"RATIO euler_poinsot.averaged vs straightforward SciPy (case 1, eps {eps:g}, tau in [0, {T:g}], rtol "
           f"{rtol:g}): {t_eq / t_p:.2f}x at equal accuracy (project error {e_p:.1e}, baseline interpolated to the "
           f"same; baseline at rtol {rtol:g}: error {runs[3][0]:.1e}, {runs[3][1] / t_p:.2f}x the project's time)"

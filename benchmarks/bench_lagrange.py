@@ -28,6 +28,7 @@ import math
 import time
 
 import numpy as np
+from common import BASELINE_RTOLS, cpu_time, time_at_accuracy
 from scipy.integrate import solve_ivp
 from scipy.special import ellipe, ellipk
 
@@ -38,14 +39,6 @@ A, C, MGL = TOP.A, TOP.C, TOP.mgl
 a_, b_ = DRAG.a, DRAG.b
 
 
-def cpu_time(f, repeat: int = 5, number: int = 1) -> float:
-    best = math.inf
-    for _ in range(repeat):
-        t0 = time.process_time()
-        for _ in range(number):
-            f()
-        best = min(best, (time.process_time() - t0) / number)
-    return best
 
 
 # ------------------------------------------------------------------------------ the straightforward baseline
@@ -90,21 +83,14 @@ def bench_vs_baseline(T: float = 100.0, rtol: float = 1e-10) -> None:
     print(f"lagrange.averaged, rtol {rtol:g}: {t_p * 1e3:.2f} ms, nfev {s.nfev}, relative errors Gz {e_p[0]:.1e}, "
           f"r {e_p[1]:.1e}, H + mgl {e_p[2]:.1e}")
     runs = []
-    for rt in (1e-8, 1e-9, 3e-10, 1e-10, 3e-11, 1e-11, 3e-12, 1e-12):
+    for rt in BASELINE_RTOLS:
         sb = baseline(ini, T, te, rt)
         e_b = max(rel_errors(*sb.y, ref))
         t_b = cpu_time(lambda rt=rt: baseline(ini, T, te, rt), repeat=5, number=3)
         runs.append((e_b, t_b))
         print(f"  baseline rtol {rt:g}: {t_b * 1e3:.2f} ms, nfev {sb.nfev}, largest relative error {e_b:.1e}")
     target = max(e_p)
-    errs = np.array([e for e, _ in runs])
-    times = np.array([t for _, t in runs])
-    order = np.argsort(errs)
-    if target <= errs.min():
-        t_eq, note = float(times[order][0]), " (the baseline's best is still less accurate: a lower bound)"
-    else:
-        t_eq = float(np.exp(np.interp(np.log(target), np.log(errs[order]), np.log(times[order]))))
-        note = ""
+    t_eq, note = time_at_accuracy(target, runs)
     print(f"RATIO lagrange.averaged vs straightforward SciPy (case 2, tau in [0, {T:g}], rtol {rtol:g}): "
           f"{t_eq / t_p:.2f}x at equal accuracy (project error {target:.1e}, baseline interpolated to the same; "
           f"baseline at rtol {rtol:g}: error {runs[3][0]:.1e}, {runs[3][1] / t_p:.2f}x the project's time){note}")

@@ -68,9 +68,12 @@ def test_the_averager_uses_the_fast_path_only_where_it_applies():
     L1, L2, L3, dT, dk2 = av.fast("max", 1, True)(1.0, 0.5, *N_DIR, 0.4)
     m = av.mean(_State(BODY, "max", -1, 1.0, 0.5, N_DIR, 0.4, ep.Orbit(0.0)))  # the other sense: plain path
     ref = av.mean(st)
+    # the same fast path behind both (mean() uses it for the calibrated region): equal up to the rounding of
+    # mean_of's few operations (~1e-16 relative), bounded generously
     np.testing.assert_allclose([L1, L2, L3], ref.L, rtol=0, atol=1e-14 * np.abs(ref.L).max())
     assert dk2 == pytest.approx(ref.dk2, rel=1e-12, abs=1e-16) and dT == pytest.approx(ref.dT, rel=1e-12, abs=1e-16)
-    # the paper's torques are odd in omega: the other sense has the same averages (to quadrature error)
+    # the paper's torques are odd in omega: the other sense (the plain evaluation) has the same averages, up to
+    # the quadrature error of the grid, quad_tol = 1e-12 of the torque's size
     np.testing.assert_allclose(m.L, ref.L, rtol=0, atol=1e-12 * np.abs(ref.L).max())
 
 
@@ -111,7 +114,7 @@ def test_torques_that_declare_broadcasting_broadcast(i, nu):
     grid = Grid(8, 1.0, 8)
     full = torque_grid(tq, st, grid)[0]
     compact = torque_grid(tq, st, grid, compact=True)[0]
-    np.testing.assert_array_equal(compact, full)
+    np.testing.assert_array_equal(compact, full)  # the same arithmetic per element: bit for bit
     # and a plain function, or a torque calling a user's field, is checked by the engine instead
     assert not ep.MagneticDipole([0.5, -0.3, 0.2], lambda v: np.zeros((*np.shape(v), 3)))._broadcasts
     assert not as_torque(skewed)._broadcasts

@@ -39,7 +39,7 @@ from scipy.integrate import DOP853
 
 from .ode import Event, Solution
 
-__all__ = ["integrate_batch"]
+__all__ = ["integrate_batch", "member_records"]
 
 # Hairer's DOP853 coefficients as SciPy ships them (12 stages, 3 more for the dense output)
 _N_STAGES: int = DOP853.n_stages
@@ -56,6 +56,34 @@ _ERR_EXP = -1.0 / (_ORDER_EST + 1)
 # SciPy's step-size controller (scipy/integrate/_ivp/rk.py)
 _SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
 _EPS = np.finfo(float).eps
+
+
+def member_records(B: int, t0: float, status: int = -1, message: Any = None
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The per-member records a batch result carries, before its members run.
+
+    Parameters
+    ----------
+    B : int
+        Number of members.
+    t0 : float
+        Start of the time span (each member's final time until it runs).
+    status : int
+        Initial status of every member (-1: not run).
+    message : object
+        Initial message of every member.
+
+    Returns
+    -------
+    status, message, event, nfev, t_final : numpy.ndarray
+        Shapes ``(B,)``: int statuses, object messages, object terminal events (None), int function counts,
+        float final times.
+    """
+    msg = np.empty(B, dtype=object)
+    msg[:] = message
+    event = np.empty(B, dtype=object)
+    event[:] = None
+    return np.full(B, status, dtype=int), msg, event, np.zeros(B, dtype=int), np.full(B, float(t0))
 
 
 def _as_member_array(value: Any, size: int, name: str) -> np.ndarray:

@@ -38,6 +38,7 @@ __all__ = [
     "body_rates",
     "dcm",
     "dcm_from_quat",
+    "dcm_from_unit_quat",
     "euler_from_quat",
     "euler_rates",
     "quat_from_dcm",
@@ -291,8 +292,26 @@ def dcm_from_quat(q: Any) -> np.ndarray:
     nrm = np.linalg.norm(qa, axis=-1, keepdims=True)
     if np.any(nrm == 0.0):
         raise ValueError("q must be non-zero")
-    w, x, y, z = np.moveaxis(qa / nrm, -1, 0)
-    R = np.empty((*w.shape, 3, 3))
+    return dcm_from_unit_quat(*np.moveaxis(qa / nrm, -1, 0))
+
+
+def dcm_from_unit_quat(w: Any, x: Any, y: Any, z: Any) -> np.ndarray:
+    """Direction cosine matrix (body -> reference) of a unit quaternion given by its components.
+
+    The rotation of :func:`dcm_from_quat` without its checks and normalisation, for right-hand sides that
+    hold the quaternion as separate state rows.
+
+    Parameters
+    ----------
+    w, x, y, z : float or array_like
+        Components of a unit quaternion (scalar part first), arrays of one shape.
+
+    Returns
+    -------
+    numpy.ndarray
+        Shape ``(..., 3, 3)``: ``x_ref = R @ x_body``.
+    """
+    R = np.empty((*np.shape(w), 3, 3))
     R[..., 0, 0] = 1 - 2 * (y * y + z * z)
     R[..., 0, 1] = 2 * (x * y - w * z)
     R[..., 0, 2] = 2 * (x * z + w * y)

@@ -37,7 +37,7 @@ between the precession and the Euler--Poinsot frequency (predicted jumps, after 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any
 
 import numpy as np
@@ -694,8 +694,9 @@ def averaged(
             raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {k2_stop}: "
                              "raise k2_max or start further from the separatrix")
     region0 = (kind, sigma)
-    gen = _Generic(body, tq if what == "torque" else drag_as_torque(tq, body, orb), averaging, quad_tol, eps, orb,
-                   nu0, rtol, atol, method, min_spin_ratio, drift_tol, resonance_tol)
+    gen = _Generic(torque=tq if what == "torque" else drag_as_torque(tq, body, orb), averaging=averaging,
+                   quad_tol=quad_tol, body=body, eps=eps, orbit=orb, nu0=nu0, rtol=rtol, atol=atol, method=method,
+                   min_spin_ratio=min_spin_ratio, drift_tol=drift_tol, resonance_tol=resonance_tol)
     if what == "drag" and averaging != "numerical":
         gen.drag = tq  # the closed forms (9) of the paper; the torque object serves the crossings
     else:
@@ -713,22 +714,31 @@ def averaged(
 # --------------------------------------------------------------------------------------------------
 # any torque: the averaged evolution of one kind of motion (restartable in the other kind)
 # --------------------------------------------------------------------------------------------------
-@dataclass
-class _Setup:
-    """What a run with a torque object keeps fixed: the body, the averaged torque, eps, the orbit, tolerances."""
+@dataclass(kw_only=True)
+class _RunOptions:
+    """The options of :func:`averaged` that every segment of a run shares."""
 
     body: Body
-    averager: Averager
     eps: float
     orbit: Orbit
     nu0: float
     rtol: float
     atol: float
     method: str
-    k2_max: float
     min_spin_ratio: float
     drift_tol: float | None
     resonance_tol: float | None
+
+    def options(self) -> dict[str, Any]:
+        return {f.name: getattr(self, f.name) for f in fields(_RunOptions)}
+
+
+@dataclass(kw_only=True)
+class _Setup(_RunOptions):
+    """What a run with a torque object keeps fixed: the options, the averaged torque, where it stops."""
+
+    averager: Averager
+    k2_max: float
     spin_cap: float = K2_SPIN_CAP
 
 
@@ -1263,24 +1273,14 @@ class _Piece:
     lam_start: float
 
 
-@dataclass
-class _Generic:
+@dataclass(kw_only=True)
+class _Generic(_RunOptions):
     """What the segments after a crossing share: the whole perturbation as a torque object and the options
     of :func:`averaged`. The segments use the averaging engine (closed forms of the parts that have them)."""
 
-    body: Body
     torque: Any
     averaging: str
     quad_tol: float
-    eps: float
-    orbit: Orbit
-    nu0: float
-    rtol: float
-    atol: float
-    method: str
-    min_spin_ratio: float
-    drift_tol: float | None
-    resonance_tol: float | None
 
     def __post_init__(self) -> None:
         self.averager = Averager(self.torque, self.averaging, self.quad_tol)
@@ -1290,8 +1290,7 @@ class _Generic:
         self.spin_cap = K2_SPIN_CAP
 
     def setup(self, k2_stop: float) -> _Setup:
-        return _Setup(self.body, self.averager, self.eps, self.orbit, self.nu0, self.rtol, self.atol, self.method,
-                      k2_stop, self.min_spin_ratio, self.drift_tol, self.resonance_tol, self.spin_cap)
+        return _Setup(**self.options(), averager=self.averager, k2_max=k2_stop, spin_cap=self.spin_cap)
 
     def piece(self, region: tuple[str, int], tau_span: Any, G: float, k2: float, n: np.ndarray, nu0: float,
               lam_s: float, k2_stop: float, first_step: float | None = None) -> _Piece:

@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core.batch import integrate_batch
+from ..core.batch import integrate_batch, member_records
 from ..core.kernel import ARRAY, SCALAR
 from ..core.ode import Event, Solution
 from . import _kernel as _k
@@ -227,12 +227,7 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
     e = run.orbit.e
     out = {k: np.full((B, 3, nt) if k == "n" else (B, nt), np.nan) for k in FIELDS if k != "kind"}
     out["kind"] = np.full((B, nt), "", dtype="<U3")
-    status = np.full(B, -1, dtype=int)
-    message = np.empty(B, dtype=object)
-    event = np.empty(B, dtype=object)
-    event[:] = None
-    nfev = np.zeros(B, dtype=int)
-    t_final = np.full(B, t0)
+    status, message, event, nfev, t_final = member_records(B, t0)
     y_final = np.full((B, 5), np.nan)  # rows G, k2, n at each member's end
     none = np.empty(0)
     none.setflags(write=False)

@@ -22,7 +22,8 @@ from typing import Any
 
 import numpy as np
 
-from ..core.batch import integrate_batch
+from ..core.batch import integrate_batch, member_records
+from ..core.euler import dcm_from_unit_quat
 from ..core.ode import Event, Solution
 from . import _kernel as _k
 from ._batch import Members, slow_message
@@ -48,21 +49,6 @@ class FullRun:
     k2_max: float | None
     min_spin_ratio: float
     spin_cap: float = 1.0
-
-
-def _rot(w: Any, x: Any, y: Any, z: Any) -> np.ndarray:
-    """Rotation matrices (body -> Ox_i) of unit quaternions given by components (arrays), shape (..., 3, 3)."""
-    R = np.empty((*np.shape(w), 3, 3))
-    R[..., 0, 0] = 1 - 2 * (y * y + z * z)
-    R[..., 0, 1] = 2 * (x * y - w * z)
-    R[..., 0, 2] = 2 * (x * z + w * y)
-    R[..., 1, 0] = 2 * (x * y + w * z)
-    R[..., 1, 1] = 1 - 2 * (x * x + z * z)
-    R[..., 1, 2] = 2 * (y * z - w * x)
-    R[..., 2, 0] = 2 * (x * z - w * y)
-    R[..., 2, 1] = 2 * (y * z + w * x)
-    R[..., 2, 2] = 1 - 2 * (x * x + y * y)
-    return R
 
 
 def _osculating(A: tuple[float, float, float], D: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -98,12 +84,7 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
     nt = te.size
     t0, t1 = float(tau_span[0]), float(tau_span[1])
     ns = 7 if e == 0.0 else 8
-    status = np.full(B, -1, dtype=int)
-    message = np.empty(B, dtype=object)
-    event = np.empty(B, dtype=object)
-    event[:] = None
-    nfev = np.zeros(B, dtype=int)
-    t_final = np.full(B, t0)
+    status, message, event, nfev, t_final = member_records(B, t0)
     Y = np.full((B, ns, nt), np.nan)
     for i, msg in mem.refused.items():
         message[i] = msg
@@ -147,7 +128,8 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
                 L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
                 L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
             else:
-                M = np.asarray(run.torque(np.stack([o1, o2, o3], axis=1), _rot(w, x, yq, z), nu), dtype=float)
+                C = dcm_from_unit_quat(w, x, yq, z)
+                M = np.asarray(run.torque(np.stack([o1, o2, o3], axis=1), C, nu), dtype=float)
                 L1, L2, L3 = M[:, 0], M[:, 1], M[:, 2]
             out = np.empty_like(y)
             out[:, 0] = (g2 * o3 - g3 * o2) * ie2 + L1
@@ -169,7 +151,8 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
 
         def n_of(y: np.ndarray) -> np.ndarray:
             q = y[:, 3:7] / np.linalg.norm(y[:, 3:7], axis=1, keepdims=True)
-            return np.einsum("mij,mj->mi", _rot(*q.T), y[:, 0:3]) / np.sqrt((y[:, 0:3] ** 2).sum(axis=1))[:, None]
+            g = np.einsum("mij,mj->mi", dcm_from_unit_quat(*q.T), y[:, 0:3])
+            return g / np.sqrt((y[:, 0:3] ** 2).sum(axis=1))[:, None]
 
         # the two cut events are evaluated in turn on the same arrays: one evaluation serves both (the cache holds
         # the arrays themselves, so their ids cannot be reused while cached)
@@ -222,7 +205,7 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
     # ---- output fields ---------------------------------------------------------------------------
     g = Y[:, 0:3]
     qn = Y[:, 3:7] / np.linalg.norm(Y[:, 3:7], axis=1, keepdims=True)
-    R = _rot(*np.moveaxis(qn, 1, 0))  # (B, nt, 3, 3)
+    R = dcm_from_unit_quat(*np.moveaxis(qn, 1, 0))  # (B, nt, 3, 3)
     n = np.einsum("bkij,bjk->bik", R, g)
     G = np.sqrt((g * g).sum(axis=1))
     n = n / G[:, None, :]

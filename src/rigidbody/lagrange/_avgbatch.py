@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core.batch import integrate_batch
+from ..core.batch import integrate_batch, member_records
 from ..core.ode import Event, Solution
 from . import _kernel as _k
 from ._avgrun import (
@@ -63,13 +63,7 @@ def averaged_batch(st: _Setup, initial: Any, t0: float, t1: float, te: np.ndarra
     chart_mode = st.chart
 
     out = {k: np.full((B, nt), np.nan) for k in _FIELDS}
-    status = np.zeros(B, dtype=int)
-    message = np.empty(B, dtype=object)
-    message[:] = _MSG_END
-    event = np.empty(B, dtype=object)
-    event[:] = None
-    nfev = np.zeros(B, dtype=int)
-    t_final = np.full(B, t0)
+    status, message, event, nfev, t_final = member_records(B, t0, 0, _MSG_END)
     tev: dict[str, list[list[float]]] = {k: [[] for _ in range(B)] for k in ("delta1_flip", "delta2_flip",
                                                                              "chart_switch")}
 
