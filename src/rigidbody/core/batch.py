@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 from scipy.integrate import DOP853
 
-from .ode import Event, Solution
+from .ode import Event, Solution, crossed
 
 __all__ = ["integrate_batch", "member_records"]
 
@@ -496,16 +496,7 @@ def integrate_batch(
                     gnew = [np.asarray(ev.fun(tna, yna, *prm_a), dtype=float).reshape(-1) for ev in evs]
             crossing = []
             for j, ev in enumerate(evs):
-                g_old, g_n = gval[j][ia], gnew[j]
-                up = (g_old <= 0) & (g_n >= 0)
-                down = (g_old >= 0) & (g_n <= 0)
-                if ev.direction > 0:
-                    hit = up
-                elif ev.direction < 0:
-                    hit = down
-                else:
-                    hit = up | down
-                crossing.append(hit)
+                crossing.append(crossed(gval[j][ia], gnew[j], ev.direction))
             need = hi > lo
             for hit in crossing:
                 need = need | hit

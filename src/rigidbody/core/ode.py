@@ -34,7 +34,7 @@ from scipy.optimize import brentq
 
 from . import _display
 
-__all__ = ["Event", "Solution", "integrate"]
+__all__ = ["Event", "Solution", "crossed", "integrate"]
 
 
 @dataclass(frozen=True)
@@ -62,6 +62,39 @@ class Event:
     terminal: bool = True
     direction: float = 0.0
     message: str = ""
+
+
+def crossed(g_old: Any, g_new: Any, direction: float) -> Any:
+    """Whether an event function crossed zero over a step, in the sense of ``direction``.
+
+    A root at the end of a step (``g_new == 0``) belongs to that step; a step that starts on a root
+    (``g_old == 0``) does not count it again, so one passage through zero is one event even when the
+    event function is exactly zero at a step boundary (a motion held on a separatrix). Works on floats
+    and elementwise on arrays (the batch integrator).
+
+    Parameters
+    ----------
+    g_old, g_new : float or ndarray
+        The event function at the start and at the end of the step.
+    direction : float
+        As in ``solve_ivp``: 0 any crossing, +1 upward, -1 downward.
+
+    Returns
+    -------
+    bool or ndarray of bool
+
+    Examples
+    --------
+    >>> crossed(-1.0, 0.0, 0), crossed(0.0, 1.0, 0), crossed(1.0, -1.0, +1)
+    (True, False, False)
+    """
+    up = (g_old < 0) & (g_new >= 0)
+    down = (g_old > 0) & (g_new <= 0)
+    if direction > 0:
+        return up
+    if direction < 0:
+        return down
+    return up | down
 
 
 class Solution:
@@ -477,9 +510,7 @@ def _solve_small(
             g_new = [ev(t, y, *args) for ev, _, _ in events]
             active = []
             for e, ((_, _, direction), a, b) in enumerate(zip(events, g, g_new)):
-                up = a <= 0.0 <= b
-                down = a >= 0.0 >= b
-                if (up and direction > 0) or (down and direction < 0) or ((up or down) and direction == 0):
+                if crossed(a, b, direction):
                     active.append(e)
             if active:
                 sol = _dense()
@@ -632,8 +663,15 @@ def integrate(
                 dense_output=dense_output, events=wrapped, args=args or None, max_step=max_step,
                 **({} if first_step is None else {"first_step": first_step}),
             )
-    t_events = {ev.name: np.asarray(res.t_events[i]) for i, ev in enumerate(evs)}
-    y_events = {ev.name: np.asarray(res.y_events[i]) for i, ev in enumerate(evs)}
+    t_events, y_events = {}, {}
+    for i, ev in enumerate(evs):
+        te_i, ye_i = np.asarray(res.t_events[i], dtype=float), np.asarray(res.y_events[i])
+        if not py and te_i.size > 1:
+            # solve_ivp counts a root that falls exactly on a step boundary in both steps (its rule is
+            # g_old <= 0 <= g_new); one passage is one event, as :func:`crossed` decides for our integrators
+            keep = np.concatenate(([True], np.diff(te_i) > 8 * np.finfo(float).eps * np.abs(te_i[1:])))
+            te_i, ye_i = te_i[keep], ye_i[keep]
+        t_events[ev.name], y_events[ev.name] = te_i, ye_i
     status = int(res.status)
     message = str(res.message)
     event = None
