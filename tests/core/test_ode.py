@@ -127,3 +127,26 @@ def test_python_engine_dense_output_is_scipys():
     # a run with no step (an empty span) has a constant dense output
     c = integrate(lambda t, y: [y[1], -y[0]], (1.0, 1.0), [0.5, 0.2], engine="python", dense_output=True)
     np.testing.assert_array_equal(c.sol(1.0), [0.5, 0.2])
+
+
+def test_a_root_on_a_step_boundary_is_one_event_on_every_integrator():
+    # y' = 1 with steps pinned to 0.25 (first_step = max_step; the error estimate of a constant field is zero,
+    # so the step never shrinks): the event g = t - 1 is exactly zero at the end of the fourth step and the start
+    # of the fifth. One passage is one event (the rule of crossed()); counting g_old <= 0 <= g_new in both steps
+    # listed t = 1 twice (the duplicated separatrix crossings of euler_poinsot.simulate)
+    from rigidbody.core.batch import integrate_batch
+    from rigidbody.core.ode import Event, crossed, integrate
+
+    ev = [Event(lambda t, y: t - 1.0, "one", False, 0.0)]
+    kw = dict(max_step=0.25, first_step=0.25, events=ev)
+    runs = [integrate(lambda t, y: [1.0], (0.0, 2.0), [0.0], engine=e, **kw).t_events["one"]
+            for e in ("python", "scipy")]
+    evb = [Event(lambda t, y: t - 1.0, "one", False, 0.0)]
+    b = integrate_batch(lambda t, y: np.ones_like(y), (0.0, 2.0), np.zeros((2, 1)), max_step=0.25,
+                        first_step=0.25, events=evb)
+    runs += [b.t_events["one"][i] for i in range(2)]
+    for te in runs:
+        assert np.asarray(te) == pytest.approx([1.0], abs=1e-15)
+    # the rule itself, on floats and arrays: a root at the end of a step counts, at its start does not
+    assert crossed(-1.0, 0.0, 1) and not crossed(0.0, 1.0, 1) and not crossed(0.0, -1.0, -1)
+    assert list(crossed(np.array([-1.0, 0.0, 1.0]), np.array([0.0, 0.0, 0.0]), 0)) == [True, False, True]
