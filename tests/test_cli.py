@@ -2,6 +2,7 @@
 
 import subprocess
 import sys
+import textwrap
 
 import pytest
 
@@ -83,3 +84,48 @@ def test_a_builder_registered_by_decorator_still_works(tmp_path):
             fs.build(tmp_path, only=["a"])
     finally:
         paperfigs._REGISTRY.pop("test_decorated")
+
+
+# the optional dependencies (the sweep extra); the base install is numpy, scipy, matplotlib
+EXTRAS = ("xarray", "dask", "distributed", "zarr", "tqdm")
+
+# runs in a fresh interpreter: an import finder refuses the extras before anything is imported, then the figures
+# command draws the studies set. The grids are cut to two values per axis to keep the test light (which modules
+# a figure imports does not depend on the size of its grid).
+_BASE_INSTALL = textwrap.dedent("""
+    import sys
+
+    tried = []
+
+    class NotInstalled:
+        def find_spec(self, name, path=None, target=None):
+            if name.split(".")[0] in {extras!r}:
+                tried.append(name)
+                raise ImportError(f"No module named {{name!r}} (blocked: not in the base install)")
+            return None
+
+    sys.meta_path.insert(0, NotInstalled())
+    import numpy as np
+    from rigidbody import studies
+    from rigidbody.__main__ import main
+
+    studies.GRIDS["averaging_euler_poinsot"]["quick"] = {{"eps": np.array([0.08, 0.04]), "k2_0": np.array([0.5, 0.9])}}
+    studies.GRIDS["averaging_lagrange"]["quick"] = {{"eps": np.array([0.08, 0.04]), "theta0": np.array([0.5, 1.5])}}
+    studies.GRIDS["spin_end"]["quick"] = {{"r1": np.linspace(0.2, 2.4, 5), "r3": np.linspace(0.2, 2.4, 5)}}
+    code = main(["figures", "--only", "studies", "--out", sys.argv[1]])
+    imported = sorted({{m.split(".")[0] for m in sys.modules}} & set({extras!r}))
+    print("tried to import:", sorted(set(tried)), "imported:", imported)
+    sys.exit(code)
+""")
+
+
+def test_study_figures_need_no_optional_dependency(tmp_path):
+    # the README's first command must work after a plain `pip install .`: no figure may need the sweep extra
+    code = _BASE_INSTALL.format(extras=EXTRAS)
+    out = subprocess.run([sys.executable, "-c", code, str(tmp_path)], cwd=tmp_path, capture_output=True, text=True,
+                         timeout=300)
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert "tried to import: [] imported: []" in out.stdout, out.stdout
+    written = sorted(p.relative_to(tmp_path).as_posix() for p in tmp_path.rglob("*.png"))
+    assert written == sorted(f"studies/{name}.png" for name in registry()["studies"].figures)
+    assert all(p.stat().st_size > 10_000 for p in tmp_path.rglob("*.png"))  # drawn, not empty canvases

@@ -3,8 +3,8 @@ Where the spin ends
 ===================
 
 The final regime of k^2 (the modulus of the Euler--Poinsot motion) under Rachinskaya's averaged equation
-(8), swept over a plane of diagonal drag tensors with :func:`rigidbody.sweep.sweep`
-(:func:`rigidbody.studies.spin_end`). Only the decay rates a_i = I_ii / A_i enter (8), and only their ratios
+(8) over a plane of diagonal drag tensors (:func:`rigidbody.studies.spin_end`, one batch of averaged
+evolutions). Only the decay rates a_i = I_ii / A_i enter (8), and only their ratios
 r1 = a1/a2, r3 = a3/a2. From k2_0 = 0.5 (our choice), k^2 tends to 0 (blue), to an interior equilibrium
 k*^2 (green) or to the separatrix k^2 = 1 (red). The lines: chi = -3 of (7) (k^2 = 0 changes stability),
 r3 = r1 (the separatrix changes from repelling to attracting) and, between them for r1 < 1, the line where
@@ -12,8 +12,9 @@ k2_0 itself is an equilibrium (derived from (8)). The paper's drag cases 1 and 2
 the chi = -3 line are decided slowly (the rate of (8) at k^2 = 0 vanishes there), so a finite run may call a
 slow approach to 0 an interior equilibrium. The right panel shows the interior equilibrium reached.
 
-The quick grid runs in seconds; ``SIZE = "full"`` is for a cluster: set ``EXECUTOR`` to a Dask scheduler
-address.
+The quick grid runs in a second in this process (:func:`rigidbody.studies.evaluate`; the base install
+suffices); ``SIZE = "full"`` is for a cluster: set ``SWEEP`` to sweep it with :func:`rigidbody.sweep.sweep`
+(the ``sweep`` extra) on a Dask scheduler's address.
 
 Drawn by :func:`rigidbody.paperfigs.studies.spin_end`.
 """
@@ -25,15 +26,16 @@ from rigidbody import studies
 from rigidbody.paperfigs import studies as figs
 
 SIZE = "quick"  # or "full"
-EXECUTOR = None  # local processes; "serial"; or a Dask scheduler address such as "tcp://scheduler:8786"
+SWEEP: dict = {}  # in this process; or e.g. {"executor": "tcp://scheduler:8786"} (rigidbody.sweep)
 
-if __name__ == "__main__":  # the local worker processes are spawned and import this script
-    ds = figs.study_data("spin_end", SIZE, executor=EXECUTOR)
-    predicted = np.array([[studies.spin_end_predicted(a, b, k2_0=figs.K2_0) for b in ds.r3.values]
-                          for a in ds.r1.values])
-    agree = float(np.mean(predicted == ds.regime.values))
-    print(f"{ds.regime.size} drag tensors; the integration ends where the equilibria of (8) say for {agree:.0%}")
+if __name__ == "__main__":  # a sweep's local worker processes are spawned and import this script
+    ds = figs.study_data("spin_end", SIZE, **SWEEP)
+    regime = studies.grid_values(ds, "regime", ("r1", "r3"))
+    predicted = np.array([[studies.spin_end_predicted(a, b, k2_0=figs.K2_0) for b in studies.grid_values(ds, "r3")]
+                          for a in studies.grid_values(ds, "r1")])
+    agree = float(np.mean(predicted == regime))
+    print(f"{regime.size} drag tensors; the integration ends where the equilibria of (8) say for {agree:.0%}")
     for code, text in studies.REGIMES.items():
-        print(f"  {text}: {int((ds.regime == code).sum())}")
+        print(f"  {text}: {int((regime == code).sum())}")
     fig = figs.spin_end(ds)
     plt.show()

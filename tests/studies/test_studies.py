@@ -162,7 +162,7 @@ def test_the_paper_cases_in_the_plane():
     out1 = S.spin_end(*cases["case 1"])
     assert out1["regime"] == 1 and out1["k2_end"] == pytest.approx(0.52064, abs=1e-5)
     assert S.spin_end(*cases["case 2"])["regime"] == 0
-    with pytest.raises(ValueError, match="r1 and r3 must be > 0"):
+    with pytest.raises(ValueError, match=r"r1 must be > 0 \(a drag dissipates\)"):
         S.spin_end(0.0, 1.0)
 
 

@@ -4,9 +4,10 @@
 Euler--Poinsot module (order eps^2) and over (eps, theta0) for the Lagrange top (order eps).
 *Where the spin ends*: the final regime of k2 over the plane of drag-rate ratios, with the chi = -3 line.
 
-Each figure function takes the swept ``xarray.Dataset`` (from :func:`study_data`) or computes it on the
-study's quick grid (seconds on 2 cores, local processes). The full grids
-(``rigidbody.studies.GRIDS[...]['full']``) are for a sweep on a cluster (docs/sweeps.md): pass their Dataset.
+Each figure function takes the study's map (from :func:`study_data`) or computes it on the study's quick
+grid in this process with :func:`rigidbody.studies.evaluate` (batch integrations, seconds; the base install
+suffices). The full grids (``rigidbody.studies.GRIDS[...]['full']``) are for a sweep on a cluster
+(docs/sweeps.md): pass its Dataset.
 """
 
 from __future__ import annotations
@@ -26,31 +27,45 @@ K2_0 = 0.5
 
 
 def study_data(name: str, size: str = "quick", **sweep_kw: Any) -> Any:
-    """The Dataset behind a study figure: ``name`` in ``rigidbody.studies.GRIDS``, swept with
-    :func:`rigidbody.sweep.sweep` (keyword arguments go to it; default on local processes, no progress bar).
+    """The map behind a study figure: the study ``name`` over its grid ``rigidbody.studies.GRIDS[name][size]``.
+
+    Without keyword arguments it is computed in this process by :func:`rigidbody.studies.evaluate` (the
+    study integrates all the points as batches; no optional dependency). With keyword arguments of
+    :func:`rigidbody.sweep.sweep` (``executor``, ``store``, ``chunk_size``, ...) the same function is swept
+    with them instead (the ``sweep`` extra; no progress bar unless ``progress=True``): the same numbers, on
+    local processes or a Dask cluster, resumable.
 
     Parameters
     ----------
     name : {'averaging_euler_poinsot', 'averaging_lagrange', 'spin_end'}
     size : {'quick', 'full'}
         The study's grid; 'full' is meant for a cluster (``executor=`` a Dask client or address).
+    **sweep_kw
+        Keyword arguments of :func:`rigidbody.sweep.sweep`.
 
     Returns
     -------
-    xarray.Dataset
+    rigidbody.studies.StudyMap or xarray.Dataset
+        A :class:`~rigidbody.studies.StudyMap` without keyword arguments, else the sweep's Dataset.
     """
     from rigidbody import studies
-    from rigidbody.sweep import sweep
 
-    func: dict[str, Callable[..., dict[str, float]]] = {
+    func: dict[str, Callable[..., dict[str, Any]]] = {
         "averaging_euler_poinsot": studies.averaging_error_euler_poinsot,
         "averaging_lagrange": studies.averaging_error_lagrange,
         "spin_end": studies.spin_end,
     }
     if name not in func:
         raise ValueError(f"name must be one of {sorted(func)}, got {name!r}")
+    if size not in studies.GRIDS[name]:
+        raise ValueError(f"size must be one of {sorted(studies.GRIDS[name])}, got {size!r}")
+    grid = studies.GRIDS[name][size]
+    if not sweep_kw:
+        return studies.evaluate(func[name], grid)
+    from rigidbody.sweep import sweep
+
     sweep_kw.setdefault("progress", False)
-    return sweep(func[name], studies.GRIDS[name][size], **sweep_kw)
+    return sweep(func[name], grid, **sweep_kw)
 
 
 def paper_cases() -> dict[str, tuple[float, float]]:
@@ -65,24 +80,33 @@ def paper_cases() -> dict[str, tuple[float, float]]:
     return out
 
 
+def _recoord(m: Any, name: str, new: str, values: np.ndarray) -> Any:
+    """The map with its grid coordinate ``name`` replaced by ``new`` with ``values`` (the same points)."""
+    from rigidbody.studies import StudyMap
+
+    coords = {(new if k == name else k): (values if k == name else v) for k, v in m.coords.items()}
+    return StudyMap(coords, m.data)
+
+
 def _averaging_figure(name: str, ds: Any) -> Any:
     import matplotlib.pyplot as plt
 
+    from rigidbody import studies
     from rigidbody.plotting import studies as sp
 
-    if ds is None:
-        ds = study_data(name)
+    m = studies.as_study_map(study_data(name) if ds is None else ds)
     if name == "averaging_lagrange":
         order, label = 1.0, "theta0 (deg)"
-        ds = ds.assign_coords(theta0=np.degrees(ds.theta0)).rename(theta0="theta0_deg")
+        m = _recoord(m, "theta0", "theta0_deg", np.degrees(m.coords["theta0"]))
         title = "Lagrange top: first approximation (3.4) vs full (1.1), tau in [0, 2]"
     else:  # the distance to the separatrix, on a log axis
         order, label = 2.0, "1 - k2_0"
-        ds = ds.assign_coords(k2_0=1.0 - ds.k2_0).rename(k2_0="one_minus_k2_0")
+        m = _recoord(m, "k2_0", "one_minus_k2_0", 1.0 - m.coords["k2_0"])
         title = "Euler-Poinsot: averaged (9) with nu kept vs full, tau in [0, 0.5]"
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 4.8))
-    sp.averaging_error_plot(ds, order, ax=a1, label=label)
-    sp.scaled_error_map(ds, order, ax=a2, ylog=name == "averaging_euler_poinsot")
+    sp.averaging_error_plot(m, order, ax=a1, label=label)
+    sp.scaled_error_map(m, order, ax=a2, ylog=name == "averaging_euler_poinsot")
+    a2.set_ylabel(label)
     fig.suptitle(title)
     fig.tight_layout()
     return fig
@@ -93,8 +117,9 @@ def where_averaging_holds_euler_poinsot(ds: Any = None) -> Any:
 
     Parameters
     ----------
-    ds : xarray.Dataset, optional
-        A sweep of :func:`rigidbody.studies.averaging_error_euler_poinsot` (default: the quick grid).
+    ds : rigidbody.studies.StudyMap or xarray.Dataset, optional
+        A map of :func:`rigidbody.studies.averaging_error_euler_poinsot` over ``eps`` and ``k2_0``
+        (:func:`study_data`; default: the quick grid).
 
     Returns
     -------
@@ -108,8 +133,9 @@ def where_averaging_holds_lagrange(ds: Any = None) -> Any:
 
     Parameters
     ----------
-    ds : xarray.Dataset, optional
-        A sweep of :func:`rigidbody.studies.averaging_error_lagrange` (default: the quick grid).
+    ds : rigidbody.studies.StudyMap or xarray.Dataset, optional
+        A map of :func:`rigidbody.studies.averaging_error_lagrange` over ``eps`` and ``theta0``
+        (:func:`study_data`; default: the quick grid).
 
     Returns
     -------
@@ -123,8 +149,9 @@ def spin_end(ds: Any = None) -> Any:
 
     Parameters
     ----------
-    ds : xarray.Dataset, optional
-        A sweep of :func:`rigidbody.studies.spin_end` (default: the quick grid, from ``k2_0 = K2_0``).
+    ds : rigidbody.studies.StudyMap or xarray.Dataset, optional
+        A map of :func:`rigidbody.studies.spin_end` over ``r1`` and ``r3`` (:func:`study_data`; default: the
+        quick grid, from ``k2_0 = K2_0``).
 
     Returns
     -------
@@ -133,22 +160,23 @@ def spin_end(ds: Any = None) -> Any:
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import studies as sp
-    from rigidbody.studies import chi_minus_3_line
+    from rigidbody.studies import chi_minus_3_line, grid_values
 
     if ds is None:
         ds = study_data("spin_end")
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 5.2))
     sp.spin_end_map(ds, k2_0=K2_0, ax=a1, cases=paper_cases())
     a1.set_title(f"final regime of k2 from k2_0 = {K2_0:g} (averaged (8)/(9), eps = 0)")
-    k2 = ds["k2_end"].where(ds["regime"] == 1).transpose("r3", "r1")
-    mesh = a2.pcolormesh(ds["r1"].values, ds["r3"].values, k2.values, shading="nearest", cmap="viridis",
-                         vmin=0.0, vmax=1.0)
+    r1, r3 = grid_values(ds, "r1"), grid_values(ds, "r3")
+    inside = grid_values(ds, "regime", ("r3", "r1")) == 1
+    k2 = np.where(inside, grid_values(ds, "k2_end", ("r3", "r1")), np.nan)
+    mesh = a2.pcolormesh(r1, r3, k2, shading="nearest", cmap="viridis", vmin=0.0, vmax=1.0)
     fig.colorbar(mesh, ax=a2, label="interior equilibrium k*2 reached")
-    xs = np.linspace(float(ds.r1.min()), float(ds.r1.max()), 100)
+    xs = np.linspace(float(r1.min()), float(r1.max()), 100)
     a2.plot(xs, chi_minus_3_line(xs), "k-", lw=2)
     a2.plot(xs, xs, "k--", lw=1.5)
     a2.set_xlim(xs[0], xs[-1])
-    a2.set_ylim(float(ds.r3.min()), float(ds.r3.max()))
+    a2.set_ylim(float(r3.min()), float(r3.max()))
     a2.set_xlabel(r"$r_1 = a_1/a_2$")
     a2.set_ylabel(r"$r_3 = a_3/a_2$")
     a2.set_title("where k2 settles inside (0, 1): k*2 -> 0 at chi = -3, -> 1 at r3 = r1")
@@ -157,7 +185,7 @@ def spin_end(ds: Any = None) -> Any:
 
 
 register_figures(
-    "studies", "Parameter studies: where averaging holds, where the spin ends (rigidbody.sweep)",
+    "studies", "Parameter studies: where averaging holds, where the spin ends (rigidbody.studies)",
     {"where_averaging_holds_euler_poinsot": where_averaging_holds_euler_poinsot,
      "where_averaging_holds_lagrange": where_averaging_holds_lagrange,
      "spin_end": spin_end},

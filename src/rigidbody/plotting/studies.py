@@ -1,4 +1,8 @@
-"""Plotting helpers for the parameter studies of :mod:`rigidbody.studies` (Datasets from a sweep)."""
+"""Plotting helpers for the parameter studies of :mod:`rigidbody.studies`.
+
+Each takes a study's map: a :class:`rigidbody.studies.StudyMap` (from :func:`rigidbody.studies.evaluate`) or
+the ``xarray.Dataset`` of a sweep, read through :func:`rigidbody.studies.grid_values`.
+"""
 
 from __future__ import annotations
 
@@ -31,8 +35,8 @@ def averaging_error_plot(
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A sweep of :func:`rigidbody.studies.averaging_error_euler_poinsot` or
+    ds : rigidbody.studies.StudyMap or xarray.Dataset
+        A map of :func:`rigidbody.studies.averaging_error_euler_poinsot` or
         :func:`~rigidbody.studies.averaging_error_lagrange` (two dimensions, one of them ``over``).
     order : float
         The theory's order (2 for Rachinskaya's (9), 1 for the Lagrange first approximation).
@@ -49,20 +53,22 @@ def averaging_error_plot(
     """
     import matplotlib.pyplot as plt
 
+    from ..studies import grid_values
+
     ax = get_ax(ax)
     across = _other_dim(ds, var, over)
-    err = ds[var].transpose(across, over)
-    eps = ds[over].values
-    values = ds[across].values
+    err = grid_values(ds, var, (across, over))
+    eps = grid_values(ds, over)
+    values = grid_values(ds, across)
     cmap = plt.get_cmap("viridis")
     lines = []
     for i, v in enumerate(values):
-        y = err.values[i]
+        y = err[i]
         ok = np.isfinite(y)
         (ln,) = ax.loglog(eps[ok], y[ok], "o-", ms=3.5, lw=1.2, color=cmap(i / max(1, len(values) - 1)),
                           label=f"{label or across} = {v:.3g}")
         lines.append(ln)
-    ratio = err.values / eps[None, :] ** order
+    ratio = err / eps[None, :] ** order
     c = float(np.nanmedian(ratio))
     xs = np.geomspace(eps.min(), eps.max(), 50)
     (ref,) = ax.loglog(xs, c * xs**order, "k--", lw=2.0, label=rf"theory: $\propto\varepsilon^{{{order:g}}}$")
@@ -92,7 +98,7 @@ def scaled_error_map(ds: Any, order: float, *, var: str = "error", over: str = "
 
     Parameters
     ----------
-    ds : xarray.Dataset
+    ds : rigidbody.studies.StudyMap or xarray.Dataset
         As for :func:`averaging_error_plot`.
     order : float
     var, over : str
@@ -106,12 +112,15 @@ def scaled_error_map(ds: Any, order: float, *, var: str = "error", over: str = "
     """
     from matplotlib.ticker import NullFormatter
 
+    from ..studies import grid_values
+
     ax = get_ax(ax)
     across = _other_dim(ds, var, over)
-    scaled = (ds[var] / ds[over] ** order).transpose(across, over)
-    order_x, order_y = np.argsort(ds[over].values), np.argsort(ds[across].values)
-    z = np.log10(scaled.values)[np.ix_(order_y, order_x)]
-    x, y = ds[over].values[order_x], ds[across].values[order_y]
+    eps, values = grid_values(ds, over), grid_values(ds, across)
+    scaled = grid_values(ds, var, (across, over)) / eps[None, :] ** order
+    order_x, order_y = np.argsort(eps), np.argsort(values)
+    z = np.log10(scaled)[np.ix_(order_y, order_x)]
+    x, y = eps[order_x], values[order_y]
     mesh = ax.pcolormesh(_edges(x, True), _edges(y, ylog), np.ma.masked_invalid(z), cmap="magma")
     failed = ~np.isfinite(z)
     for i, j in zip(*np.nonzero(failed)):
@@ -137,8 +146,8 @@ def spin_end_map(ds: Any, *, k2_0: float = 0.5, ax: Any = None, cases: dict[str,
 
     Parameters
     ----------
-    ds : xarray.Dataset
-        A sweep of :func:`rigidbody.studies.spin_end` over ``r1`` and ``r3``.
+    ds : rigidbody.studies.StudyMap or xarray.Dataset
+        A map of :func:`rigidbody.studies.spin_end` over ``r1`` and ``r3``.
     k2_0 : float
         The initial :math:`k^2` of that sweep.
     ax : matplotlib.axes.Axes, optional
@@ -153,11 +162,11 @@ def spin_end_map(ds: Any, *, k2_0: float = 0.5, ax: Any = None, cases: dict[str,
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from matplotlib.patches import Patch
 
-    from ..studies import chi_minus_3_line, equilibrium_line
+    from ..studies import chi_minus_3_line, equilibrium_line, grid_values
 
     ax = get_ax(ax)
-    r1, r3 = ds["r1"].values, ds["r3"].values
-    reg = ds["regime"].transpose("r3", "r1").values
+    r1, r3 = grid_values(ds, "r1"), grid_values(ds, "r3")
+    reg = grid_values(ds, "regime", ("r3", "r1"))
     mesh = ax.pcolormesh(r1, r3, reg, shading="nearest", cmap=ListedColormap(REGIME_COLORS),
                          norm=BoundaryNorm([-0.5, 0.5, 1.5, 2.5], 3), alpha=0.75)
     xs = np.linspace(r1.min(), r1.max(), 200)
