@@ -21,19 +21,25 @@ Accuracy
   calls ``scipy.special.ellipj`` on the argument as given and forms
   :math:`\operatorname{dn} = (m_c + m\operatorname{cn}^2)^{1/2}`, a sum of positives (SciPy's
   :math:`\operatorname{dn} = \operatorname{cn}/\cos(\varphi-\varphi_1)` loses relative accuracy where
-  :math:`\operatorname{cn}\to 0`). Closer to the separatrix it reduces the argument by the period
-  :math:`4K` and by the symmetries :math:`u \mapsto 2K-u` and :math:`u \mapsto K-u` (the latter through
-  :math:`\operatorname{sn}(K-x)=\operatorname{cd}x`, :math:`\operatorname{cn}(K-x)=k'\operatorname{sd}x`,
-  :math:`\operatorname{dn}(K-x)=k'\operatorname{nd}x`) to :math:`0\le x\le K/2`, where it evaluates the
-  descending-Landen/AGM scheme itself with :math:`b_0 = \sqrt{m_c}` (exact in ``mc``) when
-  :math:`m_c \le 10^{-9}` and ``scipy.special.ellipj`` otherwise. This keeps the period exact in ``mc``
-  and avoids SciPy issue 8480 (``ellipj`` returns values up to 1e26 for :math:`1-m \le 10^{-9}`, :math:`u > K`).
+  :math:`\operatorname{cn}\to 0`). Closer to the separatrix it sums the series in the complementary nome
+  :math:`q_1 = e^{-\pi K/K'} \approx m_c/16` (Jacobi's imaginary transformation of the Fourier series; sums
+  of positive hyperbolic terms, three of them for :math:`m_c \le 10^{-12}`) on the argument reduced in
+  double-double arithmetic by the half period :math:`2K` and by :math:`u \mapsto K-u`
+  (:math:`\operatorname{sn}(K-x)=\operatorname{cd}x`, :math:`\operatorname{cn}(K-x)=k'\operatorname{sd}x`,
+  :math:`\operatorname{dn}(K-x)=k'\operatorname{nd}x`), with the period exact in ``mc``
+  (``rigidbody.core._nome``). ``sn``, ``cn``, ``dn`` keep a relative accuracy of a few ulp down to
+  :math:`m_c = 10^{-300}` and below (tested against mpmath at 1e-13), also where they are tiny (``dn``
+  down to :math:`k' = \sqrt{m_c}`, ``cn`` and ``sn`` near their zeros at odd and even multiples :math:`nK`):
+  there the relative error is :math:`n\delta/|u - nK|`, :math:`\delta` the error of the reduced argument per
+  quarter period, ~1e-23 for :math:`m_c \le 10^{-8}` and below :math:`10^{-15}m_c` above (the float ``u``
+  is taken as exact). This also avoids SciPy issue 8480 (``ellipj`` returns values up to 1e26 for
+  :math:`1-m \le 10^{-9}`, :math:`u > K`).
 * :math:`k = 1` exactly: :math:`\operatorname{sn}=\tanh u`, :math:`\operatorname{cn}=\operatorname{dn}
   =\operatorname{sech}u`, :math:`\operatorname{am}=\operatorname{gd}u`, :math:`K=\infty`, :math:`E=1`.
 
 Cost: a Python float in gives a Python float out without array overhead (the right-hand sides of
 integrators); on arrays away from the separatrix the functions cost what the SciPy calls cost plus a few
-array operations (``benchmarks/bench_core.py``).
+array operations, near it about what ``ellipj`` costs there (``benchmarks/bench_core.py``).
 
 Invalid input (``k`` outside [0, 1], non-finite, non-numeric) raises instead of returning NaN.
 """
@@ -45,6 +51,9 @@ from typing import Any
 
 import numpy as np
 from scipy import special
+
+from . import kernel
+from ._nome import jacobi_near, nome, nome_cached
 
 __all__ = [
     "E",
@@ -61,10 +70,6 @@ __all__ = [
 
 ArrayLike = Any
 
-#: Below this complementary parameter the AGM is run with the exact ``mc`` instead of SciPy's ``ellipj``
-#: (cephes switches to a first-order expansion in ``mc`` at 1e-10, see the module docstring).
-_MC_OWN_AGM = 1e-9
-
 #: At and above this complementary parameter :func:`jacobi` calls ``scipy.special.ellipj`` on the argument
 #: as given (no period reduction), with ``dn^2 = mc + m cn^2``; below it, the period-reduced evaluation with
 #: the exact ``mc``. Given ``mc``, SciPy sees ``m = 1 - mc`` rounded by eps/2, a period wrong by ~eps/mc: the
@@ -73,7 +78,8 @@ _MC_OWN_AGM = 1e-9
 #: the number of periods (tests/core/test_elliptic.py::test_jacobi_from_mc_to_the_rounding_of_u).
 _MC_JACOBI_FROM_MC = 5e-2
 _MC_JACOBI_FROM_K = 1e-2
-#: beyond this abs(u) SciPy's AGM phase 2^n a u overflows to NaN; the period-reduced route stays finite
+#: beyond this abs(u) SciPy's AGM phase 2^n a u overflows to NaN: such an argument (no digit of its phase is
+#: left) is reduced by fmod(u, 4K) first; the near-separatrix route reduces every argument itself
 _U_HUGE = 1e300
 
 _ellipk = special.ellipk
@@ -304,46 +310,6 @@ def Einc(phi: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
 # --------------------------------------------------------------------------------------------------
 # Jacobi functions
 # --------------------------------------------------------------------------------------------------
-def _agm_jacobi(x: Any, m: Any, mca: Any, lib: Any = np) -> tuple[Any, Any, Any]:
-    """sn, cn, dn by the descending Landen (AGM) scheme with b0 = sqrt(mc) exact; for 0 <= x <= K/2.
-
-    ``lib`` is ``numpy`` (arrays) or ``math`` (one point in Python floats, without array overhead).
-    """
-    fns: tuple[Any, Any, Any, Any] = (
-        (math.sqrt, math.sin, math.cos, math.asin) if lib is math else (np.sqrt, np.sin, np.cos, np.arcsin)
-    )
-    sqrt, sin, cos, asin = fns
-    a, b, c = 1.0, sqrt(mca), sqrt(m)
-    A, C = [a], [c]
-    for _ in range(80):
-        if (abs(c) <= 1e-17 * a) if lib is math else np.all(np.abs(c) <= 1e-17 * a):
-            break
-        a, b, c = 0.5 * (a + b), sqrt(a * b), 0.5 * (a - b)
-        A.append(a)
-        C.append(c)
-    n = len(A) - 1
-    phi = (2.0**n) * A[-1] * x
-    for i in range(n, 0, -1):
-        phi = 0.5 * (asin(C[i] * sin(phi) / A[i]) + phi)
-    cnv = cos(phi)
-    return sin(phi), cnv, sqrt(mca + m * cnv * cnv)  # dn^2 = mc + m cn^2: a sum of positives, no cancellation
-
-
-def _jacobi_base(x: np.ndarray, m: np.ndarray, mca: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """sn, cn, dn for 0 <= x <= K/2 (finite K)."""
-    snv = np.empty_like(x)
-    cnv = np.empty_like(x)
-    dnv = np.empty_like(x)
-    own = mca <= _MC_OWN_AGM
-    if np.any(~own):
-        s_, c_, d_, _ = _ellipj(x[~own], m[~own])
-        snv[~own], cnv[~own], dnv[~own] = s_, c_, d_
-    if np.any(own):
-        s_, c_, d_ = _agm_jacobi(x[own], m[own], mca[own])
-        snv[own], cnv[own], dnv[own] = s_, c_, d_
-    return snv, cnv, dnv
-
-
 def _sech(u: np.ndarray) -> np.ndarray:
     e = np.exp(-np.abs(u))
     return 2.0 * e / (1.0 + e * e)
@@ -351,46 +317,21 @@ def _sech(u: np.ndarray) -> np.ndarray:
 
 def _jacobi_reduced(ua: np.ndarray, m: np.ndarray, mca: np.ndarray
                     ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """sn, cn, dn, am of 1-D arrays by reduction to [0, K/2] with the exact ``mc`` (near the separatrix)."""
-    snv = np.empty_like(ua)
-    cnv = np.empty_like(ua)
-    dnv = np.empty_like(ua)
-    amv = np.empty_like(ua)
+    """sn, cn, dn, am of 1-D arrays near the separatrix (mc <= 0.05; mc = 0: the hyperbolic limits)."""
+    out = tuple(np.empty_like(ua) for _ in range(4))
     sep = mca == 0.0
     if np.any(sep):
         us = ua[sep]
-        snv[sep] = np.tanh(us)
-        cnv[sep] = dnv[sep] = _sech(us)
-        amv[sep] = 2.0 * np.arctan(np.tanh(0.5 * us))
+        for o, v in zip(out, (np.tanh(us), _sech(us), _sech(us), 2.0 * np.arctan(np.tanh(0.5 * us)))):
+            o[sep] = v
     per = ~sep
     if np.any(per):
         up, mp, mcp = ua[per], m[per], mca[per]
-        kk = _ellipkm1(mcp)
-        kp = np.sqrt(mcp)
-        # 1) reduce by the period 4K:  ur in [-2K, 2K]
-        ur = up - 4.0 * kk * np.round(up / (4.0 * kk))
-        sgn = np.where(ur < 0.0, -1.0, 1.0)
-        a = np.abs(ur)
-        # 2) u -> 2K - u  (sn, dn even about K; cn odd)
-        far = a > kk
-        csgn = np.where(far, -1.0, 1.0)
-        a = np.where(far, 2.0 * kk - a, a)
-        a = np.clip(a, 0.0, kk)
-        # 3) u -> K - u for the upper half of [0, K]
-        upper = a > 0.5 * kk
-        x = np.where(upper, kk - a, a)
-        s0, c0, d0 = _jacobi_base(x, mp, mcp)
-        s1 = np.where(upper, c0 / d0, s0)
-        c1 = np.where(upper, kp * s0 / d0, c0)
-        d1 = np.where(upper, kp / d0, d0)
-        snp = sgn * s1
-        cnp = csgn * c1
-        snv[per], cnv[per], dnv[per] = snp, cnp, d1
-        # amplitude: am(u) = j*pi + am(u - 2jK), |u - 2jK| <= K where cn >= 0
-        j = np.round(up / (2.0 * kk))
-        par = np.where(np.mod(j, 2.0) == 0.0, 1.0, -1.0)
-        amv[per] = j * np.pi + np.arctan2(par * snp, np.abs(par * cnp) * 1.0)
-    return snv, cnv, dnv, amv
+        if mcp.size > 1 and mcp.min() == mcp.max():  # one modulus: its constants once
+            mp, mcp = mp[:1], mcp[:1]
+        for o, v in zip(out, jacobi_near(up, mp, mcp, nome(mp, mcp, kernel.ARRAY), kernel.ARRAY)):
+            o[per] = v
+    return out  # type: ignore[return-value]
 
 
 def _jacobi_reduced_scalar(u: float, m: float, mc: float) -> tuple[float, float, float, float]:
@@ -399,28 +340,8 @@ def _jacobi_reduced_scalar(u: float, m: float, mc: float) -> tuple[float, float,
         e = math.exp(-abs(u))
         sech = 2.0 * e / (1.0 + e * e)
         return math.tanh(u), sech, sech, 2.0 * math.atan(math.tanh(0.5 * u))
-    kk = float(_ellipkm1(mc))
-    ur = u - 4.0 * kk * round(u / (4.0 * kk))  # round half to even, as np.round
-    a = abs(ur)
-    far = a > kk
-    if far:
-        a = 2.0 * kk - a
-    a = min(max(a, 0.0), kk)
-    upper = a > 0.5 * kk
-    x = kk - a if upper else a
-    if mc <= _MC_OWN_AGM:
-        s0, c0, d0 = _agm_jacobi(x, m, mc, math)
-    else:
-        s, c, d, _ = _ellipj(x, m)
-        s0, c0, d0 = float(s), float(c), float(d)
-    if upper:
-        kp = math.sqrt(mc)
-        s0, c0, d0 = c0 / d0, kp * s0 / d0, kp / d0
-    snv = -s0 if ur < 0.0 else s0
-    cnv = -c0 if far else c0
-    j = round(u / (2.0 * kk))
-    par = 1.0 if j % 2 == 0 else -1.0
-    return snv, cnv, d0, j * math.pi + math.atan2(par * snv, abs(par * cnv))
+    s, c, d, a = jacobi_near(u, m, mc, nome_cached(m, mc), kernel.SCALAR)
+    return float(s), float(c), float(d), float(a)
 
 
 def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> tuple[Any, Any, Any, Any]:
@@ -474,13 +395,16 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
     ua, m, mca = np.broadcast_arrays(ua, m, mca)
     shape = ua.shape
     ua, m, mca = ua.ravel(), m.ravel(), mca.ravel()
-    near = (mca < fast) | (np.abs(ua) > _U_HUGE)
+    near = mca < fast
     if np.all(near):
         out = _jacobi_reduced(ua, m, mca)
     else:
         out = (np.empty_like(ua), np.empty_like(ua), np.empty_like(ua), np.empty_like(ua))
         far = ~near
-        s, c, _, a = _ellipj(ua[far], m[far])
+        uf = ua[far]
+        if umax > _U_HUGE:
+            uf = np.where(np.abs(uf) > _U_HUGE, np.fmod(uf, 4.0 * _ellipk(m[far])), uf)
+        s, c, _, a = _ellipj(uf, m[far])
         for o, v in zip(out, (s, c, np.sqrt(mca[far] + m[far] * (c * c)), a)):
             o[far] = v
         for o, v in zip(out, _jacobi_reduced(ua[near], m[near], mca[near])):

@@ -148,11 +148,12 @@ class EulerPoinsot:
         return 4.0 * self.K / self.rate
 
     # ------------------------------------------------------------------ the motion
-    def _components(self, t: Any, u0: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    def _components(self, t: Any, u0: float, k_free: bool = False) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Body components of omega; with ``k_free`` the sn- and cn-components without their factor k."""
         (c_dn, c_sn, c_cn), rate = self._amps()
         u = rate * np.asarray(t, dtype=float) + u0
         sn, cn, dn, _ = ell.jacobi(u, mc=self.mc)
-        k = self.k
+        k = 1.0 if k_free else self.k
         s = self.sigma
         w_dn = s * c_dn * np.asarray(dn)
         w_sn = s * k * c_sn * np.asarray(sn)
@@ -160,6 +161,16 @@ class EulerPoinsot:
         if self.kind == "max":
             return w_dn, -w_sn, w_cn
         return w_cn, -w_sn, w_dn
+
+    def _theta_phi(self, t: Any, u0: float) -> tuple[np.ndarray, np.ndarray]:
+        r""":math:`\theta, \varphi` of :math:`\alpha_{3j} = g_j/G`; for ``'min'`` :math:`\tan\varphi = g_1/g_2`
+        with the factor :math:`k` common to :math:`g_1, g_2` divided out (so defined at :math:`k = 0`)."""
+        k_free = self.kind == "min"
+        w1, w2, w3 = self._components(t, u0, k_free)
+        A1, A2, A3 = self.body.A
+        g12 = np.hypot(A1 * w1, A2 * w2)
+        theta = np.arctan2(self.k * g12 if k_free else g12, A3 * w3)
+        return theta, np.arctan2(A1 * w1, A2 * w2)
 
     def omega(self, t: Any, u0: float = 0.0) -> np.ndarray:
         r"""Body components of the angular velocity, shape ``(3, *t.shape)``.
@@ -185,10 +196,16 @@ class EulerPoinsot:
         :math:`\alpha_{3j} = (\sin\theta\sin\varphi, \sin\theta\cos\varphi, \cos\theta)`), and
         :math:`\psi = \psi_0 + \int_0^t G(\sin^2\varphi/A_1 + \cos^2\varphi/A_2)\,dt` (spectral). ``phi`` is
         in :math:`(-\pi, \pi]`.
+
+        For ``kind='min'`` at :math:`k = 0` (pure spin about :math:`z_3`, :math:`\theta = 0` or :math:`\pi`,
+        where only :math:`\psi\pm\varphi` is defined) :math:`\varphi` is the limit :math:`k\to0` of the
+        angle of the nearby motions (:math:`g_1/g_2` with the common factor :math:`k` divided out): it keeps
+        turning, :math:`\psi+\varphi` advances at :math:`G/A_3`, and the attitude is continuous in
+        :math:`k^2`. (The degenerate-angle rule of ``rigidbody.core.euler.angles``, :math:`\varphi = 0`, is
+        for reading angles off a matrix; here it would leave :math:`\psi` the only moving angle, at the
+        wrong rate.)
         """
-        g1, g2, g3 = self.g(t, u0)
-        theta = np.arctan2(np.hypot(g1, g2), g3)
-        phi = np.arctan2(g1, g2)
+        theta, phi = self._theta_phi(t, u0)
         psi = psi0 + self._psi_integral(np.asarray(t, dtype=float), u0)
         f = (lambda x: float(x)) if np.ndim(t) == 0 else (lambda x: x)
         return f(psi), f(theta), f(phi)
@@ -272,8 +289,7 @@ class EulerPoinsot:
         """
         t, g = self.nodes(n)
         omega = (g / self.body.A[:, None]).T
-        theta = np.arctan2(np.hypot(g[0], g[1]), g[2])
-        phi = np.arctan2(g[0], g[1])
+        theta, phi = self._theta_phi(t, 0.0)
         psi = np.arange(n_psi) * (2.0 * math.pi / n_psi)
         alpha = euler.dcm(psi[:, None], theta[None, :], phi[None, :])
         vals = np.asarray(f(alpha, omega), dtype=float)
