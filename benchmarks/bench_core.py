@@ -154,7 +154,7 @@ def main() -> None:
           f"E(0.9) {us['E']:.2f} us vs ellipe {us['ellipe']:.2f} us ({us['E'] / us['ellipe']:.1f}x)")
     print(f"  jacobi(1.3, 0.9) {us['jacobi']:.2f} us, jacobi(1.3, mc=0.19) {us['jacobi mc']:.2f} us vs ellipj "
           f"{us['ellipj']:.2f} us ({us['jacobi'] / us['ellipj']:.1f}x); near the separatrix jacobi(11.3, mc=1e-6) "
-          f"{us['jacobi near']:.1f} us, mc=1e-12 (own AGM) {us['jacobi sep']:.1f} us")
+          f"{us['jacobi near']:.1f} us, mc=1e-12 (complementary-nome series) {us['jacobi sep']:.1f} us")
 
     print("period averages (core.averaging):")
     for mcv in (0.5, 1e-4, 1e-10):
