@@ -2,21 +2,24 @@
 
 Build (no network needed): ``python -m pip install ".[docs]" && python -m sphinx -W --keep-going -b html docs
 docs/_build/html``. MyST-NB reads the Markdown pages and executes the tutorial notebooks, numpydoc renders
-the docstrings, autosummary writes one page per public name, sphinx-gallery runs ``examples/``.
+the docstrings, autosummary writes one page per public name, sphinx-gallery runs ``examples/``. The site
+needs no network to read either: MathJax is served from the site itself (``_static/mathjax``, copied there
+by ``sphinx-mathjax-offline``), not from a CDN.
 """
 
 from __future__ import annotations
 
 import sys
-from importlib.metadata import version as _version
 from pathlib import Path
+
+import rigidbody
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # gallery_order.py, named in sphinx_gallery_conf
 
 project = "rigidbody"
 author = "rigidbody developers"
 copyright = "the rigidbody developers"
-release = _version("rigidbody")
+release = rigidbody.__version__
 version = release
 
 extensions = [
@@ -25,6 +28,7 @@ extensions = [
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
     "sphinx.ext.mathjax",
+    "sphinx-mathjax-offline",  # MathJax 3 and its fonts copied into the site: equations render offline
     "sphinx.ext.viewcode",  # [source] links: a gallery figure's function leads to the code that draws it
     "sphinx_gallery.gen_gallery",
 ]
@@ -41,11 +45,16 @@ myst_enable_extensions = ["dollarmath", "amsmath", "deflist", "colon_fence"]
 myst_heading_anchors = 3
 myst_dmath_double_inline = True
 
+# MathJax from the site's own _static folder (the files sphinx-mathjax-offline copies), never from a CDN
+mathjax_path = "mathjax/tex-chtml.js"
+
 # MyST-NB: the tutorials are stored without outputs and executed on every build; an error fails the build
 nb_execution_mode = "force"
 nb_execution_raise_on_error = True
 nb_execution_timeout = 300
 nb_merge_streams = True
+# no notebook shows widgets: no RequireJS or widget bundle from a CDN on the notebook pages
+nb_ipywidgets_js: dict[str, dict[str, str]] = {}
 
 # autosummary / autodoc / numpydoc
 autosummary_generate = True
