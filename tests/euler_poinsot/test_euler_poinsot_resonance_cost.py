@@ -202,3 +202,24 @@ def test_near_symmetric_bounds_hold_and_an_unproven_crossing_is_computed():
     assert all(r["bound"] == (r["j"] == 2) for r in strict.resonances)
     assert_same_crossings([r for r in strict.resonances if r["j"] == 1], [r for r in ref if r["j"] == 1])
     assert all(b["jump"] <= a["jump"] for a, b in pairs(strict.resonances, ref) if a["j"] == 2)
+
+
+def test_an_order_too_high_to_compute_whose_bound_exceeds_the_tolerance_ends_the_run(monkeypatch):
+    # A2 - A3 = 4e-9: the rotation number is ~20000 and the coefficient of order 20000 would take a grid of
+    # 8 x 160000 nodes. With a resonance_tol below the Parseval bound (~1e-8 here) nothing shows the crossing
+    # harmless, so the run must end there with a status and a message that says so, and not compute it.
+    calls = []
+    real = _resonance.harmonic
+    monkeypatch.setattr(_resonance, "harmonic", lambda *a: calls.append(a) or real(*a))
+    body = ep.Body(0.55, 0.300000004, 0.3)
+    tq = ep.ViscousCavity(body, [0.03, 0.19, 0.12])
+    kw = dict(k2_0=0.9, tau_span=(0, 1e-5))
+    sol = ep.averaged(body, tq, 2e-5, resonance_tol=1e-15, **kw)
+    assert sol.status == 1 and sol.event == "resonance"
+    assert "bound" in sol.message and "resonance_tol=None" in sol.message
+    cut = max(sol.resonances, key=lambda r: r["jump"])
+    assert cut["bound"] and cut["jump"] > 1e-15 and cut["rho"] > 10_000
+    assert sol.tau[-1] == pytest.approx(cut["tau"], rel=0, abs=1e-12)  # the run ends at the crossing it lists
+    assert calls == []
+    free = ep.averaged(body, tq, 2e-5, **kw)  # the default tolerance: the bounds show every crossing harmless
+    assert free.status == 0 and len(free.resonances) >= 3 and all(r["bound"] for r in free.resonances)

@@ -1191,6 +1191,11 @@ def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
         message = (f"stopped by event 'resonance' at tau = {cut['tau']:.6g}: the rotation number crosses "
                    f"{cut['rho']:g} too slowly (predicted jump {cut['jump']:.3g} > resonance_tol = "
                    f"{setup.resonance_tol:g}); the averaging over psi and the phase does not hold there")
+        if cut["bound"]:  # an order too high to compute its coefficient, and a bound that does not show it harmless
+            message = (f"stopped by event 'resonance' at tau = {cut['tau']:.6g}: the rotation number crosses "
+                       f"{cut['rho']:g}, an order whose coefficient is too costly to compute, and the bound on its "
+                       f"jump, {cut['jump']:.3g}, exceeds resonance_tol = {setup.resonance_tol:g}: the averaging "
+                       f"may not hold there; raise resonance_tol or pass resonance_tol=None to go on")
         res = Solution(res.time_name, tcut, ycut, {}, status, message, event, res.t_events, res.y_events,
                        res.sol, res.nfev)
         resonances = [r for r in resonances if r["tau"] <= cut["tau"]]

@@ -26,9 +26,10 @@ margin, stays within ``resonance_tol`` cannot stop the run and is listed with th
 any other one gets its coefficient computed, as below the threshold.
 
 The crossing times are found for all crossings together, by Newton's method on Chebyshev series of
-:math:`\rho(\tau)`, :math:`G(\tau)`, :math:`k^2(\tau)` fitted to the dense output over each step that holds
-crossings (to rounding): the bookkeeping costs a few passes over arrays, not a root search (dense output and
-elliptic integrals at every iterate) per crossing.
+:math:`\rho(\tau)` fitted (to rounding) to the dense output over each step that holds crossings; the rate
+:math:`\dot\rho` and the period at a bounded crossing come from the same fits. The bookkeeping costs a few passes
+over arrays, not a root search (dense output and elliptic integrals at every iterate) per crossing; what remains
+per crossing is its entry in the list (a few microseconds).
 """
 
 from __future__ import annotations
@@ -70,11 +71,13 @@ def _chebyshev(values: np.ndarray) -> np.ndarray:
 
 
 class _StepFit:
-    """rho(k2(tau)), G(tau) and k2(tau) over the integrator steps that hold crossings, as piecewise Chebyshev series
+    """The rotation number rho(k2(tau)) and the period P(G(tau), k2(tau)) over the integrator steps that hold
+    crossings, as piecewise Chebyshev series
     accurate to rounding: the root searches and the rates then cost array operations, not evaluations of the
-    dense output (a Python loop over the points) or of rho (elliptic integrals) for every crossing."""
+    dense output (a Python loop over the points), of rho or of the period (elliptic integrals) for every crossing."""
 
-    def __init__(self, res: Solution, rho: Callable[[Any], Any], steps: np.ndarray) -> None:
+    def __init__(self, res: Solution, rho: Callable[[Any], Any], period: Callable[[float, float], float],
+                 steps: np.ndarray) -> None:
         x = np.cos(np.pi * np.arange(_FIT_DEGREE + 1) / _FIT_DEGREE)
         todo = [(float(res.time[i]), float(res.time[i + 1]), 0) for i in steps.tolist()]
         pieces: list[tuple[float, float, np.ndarray]] = []
@@ -83,7 +86,8 @@ class _StepFit:
             t = 0.5 * (a + b)[:, None] + 0.5 * (b - a)[:, None] * x
             y = res.sol(t.ravel())
             k2 = np.clip(y[1], 0.0, 1.0 - 1e-12)
-            coef = _chebyshev(np.stack([rho(k2), y[0], k2]).reshape(3, a.size, x.size))
+            P = [period(g, k) for g, k in zip(y[0].tolist(), k2.tolist())]
+            coef = _chebyshev(np.stack([rho(k2), np.array(P)]).reshape(2, a.size, x.size))
             big = np.abs(coef).max(axis=2)
             done = np.all(np.abs(coef[..., -3:]).max(axis=2) <= _FIT_TOL * big, axis=0)
             nxt = []
@@ -101,7 +105,7 @@ class _StepFit:
         self.dcoef = np.polynomial.chebyshev.chebder(self.coef, axis=2)
 
     def __call__(self, t: np.ndarray, row: int, derivative: bool = False) -> np.ndarray:
-        """Row 0 (rho), 1 (G) or 2 (k2) at the times t (or its derivative in tau)."""
+        """Row 0 (rho) or 1 (P) at the times t (or its derivative in tau)."""
         return self._eval(t, row, (derivative,))[0]
 
     def value_slope(self, t: np.ndarray, row: int) -> tuple[np.ndarray, np.ndarray]:
@@ -114,13 +118,11 @@ class _StepFit:
         w = self.hi[k] - self.lo[k]
         safe = np.where(w > 0.0, w, 1.0)
         x = np.where(w > 0.0, (2.0 * t - self.lo[k] - self.hi[k]) / safe, 0.0)
+        T = np.cos(np.arccos(np.clip(x, -1.0, 1.0))[:, None] * np.arange(self.coef.shape[2]))  # T_n(x)
         out = []
-        for derivative in which:  # Clenshaw's recurrence
+        for derivative in which:
             c = (self.dcoef if derivative else self.coef)[row][k]
-            b1 = b2 = np.zeros(t.shape)
-            for j in range(c.shape[1] - 1, 0, -1):
-                b1, b2 = c[:, j] + 2.0 * x * b1 - b2, b1
-            v = c[:, 0] + x * b1 - b2
+            v = np.einsum("pn,pn->p", c, T[:, :c.shape[1]])
             out.append(v * (2.0 / safe) if derivative else v)
         return out
 
@@ -201,10 +203,11 @@ def _rate_of_rho(rho: Callable[[Any], Any], k2: np.ndarray, dk2: np.ndarray) -> 
     return (rho(up) - rho(down)) / (up - down) * dk2
 
 
-def _entry(tau: float, j: int, N: int, amp: float, cG: float, cT: float, cn: float, bound: bool) -> dict[str, Any]:
-    jumps = (amp * cG, amp * cT, amp * cn)
-    return {"tau": tau, "j": j, "m": -N, "rho": N / j, "jump": max(jumps), "jump_G": jumps[0], "jump_T": jumps[1],
-            "jump_n": jumps[2], "bound": bound}
+def _entry(tau: float, j: int, m: int, rho: float, jump: float, jump_G: float, jump_T: float, jump_n: float,
+           bound: bool) -> dict[str, Any]:
+    """One listed crossing."""
+    return {"tau": tau, "j": j, "m": m, "rho": rho, "jump": jump, "jump_G": jump_G, "jump_T": jump_T,
+            "jump_n": jump_n, "bound": bound}
 
 
 def _exact(st: Any, j: int, N: int, tau: float, rho: Callable[[Any], Any], averager: Any, eps: float,
@@ -214,8 +217,9 @@ def _exact(st: Any, j: int, N: int, tau: float, rho: Callable[[Any], Any], avera
     c = harmonic(averager.torque, st, j, -N)
     amp = 2.0 * eps * math.sqrt(period(st.G, st.k2) / rate) if rate > 0 else math.inf
     par = complex(st.n @ c[0:3])
-    return _entry(tau, j, N, amp, abs(par) / st.G, abs(complex(c[3])) / st.T,
-                  float(np.linalg.norm(c[0:3] - par * st.n)) / st.G, False)
+    jumps = (amp * abs(par) / st.G, amp * abs(complex(c[3])) / st.T,
+             amp * float(np.linalg.norm(c[0:3] - par * st.n)) / st.G)
+    return _entry(tau, j, -N, N / j, max(jumps), *jumps, False)
 
 
 def resonance_crossings(res: Solution, rho: Callable[[Any], Any], state_at: Callable[[float, np.ndarray], Any],
@@ -253,18 +257,19 @@ def resonance_crossings(res: Solution, rho: Callable[[Any], Any], state_at: Call
     if step.size == 0:
         return []
 
-    fit = _StepFit(res, rho, np.unique(step))
+    fit = _StepFit(res, rho, period, np.unique(step))
     # j = 1, N and j = 2, 2N are one crossing (rho = N): one root, the same time for both
-    key, back = np.unique(np.stack([step, 2 * Ns // js]), axis=1, return_inverse=True)
-    half = key[1] / 2.0
+    twice = 2 * Ns // js
+    key, back = np.unique(step * (int(twice.max()) + 1) + twice, return_inverse=True)
+    first = step[np.unique(back, return_index=True)[1]]
+    half = (key - first * (int(twice.max()) + 1)) / 2.0
 
     def target(t: np.ndarray, i: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         v, d = fit.value_slope(t, 0)
         return v - half[i], d
 
-    ts = _roots(target, tau[key[0]].astype(float), tau[key[0] + 1].astype(float))
-    ts = ts[back.ravel()]
-    out = _bounded(res, fit, ts, step, js, Ns, state_at, period, averager, eps, tol)
+    ts = _roots(target, tau[first].astype(float), tau[first + 1].astype(float))[back]
+    out = _bounded(res, fit, ts, step, js, Ns, state_at, averager, eps, tol)
     exact = sorted((float(ts[i]), i) for i in range(ts.size) if i not in out)
     cut = min((e["tau"] for e in out.values() if e["jump"] > tol), default=math.inf)
     for t, i in exact:
@@ -279,8 +284,8 @@ def resonance_crossings(res: Solution, rho: Callable[[Any], Any], state_at: Call
 
 
 def _bounded(res: Solution, fit: _StepFit, ts: np.ndarray, step: np.ndarray, js: np.ndarray, Ns: np.ndarray,
-             state_at: Callable[[float, np.ndarray], Any], period: Callable[[float, float], float], averager: Any,
-             eps: float, tol: float) -> dict[int, dict[str, Any]]:
+             state_at: Callable[[float, np.ndarray], Any], averager: Any, eps: float, tol: float,
+             ) -> dict[int, dict[str, Any]]:
     """The crossings above EXACT_ORDERS that the Parseval bound shows harmless ({index: entry}), and those
     beyond _MAX_ORDER (listed with their bound whatever it is)."""
     high = np.flatnonzero(Ns > EXACT_ORDERS)
@@ -293,13 +298,12 @@ def _bounded(res: Solution, fit: _StepFit, ts: np.ndarray, step: np.ndarray, js:
     left = np.searchsorted(ends, step[high])
     bj = np.maximum(b[left, j - 1], b[left + 1, j - 1])  # (crossing, G/T/n); step + 1 follows step in ends
     th = ts[high]
-    G, k2 = fit(th, 1), np.clip(fit(th, 2), 0.0, 1.0 - 1e-15)
-    rate = np.abs(j * fit(th, 0, derivative=True))
-    P = np.array([period(g, k) for g, k in zip(G.tolist(), k2.tolist())])
+    rate, P = np.abs(j * fit(th, 0, derivative=True)), fit(th, 1)
     with np.errstate(divide="ignore", invalid="ignore"):
         amp = np.where(rate > 0, 2.0 * eps * np.sqrt(P / np.where(rate > 0, rate, 1.0)), np.inf)
         jumps = amp[:, None] * bj
-    keep = (MARGIN * jumps.max(axis=1) <= tol) | (Ns[high] > _MAX_ORDER)
-    return {i: _entry(t, jj, N, a, bb[0], bb[1], bb[2], True) for i, t, jj, N, a, bb in
-            zip(high[keep].tolist(), th[keep].tolist(), j[keep].tolist(), Ns[high][keep].tolist(),
-                amp[keep].tolist(), bj[keep].tolist())}
+    big = jumps.max(axis=1)
+    keep = (MARGIN * big <= tol) | (Ns[high] > _MAX_ORDER)
+    N = Ns[high][keep]
+    cols = [c.tolist() for c in (high[keep], th[keep], j[keep], -N, N / j[keep], big[keep], *jumps[keep].T)]
+    return {i: _entry(t, jj, m, r, jump, g, T, n, True) for i, t, jj, m, r, jump, g, T, n in zip(*cols)}
