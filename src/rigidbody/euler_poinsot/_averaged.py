@@ -47,7 +47,7 @@ from ..core import kernel as _kn
 from ..core.ode import Event, Solution, integrate
 from ..core.validate import positive, real, span
 from . import _kernel as _k
-from ._engine import Averager, TorqueAverage, _Mean, _State, error_of, harmonic, mean_of
+from ._engine import Averager, TorqueAverage, _Mean, _State, error_of, mean_of
 from ._model import (
     K2_SPIN_CAP,
     Body,
@@ -62,6 +62,7 @@ from ._model import (
     _nstar,
     _nut_freq,
 )
+from ._resonance import resonance_crossings
 from ._separatrix import K2_SWITCH, SeparatrixCrossing, _check_branch, _choose, _initial_kind, separatrix_crossing
 from ._torques import drag_as_torque, resolve
 
@@ -630,8 +631,9 @@ def averaged(
         times :math:`G`, relative to the size of the averaged torque, at the first and the last state of each
         segment; 0 when only closed forms are used),
         ``sol.resonances`` (the resonance crossings with their predicted jumps: dicts with
-        ``tau``, ``j``, ``m``, ``rho``, ``jump``, ``jump_G``, ``jump_T``, ``jump_n``), ``sol.kind`` and
-        ``sol.sigma``.
+        ``tau``, ``j``, ``m``, ``rho``, ``jump``, ``jump_G``, ``jump_T``, ``jump_n``, ``bound``: True where the
+        jumps are upper bounds, for high orders shown harmless without computing their coefficient), ``sol.kind``
+        and ``sol.sigma``.
 
         For a batch every field has shape ``batch_shape + (len(tau_eval),)`` (``n``: ``batch_shape + (3, n_t)``),
         NaN after a member's end; ``status``, ``message``, ``event`` and ``crossings`` are per member; ``sol[i]``
@@ -1139,49 +1141,15 @@ def _rho(body: Body, kind: str, k2: Any) -> Any:
 
 def _resonances(seg: _Segment) -> list[dict[str, float]]:
     """Resonance crossings j rho = N (j = 1, 2) along a segment with eps > 0, with their predicted jumps."""
-    from scipy.optimize import brentq
-
-    setup, res = seg.setup, seg.res
-    body, kind = setup.body, seg.kind
-    tau = res.time
-    if tau.size < 2:
-        return []
+    setup = seg.setup
+    body, kind, a = setup.body, seg.kind, _labels(setup.body, seg.kind)
     # within 1 - k2 < 0.01 of the separatrix the rotation number grows without bound (like the period) and the
     # passage there is the separatrix crossing's business, not a resonance's: the search stops at K2_SPIN_CAP
-    k2s = np.clip(res.y[1], 0.0, K2_SPIN_CAP)
-    rho = _rho(body, kind, k2s)
-    out = []
-
-    def k2_at(t: float) -> float:
-        return float(min(max(res.sol(t)[1], 0.0), 1.0 - 1e-12))
-
-    for j in (1, 2):
-        jr = j * rho
-        lo, hi = np.minimum(jr[:-1], jr[1:]), np.maximum(jr[:-1], jr[1:])
-        for i in np.flatnonzero(np.floor(hi) > np.floor(lo)).tolist():  # the steps over which j rho crosses N
-            a, b = float(jr[i]), float(jr[i + 1])
-            lo, hi = min(a, b), max(a, b)
-            for N in range(math.floor(lo) + 1, math.floor(hi) + 1):
-                if not (lo < N <= hi):
-                    continue
-                ts = brentq(lambda t, j=j, N=N: j * _rho(body, kind, k2_at(t)) - N, tau[i], tau[i + 1], xtol=1e-12)
-                y = res.sol(ts)
-                st = _state_of(setup, kind, seg.sigma, ts, y, seg.tau0, seg.nu0)
-                m = setup.averager.mean(st)
-                h = 1e-6 * max(st.k2, 1e-3)
-                drho = (_rho(body, kind, min(st.k2 + h, 1 - 1e-12)) - _rho(body, kind, max(st.k2 - h, 0.0))) / (
-                    min(st.k2 + h, 1 - 1e-12) - max(st.k2 - h, 0.0))
-                rate = abs(j * drho * m.dk2)
-                c = harmonic(setup.averager.torque, st, j, -N)
-                P = 2.0 * math.pi / _nut_freq(st.a, st.G, st.k2)
-                amp = 2.0 * setup.eps * math.sqrt(P / rate) if rate > 0 else math.inf
-                cG = abs(complex(st.n @ c[0:3]))
-                cn = float(np.linalg.norm(c[0:3] - (st.n @ c[0:3]) * st.n)) / st.G
-                jumps = {"G": amp * cG / st.G, "T": amp * abs(c[3]) / st.T, "n": amp * cn}
-                out.append({"tau": float(ts), "j": j, "m": -N, "rho": N / j, "jump": max(jumps.values()),
-                            "jump_G": jumps["G"], "jump_T": jumps["T"], "jump_n": jumps["n"]})
-    out.sort(key=lambda d: d["tau"])
-    return out
+    return resonance_crossings(
+        seg.res, lambda k2: _rho(body, kind, k2),
+        lambda t, y: _state_of(setup, kind, seg.sigma, t, y, seg.tau0, seg.nu0),
+        lambda G, k2: 2.0 * math.pi / _nut_freq(a, G, k2), setup.averager, setup.eps,
+        setup.resonance_tol, K2_SPIN_CAP)  # type: ignore[arg-type]  # called only with resonance_tol set
 
 
 def _slow_fields(A: tuple[float, float, float], y: np.ndarray, nvec: Any, nu: Any) -> dict[str, np.ndarray]:
@@ -1223,6 +1191,11 @@ def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
         message = (f"stopped by event 'resonance' at tau = {cut['tau']:.6g}: the rotation number crosses "
                    f"{cut['rho']:g} too slowly (predicted jump {cut['jump']:.3g} > resonance_tol = "
                    f"{setup.resonance_tol:g}); the averaging over psi and the phase does not hold there")
+        if cut["bound"]:  # an order too high to compute its coefficient, and a bound that does not show it harmless
+            message = (f"stopped by event 'resonance' at tau = {cut['tau']:.6g}: the rotation number crosses "
+                       f"{cut['rho']:g}, an order whose coefficient is too costly to compute, and the bound on its "
+                       f"jump, {cut['jump']:.3g}, exceeds resonance_tol = {setup.resonance_tol:g}: the averaging "
+                       f"may not hold there; raise resonance_tol or pass resonance_tol=None to go on")
         res = Solution(res.time_name, tcut, ycut, {}, status, message, event, res.t_events, res.y_events,
                        res.sol, res.nfev)
         resonances = [r for r in resonances if r["tau"] <= cut["tau"]]
