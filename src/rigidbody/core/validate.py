@@ -8,6 +8,7 @@ its repr and say what was expected.
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 from typing import Any
@@ -191,8 +192,8 @@ def returned(value: Any, fun: Any, shape: tuple[int, ...], *, role: str = "the f
         (a ``ValueError``) for a scalar, a shape that does not broadcast to ``shape`` with the same last axis,
         or NaN or infinite values.
     """
-    if type(value) is np.ndarray and value.dtype == np.float64 and value.shape == shape:
-        a = value
+    if type(value) is np.ndarray and value.dtype == np.float64 and (value.shape == shape or _fits(value.shape, shape)):
+        a = value  # the common cases: the shape itself, or the compact shape a vectorised function returns
     else:
         a = _result_array(value, fun, shape, role)
     if finite and not np.isfinite(a).all():
@@ -223,10 +224,16 @@ def _result_array(value: Any, fun: Any, shape: tuple[int, ...], role: str) -> np
     a = a.astype(float, copy=False)
     if a.ndim == 0:
         raise ResultValueError(result_message(fun, shape, f"a scalar ({float(a)!r})", role))
-    try:
-        fits = a.shape[-1] == shape[-1] and np.broadcast_shapes(a.shape, shape) == shape
-    except ValueError:
-        fits = False
-    if not fits:
+    if not _fits(a.shape, shape):
         raise ResultValueError(result_message(fun, shape, f"an array of shape {a.shape}", role))
     return a
+
+
+@functools.lru_cache(maxsize=256)
+def _fits(got: tuple[int, ...], shape: tuple[int, ...]) -> bool:
+    """Whether an array of shape ``got`` (not a scalar) broadcasts to ``shape`` with the same last axis (cached: a
+    run asks for the same pair of shapes at every step)."""
+    try:
+        return len(got) > 0 and got[-1] == shape[-1] and np.broadcast_shapes(got, shape) == shape
+    except ValueError:
+        return False
