@@ -18,7 +18,7 @@ from scipy.integrate import quad
 from rigidbody import euler_poinsot as ep
 from rigidbody.core import euler
 from rigidbody.euler_poinsot._engine import Averager, _State
-from rigidbody.euler_poinsot._torques import as_torque
+from rigidbody.euler_poinsot._protocol import as_torque
 
 BODY = ep.Body(3.2, 2.6, 1.67)
 CASE1 = np.diag([2.322, 1.31, 1.425])

@@ -13,7 +13,7 @@ import pytest
 from rigidbody import euler_poinsot as ep
 from rigidbody.euler_poinsot._engine import Averager, Grid, _State, adaptive, lean_mean
 from rigidbody.euler_poinsot._lean import LeanMean
-from rigidbody.euler_poinsot._torques import as_torque
+from rigidbody.euler_poinsot._protocol import as_torque
 
 BODY = ep.Body(3.2, 2.6, 1.67)
 I_OFF = np.array([[2.322, 0.3, -0.2], [0.1, 1.31, 0.4], [0.25, -0.15, 1.425]])

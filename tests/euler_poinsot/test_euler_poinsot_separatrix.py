@@ -299,8 +299,8 @@ def test_bad_input_is_refused_with_the_parameter_named():
         ep.separatrix_limits(BODY, fn, 1.0, 4.0, 0.0, 0.0)
     with pytest.raises(ValueError, match="n_x"):
         ep.separatrix_limits(BODY, fn, 1.0, 0.5, 0.0, 0.0, n_x=2)
-    with pytest.raises(ValueError, match="shape"):
-        ep.separatrix_limits(BODY, lambda w, C, nu: np.zeros(3), 1.0, 0.5, 0.0, 0.0)
+    with pytest.raises(ValueError, match="shape"):  # (a constant (3,) broadcasts: a valid torque)
+        ep.separatrix_limits(BODY, lambda w, C, nu: np.zeros((*np.shape(w)[:-1], 2)), 1.0, 0.5, 0.0, 0.0)
     with pytest.raises(ValueError, match="non-finite"):
         ep.separatrix_limits(BODY, lambda w, C, nu: w * np.nan, 1.0, 0.5, 0.0, 0.0)
     with pytest.raises(ValueError, match="arc"):

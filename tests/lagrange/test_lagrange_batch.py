@@ -188,6 +188,23 @@ def test_batch_per_member_status_and_nan_tail():
         L.averaged(TOP, DRAG, ini[1], (0.0, 1.0))  # the single call refuses the same state
 
 
+def test_the_regular_precession_stop_names_the_options_that_go_on():
+    # case 3 tends to a regular precession (u2 - u1 -> 0): with degenerate_tol = 1e-3 the u chart stops there
+    # (tau = 19.8); its message names the two ways on, and each goes past: the (2.7)-averaged chart is regular
+    # at u1 = u2 (to the end of the span), a smaller degenerate_tol stops later (k^2 falls below it later)
+    ini = spun(170)
+    s = L.averaged(TOP, DRAG, ini, (0.0, 30.0), degenerate_tol=1e-3)
+    assert s.status == 1 and s.event == "u1_eq_u2"
+    assert "pass chart='GHr'" in s.message and "a smaller degenerate_tol" in s.message
+    g = L.averaged(TOP, DRAG, ini, (0.0, 30.0), degenerate_tol=1e-3, chart="GHr")
+    assert g.status == 0 and g.tau[-1] == 30.0
+    d = L.averaged(TOP, DRAG, ini, (0.0, 30.0), degenerate_tol=1e-5)
+    assert d.tau[-1] > s.tau[-1]
+    # a batch member stops with the same message
+    b = L.averaged(TOP, DRAG, np.array([ini, spun(60)]), (0.0, 30.0), degenerate_tol=1e-3)
+    assert b.event[0] == "u1_eq_u2" and b.message[0] == s.message
+
+
 def test_batch_shape_and_default_grid():
     ini = np.array([[spun(40), spun(80), spun(120)], [spun(30), spun(90), spun(150)]])
     b = L.averaged(TOP, DRAG, ini, (0.0, 5.0))

@@ -1,24 +1,34 @@
-"""Validation of scalar user input, shared by all modules.
+"""Validation of user input, shared by all modules.
 
 Every public function of the library rejects bad input with a ``TypeError`` (not a real number) or a
-``ValueError`` (NaN, infinite, out of range) whose message names the parameter and the allowed range.
+``ValueError`` (NaN, infinite, out of range) whose message names the parameter and the allowed range. What a
+user's function returns (a torque, a field) is checked by :func:`returned`, whose errors name the function by
+its repr and say what was expected.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 from typing import Any
 
 import numpy as np
 
-__all__ = ["finite_array", "positive", "real", "span"]
+__all__ = ["RESULT_ERRORS", "ResultTypeError", "ResultValueError", "finite_array", "positive", "real",
+           "result_message", "returned", "span"]
 
 
 def _as_float(value: Any, name: str) -> float:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (numbers.Real, np.floating, np.integer)):
         raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
     return float(value)
+
+
+def _shown(value: Any) -> str:
+    """A number as the messages show it: NumPy scalars like Python's (``nan``, not ``np.float64(nan)``), so that
+    a batch member and the single call with the same value say the same."""
+    return repr(float(value)) if isinstance(value, (np.floating, np.integer)) else repr(value)
 
 
 def real(value: Any, name: str) -> float:
@@ -44,7 +54,7 @@ def real(value: Any, name: str) -> float:
     """
     v = _as_float(value, name)
     if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {value!r}")
+        raise ValueError(f"{name} must be finite, got {_shown(value)}")
     return v
 
 
@@ -71,7 +81,7 @@ def positive(value: Any, name: str) -> float:
     """
     v = _as_float(value, name)
     if not (math.isfinite(v) and v > 0.0):
-        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+        raise ValueError(f"{name} must be finite and > 0, got {_shown(value)}")
     return v
 
 
@@ -133,3 +143,97 @@ def finite_array(value: Any, name: str) -> np.ndarray:
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name} must be finite, got {value!r}")
     return a
+
+
+class ResultTypeError(TypeError):
+    """A user's function returned something that is not real numbers (None, complex numbers, text)."""
+
+
+class ResultValueError(ValueError):
+    """A user's function returned real numbers of the wrong shape, or NaN or infinite values."""
+
+
+#: the errors of :func:`returned` (a run catches them to end with a status where a function misbehaves mid-way)
+RESULT_ERRORS = (ResultTypeError, ResultValueError)
+
+
+def returned(value: Any, fun: Any, shape: tuple[int, ...], *, role: str = "the function", finite: bool = True
+             ) -> np.ndarray:
+    """What a user's function returned, checked: a float array that broadcasts to ``shape``, finite.
+
+    The one check of the output of a user's callable (a torque, a field): every code path that calls one
+    passes its result through here. The common case (a float array of exactly ``shape``) costs one
+    finiteness test.
+
+    Parameters
+    ----------
+    value : object
+        What the function returned.
+    fun : callable
+        The function (named by its repr in the messages).
+    shape : tuple of int
+        The shape expected (the leading axes of the arguments and the components, e.g. ``(..., 3)``); a
+        result that broadcasts to it (a constant, compact leading axes) is accepted, a scalar is not.
+    role : str
+        What the function is, for the messages (``'the torque'``).
+    finite : bool
+        Whether to test for NaN and infinite values (a batch tests them per member itself).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``value`` as a float array (the object itself when it already is one).
+
+    Raises
+    ------
+    ResultTypeError
+        (a ``TypeError``) for None, complex numbers, or anything that is not real numbers.
+    ResultValueError
+        (a ``ValueError``) for a scalar, a shape that does not broadcast to ``shape`` with the same last axis,
+        or NaN or infinite values.
+    """
+    if type(value) is np.ndarray and value.dtype == np.float64 and (value.shape == shape or _fits(value.shape, shape)):
+        a = value  # the common cases: the shape itself, or the compact shape a vectorised function returns
+    else:
+        a = _result_array(value, fun, shape, role)
+    if finite and not np.isfinite(a).all():
+        raise ResultValueError(result_message(fun, shape, "non-finite values (NaN or inf)", role))
+    return a
+
+
+def result_message(fun: Any, shape: tuple[int, ...], problem: str, role: str = "the function") -> str:
+    """The message of :func:`returned`: who returned what, and what was expected."""
+    return (f"{role} {fun!r} returned {problem}; expected finite real numbers of shape (..., {shape[-1]}), here "
+            f"{shape} (or broadcasting to it)")
+
+
+def _result_array(value: Any, fun: Any, shape: tuple[int, ...], role: str) -> np.ndarray:
+    if value is None:
+        raise ResultTypeError(result_message(fun, shape, "None", role))
+    if isinstance(value, (str, bytes)):
+        raise ResultTypeError(result_message(fun, shape, f"text {value!r}", role))
+    if np.iscomplexobj(value):
+        raise ResultTypeError(result_message(fun, shape, "complex numbers", role))
+    try:
+        a = np.asarray(value)
+    except (TypeError, ValueError):
+        a = np.empty(0, dtype=object)
+    if a.dtype.kind not in "fiu":
+        what = f"{a.dtype.name} values" if a.dtype != object else f"a {type(value).__name__}"
+        raise ResultTypeError(result_message(fun, shape, f"{what}, not real numbers", role))
+    a = a.astype(float, copy=False)
+    if a.ndim == 0:
+        raise ResultValueError(result_message(fun, shape, f"a scalar ({float(a)!r})", role))
+    if not _fits(a.shape, shape):
+        raise ResultValueError(result_message(fun, shape, f"an array of shape {a.shape}", role))
+    return a
+
+
+@functools.lru_cache(maxsize=256)
+def _fits(got: tuple[int, ...], shape: tuple[int, ...]) -> bool:
+    """Whether an array of shape ``got`` (not a scalar) broadcasts to ``shape`` with the same last axis (cached: a
+    run asks for the same pair of shapes at every step)."""
+    try:
+        return len(got) > 0 and got[-1] == shape[-1] and np.broadcast_shapes(got, shape) == shape
+    except ValueError:
+        return False

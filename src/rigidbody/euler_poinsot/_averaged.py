@@ -45,7 +45,7 @@ from scipy import special
 
 from ..core import kernel as _kn
 from ..core.ode import Event, Solution, integrate
-from ..core.validate import positive, real, span
+from ..core.validate import RESULT_ERRORS, positive, real, span
 from . import _kernel as _k
 from ._engine import Averager, TorqueAverage, _Mean, _State, error_of, mean_of
 from ._model import (
@@ -62,8 +62,11 @@ from ._model import (
     _nstar,
     _nut_freq,
 )
+from ._protocol import Misfire
 from ._resonance import resonance_crossings
 from ._separatrix import K2_SWITCH, SeparatrixCrossing, _check_branch, _choose, _initial_kind, separatrix_crossing
+from ._start import StartRules, check_start
+from ._stops import stop_message
 from ._torques import drag_as_torque, resolve
 
 __all__ = ["average_torque", "averaged", "averaged_branches", "averaged_rates", "precession_rate"]
@@ -127,11 +130,13 @@ def averaged_rates(
     ------
     TypeError
         If ``body`` is not a :class:`Body`, a number is not real or ``torque`` is neither a drag tensor nor
-        a callable.
+        a callable; or the torque returns None, complex numbers or anything but real numbers (the message
+        names it).
     ValueError
         If ``G <= 0``, ``k2`` is outside [0, 1], ``nu`` is not finite, ``omega0 <= 0`` (or not 1 with a
         torque object), ``sigma`` is not +1 or -1, ``method`` or ``kind`` is unknown, or a torque object
-        was built for another body or orbit.
+        was built for another body or orbit; or the torque returns a scalar, a shape other than ``(..., 3)``,
+        NaN or infinities (the message names it and what was expected).
     """
     _check_body(body)
     _check_kind(kind)
@@ -375,21 +380,6 @@ def precession_rate(body: Body, G: float, k2: float, delta: float, *, kind: str 
     return 0.75 * omega0**2 * orb.mean_factor * _nstar(_labels(body, kind), k2) * math.cos(delta) / G
 
 
-def _slow_msg(r: float) -> str:
-    return (f"the rotation is no longer fast: (2 pi / Euler-Poinsot period) / omega0 fell to {r:g}; "
-            "the averaging over the Euler-Poinsot motion (eps << 1) no longer holds")
-
-
-def _check_spin(A: tuple[float, float, float], G0: float, k2_0: float, eps: float, r: float) -> None:
-    r = real(r, "min_spin_ratio")
-    if eps > 0 and r > 0 and _nut_freq(A, G0, k2_0) / eps <= r:
-        raise ValueError(
-            f"eps = {eps:g} is too large for this state: the Euler-Poinsot frequency over the orbital rate is "
-            f"{_nut_freq(A, G0, k2_0) / eps:.3g} <= min_spin_ratio = {r:g} (the rotation is not fast); lower "
-            "eps, or pass min_spin_ratio=0 to integrate anyway outside the theory"
-        )
-
-
 def _unit(delta: float, lam: float) -> tuple[float, float, float]:
     return (math.sin(delta) * math.cos(lam), math.sin(delta) * math.sin(lam), math.cos(delta))
 
@@ -445,27 +435,6 @@ def _finish(
     data["lam"] = lam
     return Solution(res.time_name, tau_out, y_out, data, res.status, res.message, res.event,
                     res.t_events, res.y_events, res.sol, res.nfev)
-
-
-def _validate_common(body: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any,
-                     tau_span: Any, nu0: Any) -> tuple[float, float, float, float, float, float]:
-    _check_body(body)
-    eps = real(eps, "eps")
-    if eps < 0:
-        raise ValueError(f"eps must be >= 0 (eps = omega0/omega), got {eps}")
-    G0 = real(G0, "G0")
-    if G0 <= 0:
-        raise ValueError(f"G0 must be positive, got {G0}")
-    k2_0 = real(k2_0, "k2_0")
-    if not (0.0 <= k2_0 < 1.0):
-        raise ValueError(f"k2_0 must lie in [0, 1) (k2 = 1 is the separatrix), got {k2_0}")
-    delta0 = real(delta0, "delta0")
-    if not (0.0 <= delta0 <= math.pi):
-        raise ValueError(f"delta0 (polar angle of G from x3) must lie in [0, pi], got {delta0}")
-    lam0 = real(lam0, "lam0")
-    nu0 = real(nu0, "nu0")
-    span(tau_span, "tau_span")
-    return eps, G0, k2_0, delta0, lam0, nu0
 
 
 def _check_tau_eval(tau_eval: Any, tau_span: Any) -> None:
@@ -618,7 +587,9 @@ def averaged(
         unwrapped), ``sol.nu`` (the true anomaly; constant ``nu0`` when ``eps = 0``, where it is averaged
         out), ``sol.n`` (unit vector of G in :math:`Ox_i`, shape (3, n)), ``sol.kind`` and ``sol.sigma``
         (the kind of motion and its sense at every output time; ``k2`` is the modulus of that kind),
-        ``sol.status`` (0 end reached, 1 an event ended the run, -1 failure), ``sol.message``, ``sol.event``
+        ``sol.status`` (0 end reached, 1 an event ended the run, -1 failure: e.g. a torque that turns non-finite
+        part-way, named in the message with the time), ``sol.message`` (for an event: what ended the run and the
+        option that relaxes it), ``sol.event``
         (``'separatrix'``, ``'slow_rotation'`` or None; with a torque object also ``'fast_drift'`` and
         ``'resonance'``). ``sol.t_events['separatrix']`` holds the times of the separatrix crossings and
         ``sol.crossings`` one dict per crossing: ``tau``, ``source`` and ``region`` (the regions
@@ -673,7 +644,7 @@ def averaged(
                                      averaged)
     _check_body(body)
     k2_0, kind = _initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
-    eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)
+    span(tau_span, "tau_span")
     _check_tau_eval(tau_eval, tau_span)
     _check_tol(rtol, atol)
     orb = _as_orbit(orbit)
@@ -685,16 +656,10 @@ def averaged(
     branch = _check_branch(branch)
     what, tq = resolve(torque)
     through = k2_max is None
-    if through:
-        k2_stop = K2_SWITCH
-        if k2_0 >= k2_stop:
-            raise ValueError(f"k2_0 = {k2_0!r} lies within 1e-9 of the separatrix: start on either side of it "
-                             "(T0 slightly off G0^2/(2 A2))")
-    else:
-        k2_stop = real(k2_max, "k2_max")
-        if not (k2_0 < k2_stop <= 1.0):
-            raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {k2_stop}: "
-                             "raise k2_max or start further from the separatrix")
+    k2_stop = K2_SWITCH if through else real(k2_max, "k2_max")
+    min_spin_ratio = real(min_spin_ratio, "min_spin_ratio")
+    rules = StartRules(body, None if through else k2_stop, min_spin_ratio)
+    eps, G0, k2_0, delta0, lam0, nu0 = check_start(rules, kind, eps, G0, k2_0, delta0, lam0, nu0)
     region0 = (kind, sigma)
     gen = _Generic(torque=tq if what == "torque" else drag_as_torque(tq, body, orb), averaging=averaging,
                    quad_tol=quad_tol, body=body, eps=eps, orbit=orb, nu0=nu0, rtol=rtol, atol=atol, method=method,
@@ -704,7 +669,6 @@ def averaged(
     else:
         gen.torque._check_setup(body, orb)
     gen.spin_cap = K2_SPIN_CAP if through else 1.0
-    _check_spin(_labels(body, kind), G0, min(k2_0, gen.spin_cap), eps, min_spin_ratio)
     # the true anomaly at the start: nu = tau/eps + nu0 on a circular orbit (as the drag tensor's closed forms and
     # simulate take it, also when tau_span starts after 0); on an eccentric orbit nu is a state starting at nu0
     nu_start = nu0 + float(tau_span[0]) / eps if eps > 0.0 and orb.e == 0.0 else nu0
@@ -935,6 +899,7 @@ def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: flo
 
     fast = av.fast(kind, sigma, eps > 0.0)  # the engine alone on floats, or None (closed forms: state objects)
     memo: list[Any] = [None, None, None, None]  # the last (chart, tau, y, means): the drift event reuses them
+    misfire = Misfire()  # a torque that misbehaves part-way ends the run with a status naming it
 
     def mean_at(tau: float, y: Any, chart: str) -> _Slow:
         """(G, k2, n1, n2, n3, nu, L1, L2, L3, dT, dk2) at a state of the chart."""
@@ -952,12 +917,16 @@ def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: flo
             r = sqrt(yl[2] * yl[2] + yl[3] * yl[3] + yl[4] * yl[4])
             n1, n2, n3 = yl[2] / r, yl[3] / r, yl[4] / r
             nu = nu_of(tau, yl, inu + 1)
-        if fast is not None:
-            L1, L2, L3, dT, dk2 = fast(G, k2, n1, n2, n3, nu)
-        else:
-            m = av.mean(_State(body, kind, sigma, G, k2, np.array([n1, n2, n3]), nu, orb))
-            L1, L2, L3 = (float(v) for v in m.L)
-            dT, dk2 = m.dT, m.dk2
+        try:
+            if fast is not None:
+                L1, L2, L3, dT, dk2 = fast(G, k2, n1, n2, n3, nu)
+            else:
+                m = av.mean(_State(body, kind, sigma, G, k2, np.array([n1, n2, n3]), nu, orb))
+                L1, L2, L3 = (float(v) for v in m.L)
+                dT, dk2 = m.dT, m.dk2
+        except RESULT_ERRORS as exc:  # NaN rates: the step fails here, the run ends with misfire's message
+            misfire.note(tau, exc)
+            L1 = L2 = L3 = dT = dk2 = math.nan
         out = (G, k2, n1, n2, n3, nu, L1, L2, L3, dT, dk2)
         memo[0], memo[1], memo[2], memo[3] = chart, tau, list(yl), out
         return out
@@ -1009,14 +978,13 @@ def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: flo
     lnk_stop = math.log(setup.k2_max + c)
     common_events = [
         Event((lambda t, y: y[1] - lnk_stop) if z else (lambda t, y: -1.0), "separatrix", True, 1.0,
-              f"k2 reached {setup.k2_max:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
-              "where the averaging does not hold"),
+              stop_message("separatrix", k2_max=setup.k2_max)),
     ]
     if eps > 0.0:
         cap, ratio = setup.spin_cap, setup.min_spin_ratio
         common_events.append(Event(lambda t, y: _nut_freq(a, exp(y[0]), min(max(z * exp(y[1]) - c, 0.0), cap)) * ie
                                    - ratio,
-                                   "slow_rotation", True, -1.0, _slow_msg(ratio)))
+                                   "slow_rotation", True, -1.0, stop_message("slow_rotation", min_spin_ratio=ratio)))
 
     def chart_events(chart: str) -> list[Event]:
         evs = list(common_events)
@@ -1027,9 +995,7 @@ def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: flo
                 st, m = pair(t, y, chart)
                 return _slow_drift(setup, st, m) - tol
 
-            evs.append(Event(drift, "fast_drift", True, 1.0,
-                             f"the slow variables change by more than {tol:g} of themselves in one "
-                             "Euler-Poinsot period: no separation of time scales, the averaging does not hold"))
+            evs.append(Event(drift, "fast_drift", True, 1.0, stop_message("fast_drift", drift_tol=tol)))
         if chart == "angles":
             evs.append(Event(lambda t, y: sin(y[2]) - _SIN_OFF, "chart", True, -1.0))
         elif angles:
@@ -1047,6 +1013,7 @@ def _integrate_kind(setup: _Setup, kind: str, sigma: int, tau_span: Any, G0: flo
                         rtol=rt if py else _k.RTOL_FLOOR, atol=at, method=setup.method, dense_output=True,
                         events=chart_events(chart), time_name="tau", engine="python" if py else "scipy",
                         first_step=step if py else None)
+        misfire.settle(raw)
         piece = _Chart(chart, raw, z, c, ecc, lam_s)
         pieces.append(piece)
         if raw.event != "chart" or len(pieces) >= _MAX_CHARTS:
@@ -1188,14 +1155,9 @@ def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
         tcut = np.append(res.time[keep], cut["tau"])
         ycut = np.column_stack([res.y[:, keep], res.sol(cut["tau"])])
         status, event = 1, "resonance"
-        message = (f"stopped by event 'resonance' at tau = {cut['tau']:.6g}: the rotation number crosses "
-                   f"{cut['rho']:g} too slowly (predicted jump {cut['jump']:.3g} > resonance_tol = "
-                   f"{setup.resonance_tol:g}); the averaging over psi and the phase does not hold there")
-        if cut["bound"]:  # an order too high to compute its coefficient, and a bound that does not show it harmless
-            message = (f"stopped by event 'resonance' at tau = {cut['tau']:.6g}: the rotation number crosses "
-                       f"{cut['rho']:g}, an order whose coefficient is too costly to compute, and the bound on its "
-                       f"jump, {cut['jump']:.3g}, exceeds resonance_tol = {setup.resonance_tol:g}: the averaging "
-                       f"may not hold there; raise resonance_tol or pass resonance_tol=None to go on")
+        # an order too high to compute its coefficient, and a bound that does not show it harmless
+        message = stop_message("resonance_bound" if cut["bound"] else "resonance", tau=cut["tau"], rho=cut["rho"],
+                               jump=cut["jump"], resonance_tol=setup.resonance_tol)
         res = Solution(res.time_name, tcut, ycut, {}, status, message, event, res.t_events, res.y_events,
                        res.sol, res.nfev)
         resonances = [r for r in resonances if r["tau"] <= cut["tau"]]
@@ -1206,7 +1168,11 @@ def _finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
     if setup.averager.rest is not None and res.time.size:
         for t in np.unique([res.time[0], res.time[-1]]):
             st = _state_of(setup, seg.kind, seg.sigma, float(t), res.sol(t), seg.tau0, seg.nu0)
-            m, e = setup.averager.report(st)
+            try:
+                m, e = setup.averager.report(st)
+            except RESULT_ERRORS:  # the torque turned bad at the end (the run's status says so): no estimate
+                qerr = math.nan
+                break
             # every rate in torque units: <C M> itself, dT/dtau times G/T, dk2/dtau times G
             GT = st.G / max(st.T, 1e-300)
             size = float(np.abs(m.L).max()) + abs(m.dT) * GT + 1e-300
@@ -1331,8 +1297,7 @@ def _through(first: _Piece, gen: _Generic, tau_span: Any, tau_eval: Any, through
         c = gen.crossing(G, delta, lam, nu, cur.region)
         region, why = _choose(c, branch, len(crossings), rng)
         if region is not None and gen.dk2_at(region, G, n, nu) >= 0.0:
-            why = (f"the separatrix attracts from both sides: the averaged k2 of {region}, where the motion "
-                   "would continue, points back to it")
+            why = stop_message("attracts", region=region)
             region = None
         crossings.append({"tau": tc, "source": cur.region, "region": region, "probabilities": dict(c.probabilities),
                           "drifts": dict(c.drifts), "G": G, "n": n})
@@ -1340,8 +1305,7 @@ def _through(first: _Piece, gen: _Generic, tau_span: Any, tau_eval: Any, through
             stop = why
             break
         if len(crossings) > _MAX_CROSSINGS or (len(crossings) > 1 and tc <= crossings[-2]["tau"]):
-            stop = (f"the averaged motion stalls at the separatrix ({len(crossings)} crossings, the last at "
-                    f"tau = {tc:.6g}): the drifts on the two sides point to it")
+            stop = stop_message("stall", n=len(crossings), tau=tc)
             break
         # a segment that starts next to the separatrix starts with the step its predecessor ended with: there
         # the rates' logarithmic singularity can fool the initial-step heuristic into a step whose error
@@ -1378,7 +1342,7 @@ def _assemble(pieces: list[_Piece], crossings: list[dict[str, Any]], stop: str, 
     if stop:
         tc = crossings[-1]["tau"]
         status, event = 1, "separatrix"
-        message = f"stopped by event 'separatrix' at tau = {tc:.6g}: {stop}"
+        message = stop_message("crossing", tau=tc, why=stop)
     t_events = dict(res.t_events)
     y_events = dict(res.y_events)
     t_events["separatrix"] = np.array([c["tau"] for c in crossings])
@@ -1447,12 +1411,11 @@ def _drag_piece(gen: _Generic, drag: Any, region: tuple[str, int], tau_span: Any
 
     lnk_stop = math.log(k2_stop)
     events = [Event((lambda t, y: y[1] - lnk_stop) if z > 0.0 else (lambda t, y: -1.0), "separatrix", True, 1.0,
-                    f"k2 reached {k2_stop:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
-                    "where the averaging (6) does not hold")]
+                    stop_message("separatrix", k2_max=k2_stop))]
     if not limit:
         cap, r = gen.spin_cap, gen.min_spin_ratio
         events.append(Event(lambda t, y: _k.nut_freq(SC, A, math.exp(y[0]), min(z * math.exp(y[1]), cap)) * ie - r,
-                            "slow_rotation", True, -1.0, _slow_msg(r)))
+                            "slow_rotation", True, -1.0, stop_message("slow_rotation", min_spin_ratio=r)))
     rt: Any
     rt, at = _k.tolerances(gen.rtol, y0.size)
     py = gen.method == "DOP853"

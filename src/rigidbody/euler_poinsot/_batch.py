@@ -25,9 +25,12 @@ import numpy as np
 from ..core.batch import integrate_batch, member_records
 from ..core.kernel import ARRAY, SCALAR
 from ..core.ode import Event, Solution
+from ..core.validate import RESULT_ERRORS
 from . import _kernel as _k
 from ._model import K2_SPIN_CAP, Body, Drag, Orbit, _dk2, _labels
 from ._separatrix import K2_SWITCH, _choose, _initial_kind, separatrix_crossing
+from ._start import StartRules, check_start
+from ._stops import stop_message
 
 __all__ = ["averaged_batch", "closed_batch", "member_inputs", "simulate_batch"]
 
@@ -38,16 +41,6 @@ _SC = SCALAR
 FIELDS = ("G", "T", "k2", "delta", "lam", "nu", "n", "kind", "sigma")
 #: a member that crosses the separatrix more often than this ends with a status (as the single run does)
 _MAX_CROSSINGS = 50
-
-
-def separatrix_message(k2_max: float) -> str:
-    return (f"k2 reached {k2_max:g}: the Euler-Poinsot motion approaches the separatrix 2T A2 = G^2, "
-            "where the averaging (6) does not hold")
-
-
-def slow_message(r: float) -> str:
-    return (f"the rotation is no longer fast: (2 pi / Euler-Poinsot period) / omega0 fell to {r:g}; "
-            "the averaging over the Euler-Poinsot motion (eps << 1) no longer holds")
 
 
 # --------------------------------------------------------------------------------------------------
@@ -79,8 +72,9 @@ def _as_real_array(v: Any, name: str) -> np.ndarray:
 
 
 def member_inputs(body: Body, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, nu0: Any, T0: Any = None,
-                  kind: Any = None, shape: tuple[int, ...] = ()) -> Members:
-    """Broadcast the per-member inputs (and ``shape``, e.g. that of a batch of drag tensors) to one batch shape
+                  kind: Any = None, shape: tuple[int, ...] = (), shape_of: str = "drag tensors") -> Members:
+    """Broadcast the per-member inputs (and ``shape``, that of ``shape_of``: a batch of drag tensors, the phases
+    of a full batch) to one batch shape
     (``TypeError``/``ValueError`` naming what does not broadcast or is not real); the initial kind and ``k2_0``
     of each member from ``T0`` as the single run finds them (a member whose ``T0`` it refuses is refused)."""
     if T0 is not None and (k2_0 is not None or kind is not None):
@@ -95,7 +89,7 @@ def member_inputs(body: Body, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: A
     except ValueError:
         shapes = ", ".join(f"{k} {a.shape}" for k, a in arrays.items() if a.ndim)
         raise ValueError(f"the per-member inputs do not broadcast to one batch shape: {shapes}"
-                         + (f", drag tensors {shape}" if shape else "")) from None
+                         + (f", {shape_of} {shape}" if shape else "")) from None
     if not bshape:
         raise ValueError("a batch needs at least one array input")
     if 0 in bshape:
@@ -178,40 +172,19 @@ def drag_members(mem: Members, tensors: np.ndarray) -> tuple[tuple[np.ndarray, n
     return (diag[:, 0], diag[:, 1], diag[:, 2]), T
 
 
-def check_members(mem: Members, run: ClosedRun, full: bool = False) -> None:
-    """The single run's input checks, member by member, in its order: a refused member gets its message
-    (``full``: those of :func:`simulate`, which has no margin at the separatrix when it goes through)."""
-    cap = K2_SPIN_CAP if run.through else 1.0
+def check_members(mem: Members, run: ClosedRun, full: bool = False, u0: Any = None, psi0: Any = None) -> None:
+    """The single run's start checks (:func:`._start.check_start`), member by member: a refused member gets the
+    single call's message (``full``: those of :func:`simulate`, with the members' phases ``u0``, ``psi0``)."""
+    rules = StartRules(run.body, run.k2_max, run.min_spin_ratio, full)
     for i in range(mem.eps.size):
         if i in mem.refused:
             continue
-        eps, G0, k2_0, d0 = mem.eps[i], mem.G0[i], mem.k2_0[i], mem.delta0[i]
-        msg = None
-        if not all(math.isfinite(v) for v in (eps, G0, k2_0, d0, mem.lam0[i], mem.nu0[i])):
-            msg = "the initial values must be finite"
-        elif eps < 0:
-            msg = f"eps must be >= 0 (eps = omega0/omega), got {eps}"
-        elif G0 <= 0:
-            msg = f"G0 must be positive, got {G0}"
-        elif not (0.0 <= k2_0 < 1.0):
-            msg = f"k2_0 must lie in [0, 1) (k2 = 1 is the separatrix), got {k2_0}"
-        elif not (0.0 <= d0 <= math.pi):
-            msg = f"delta0 (polar angle of G from x3) must lie in [0, pi], got {d0}"
-        elif run.through and not full and k2_0 >= K2_SWITCH:
-            msg = (f"k2_0 = {k2_0!r} lies within 1e-9 of the separatrix: start on either side of it "
-                   "(T0 slightly off G0^2/(2 A2))")
-        elif not run.through and not k2_0 < run.k2_stop:
-            msg = (f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {run.k2_stop}: "
-                   "raise k2_max or start further from the separatrix")
-        elif eps > 0 and run.min_spin_ratio > 0:
-            A = _labels(run.body, mem.kind[i])
-            ratio = float(_k.nut_freq(_SC, A, G0, min(k2_0, cap))) / eps
-            if ratio <= run.min_spin_ratio:
-                msg = (f"eps = {eps:g} is too large for this state: the Euler-Poinsot frequency over the orbital "
-                       f"rate is {ratio:.3g} <= min_spin_ratio = {run.min_spin_ratio:g} (the rotation is not "
-                       "fast); lower eps, or pass min_spin_ratio=0 to integrate anyway outside the theory")
-        if msg is not None:
-            mem.refused[i] = msg
+        phase = (float(u0[i]), float(psi0[i])) if full else (0.0, 0.0)
+        try:
+            check_start(rules, mem.kind[i], float(mem.eps[i]), float(mem.G0[i]), float(mem.k2_0[i]),
+                        float(mem.delta0[i]), float(mem.lam0[i]), float(mem.nu0[i]), *phase)
+        except ValueError as exc:
+            mem.refused[i] = str(exc)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -286,7 +259,7 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
             co = _k.DragCoefficients(A, Id)
             y0, z = _k.initial_state(0.0 if limit else mem.eps[idx], G[idx], k2[idx], dl[idx], lm[idx], nus[idx], e)
             args: tuple[np.ndarray, ...] = (*co.args(), z)
-            events = [Event(sep, "separatrix", True, 1.0, separatrix_message(run.k2_stop))]
+            events = [Event(sep, "separatrix", True, 1.0, stop_message("separatrix", k2_max=run.k2_stop))]
             if limit:
                 args = (*args, 0.75 * run.orbit.mean_factor * np.cos(dl[idx]))
                 ie = np.zeros(idx.size)
@@ -295,7 +268,8 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
                 ie = 1.0 / mem.eps[idx]
                 args = (*args, ie, mem.nu0[idx])
                 rhs = rhs_orb(A)
-                events.append(Event(slow(A), "slow_rotation", True, -1.0, slow_message(r)))
+                events.append(Event(slow(A), "slow_rotation", True, -1.0,
+                                    stop_message("slow_rotation", min_spin_ratio=r)))
             rt, at = _k.tolerances(run.rtol, y0.shape[1])
             sol = integrate_batch(rhs, (tau[idx], t1), y0, t_eval=te, rtol=rt, atol=at, events=events, args=args,
                                   time_name="tau", first_step=hnext[idx])
@@ -336,8 +310,7 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
                 if region is not None:
                     An, Idn = run.labelled(region[0], np.array([i]))
                     if _dk2(An, tuple(float(v[0]) for v in Idn), K2_SWITCH) >= 0.0:  # type: ignore[arg-type]
-                        why = (f"the separatrix attracts from both sides: the averaged k2 of {region}, where the "
-                               "motion would continue, points back to it")
+                        why = stop_message("attracts", region=region)
                         region = None
                 crossings[i].append({"tau": tc, "source": (kd, int(sigma[i])), "region": region,
                                      "probabilities": dict(c.probabilities), "drifts": dict(c.drifts), "G": Gc,
@@ -345,11 +318,10 @@ def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te
                 stop = why if region is None else ""
                 cr = crossings[i]
                 if not stop and (len(cr) > _MAX_CROSSINGS or (len(cr) > 1 and tc <= cr[-2]["tau"])):
-                    stop = (f"the averaged motion stalls at the separatrix ({len(cr)} crossings, the last at "
-                            f"tau = {tc:.6g}): the drifts on the two sides point to it")
+                    stop = stop_message("stall", n=len(cr), tau=tc)
                 tev["separatrix"][i] = np.array([x["tau"] for x in cr])
                 if stop:
-                    finish(i, 1, f"stopped by event 'separatrix' at tau = {tc:.6g}: {stop}", "separatrix", tc)
+                    finish(i, 1, stop_message("crossing", tau=tc, why=stop), "separatrix", tc)
                     continue
                 assert region is not None
                 kind[i], sigma[i] = region[0], float(region[1])
@@ -442,8 +414,12 @@ def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: 
         for k in ("quad_error", "resonances", "crossings"):  # per-run reports of the engine path
             if k in s.__dict__:
                 extras.setdefault(k, np.empty(B, dtype=object))[i] = s.__dict__[k]
-    if ys is None:
-        ys = np.full((B, 1, nt), np.nan)
+    if ys is None:  # no member ran: the raw rows G, k2, n
+        ys = np.full((B, 5, nt), np.nan)
+    for k in names:  # fields no member produced (all refused): NaN, as a refused member's
+        if k not in data:
+            data[k] = np.full((B, 3, nt), np.nan) if k == "n" else (
+                np.full((B, nt), "", dtype="<U3") if k == "kind" else np.full((B, nt), np.nan))
     fields_ = {k: v.reshape(batch_shape + v.shape[1:]) for k, v in data.items()}
     sol = Solution("tau", te, ys.reshape(batch_shape + ys.shape[1:]), fields_, status.reshape(batch_shape),
                    message.reshape(batch_shape), event.reshape(batch_shape),
@@ -456,7 +432,8 @@ def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: 
 
 def one_by_one(call: Any, mem: Members, te: np.ndarray, names: tuple[str, ...], **per_member: np.ndarray) -> Solution:
     """Each member by its own single call ``call(eps, G0, k2_0, delta0, lam0, nu0, tau_eval=..., **extra)``; a
-    ``ValueError`` refuses that member (status -1, its message)."""
+    ``ValueError`` (or a torque's output refused at the member's start) refuses that member (status -1, its
+    message)."""
     out: list[Solution | str] = []
     for i in range(mem.eps.size):
         if i in mem.refused:
@@ -466,7 +443,7 @@ def one_by_one(call: Any, mem: Members, te: np.ndarray, names: tuple[str, ...], 
         try:
             out.append(call(float(mem.eps[i]), float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]),
                             float(mem.lam0[i]), float(mem.nu0[i]), te, **extra))
-        except ValueError as exc:
+        except (ValueError, *RESULT_ERRORS) as exc:
             out.append(str(exc))
     return assemble(out, mem.batch_shape, te, names)
 
@@ -574,7 +551,12 @@ def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
         raise ValueError(f"formulation must be 'body' or 'angles', got {opts['formulation']!r}")
     k2_max = None if opts["k2_max"] is None else real(opts["k2_max"], "k2_max")
     min_spin = real(opts["min_spin_ratio"], "min_spin_ratio")
-    mem = member_inputs(body, eps, G0, k2_0, delta0, lam0, nu0, opts["T0"], opts["kind"])
+    try:
+        phases = np.broadcast_shapes(np.shape(u0), np.shape(psi0))
+    except ValueError:
+        raise ValueError(f"u0 and psi0 must broadcast to one batch shape, got {np.shape(u0)}, {np.shape(psi0)}"
+                         ) from None
+    mem = member_inputs(body, eps, G0, k2_0, delta0, lam0, nu0, opts["T0"], opts["kind"], phases, "u0 and psi0")
     try:
         ph = np.broadcast_to(np.asarray(u0, dtype=float), mem.batch_shape).reshape(-1)
         ps = np.broadcast_to(np.asarray(psi0, dtype=float), mem.batch_shape).reshape(-1)
@@ -593,13 +575,10 @@ def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
 
         names = ("G", "T", "k2", "delta", "lam", "nu", "n", "kind", "sigma")
         return one_by_one(call, mem, te, names, u0=ph, psi0=ps, kind=mem.kind)
-    # the single run's checks, member by member (eps > 0 here: the full equations need a fast rotation)
+    # the single run's checks, member by member
     zero = np.zeros(1)
     crun = ClosedRun(body, (zero, zero, zero), np.zeros((1, 3, 3)), orb, float(opts["rtol"]), k2_max, min_spin)
-    check_members(mem, crun, full=True)
-    for i in range(mem.eps.size):
-        if i not in mem.refused and not mem.eps[i] > 0.0:
-            mem.refused[i] = "eps must be positive for the full equations (eps = 0 has no fast rotation to resolve)"
+    check_members(mem, crun, True, ph, ps)
     run = FullRun(body, what, tq, orb, mem.kind, sigma, float(opts["rtol"]), float(opts["atol"]), k2_max, min_spin,
                   K2_SPIN_CAP if k2_max is None else 1.0)
     if what == "torque":  # one evaluation at a valid member's start, with the single run's message on failure

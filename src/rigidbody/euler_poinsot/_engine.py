@@ -58,6 +58,7 @@ import numpy as np
 
 from ..core import averaging as avg
 from ._model import Body, Orbit, _labels
+from ._protocol import TorqueSum, evaluate
 
 __all__ = ["TorqueAverage"]
 
@@ -248,11 +249,10 @@ def torque_grid(torque: Any, st: _State, grid: Grid, compact: bool = False, dual
         nu, w = np.array([st.nu]), np.ones(1)
     shape = (nu.size, grid.n_psi, n_u)
     if compact:
-        M = torque(omega[None, None], C[None], nu[:, None, None])
+        M = evaluate(torque, omega[None, None], C[None], nu[:, None, None], (*shape, 3))
     else:
-        M = torque(np.broadcast_to(omega, (*shape, 3)), np.broadcast_to(C, (*shape, 3, 3)),
-                   np.broadcast_to(nu[:, None, None], shape))
-    M = np.asarray(M, dtype=float)
+        M = evaluate(torque, np.broadcast_to(omega, (*shape, 3)), np.broadcast_to(C, (*shape, 3, 3)),
+                     np.broadcast_to(nu[:, None, None], shape), (*shape, 3))
     return (M if M.shape == (*shape, 3) else np.broadcast_to(M, (*shape, 3))), w, omega, C
 
 
@@ -532,16 +532,7 @@ class TorqueAverage:
 
 
 def _sum_of(parts: list[Any]) -> Any:
-    if len(parts) == 1:
-        return parts[0]
-
-    def total(omega: Any, C: Any, nu: Any) -> np.ndarray:
-        out = np.asarray(parts[0](omega, C, nu), dtype=float)
-        for p in parts[1:]:
-            out = out + np.asarray(p(omega, C, nu), dtype=float)
-        return out
-
-    return total
+    return parts[0] if len(parts) == 1 else TorqueSum(tuple(parts))
 
 
 class Averager:

@@ -31,8 +31,8 @@ import numpy as np
 
 from ..core import euler
 from ..core.ode import Event, Solution, integrate
-from ..core.validate import real
-from ._averaged import _check_spin, _check_tau_eval, _check_tol, _finish, _slow_msg, _validate_common
+from ..core.validate import RESULT_ERRORS, real, span
+from ._averaged import _check_tau_eval, _check_tol, _finish
 from ._model import (
     K2_SPIN_CAP,
     Body,
@@ -43,7 +43,10 @@ from ._model import (
     _nut_freq,
 )
 from ._motion import EulerPoinsot
+from ._protocol import Misfire, evaluate
 from ._separatrix import _initial_kind
+from ._start import StartRules, check_start
+from ._stops import stop_message
 from ._torques import probe, resolve
 
 __all__ = ["initial_state", "simulate"]
@@ -186,11 +189,9 @@ def simulate(
                                      opts, simulate)
     _check_body(body)
     k2_0, kind = _initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
-    eps, G0, k2_0, delta0, lam0, nu0 = _validate_common(body, eps, G0, k2_0, delta0, lam0, tau_span, nu0)
+    span(tau_span, "tau_span")
     _check_tau_eval(tau_eval, tau_span)
     _check_tol(rtol, atol)
-    if eps <= 0:
-        raise ValueError("eps must be positive for the full equations (eps = 0 has no fast rotation to resolve)")
     if formulation not in ("body", "angles"):
         raise ValueError(f"formulation must be 'body' or 'angles', got {formulation!r}")
     orb = _as_orbit(orbit)
@@ -201,11 +202,10 @@ def simulate(
         Im = np.zeros((3, 3))
     else:
         Im = tq.I
-    if k2_max is not None:
-        k2_max = real(k2_max, "k2_max")
-        if not (k2_0 < k2_max <= 1.0):
-            raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {k2_max}: "
-                             "raise k2_max or start further from the separatrix")
+    k2_max = None if k2_max is None else real(k2_max, "k2_max")
+    min_spin_ratio = real(min_spin_ratio, "min_spin_ratio")
+    rules = StartRules(body, k2_max, min_spin_ratio, full=True)
+    eps, G0, k2_0, delta0, lam0, nu0 = check_start(rules, kind, eps, G0, k2_0, delta0, lam0, nu0, u0, psi0)
     A1, A2, A3 = body.A1, body.A2, body.A3
     Aall = (A1, A2, A3)
     Alab = (A1, A2, A3) if kind == "max" else (A3, A2, A1)
@@ -214,11 +214,12 @@ def simulate(
     circular = orb.e == 0.0
     (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in Im)
     spin_cap = K2_SPIN_CAP if k2_max is None else 1.0  # see K2_SPIN_CAP: only a run through the separatrix
-    _check_spin(Alab, G0, min(k2_0, spin_cap), eps, min_spin_ratio)
     st = initial_state(body, G0, k2_0, delta0, lam0, kind=kind, u0=u0, psi0=psi0, sigma=sigma)
 
     def nu_of(tau: float, y: np.ndarray, i: int) -> float:
         return y[i] if not circular else tau * ie + nu0
+
+    misfire = Misfire()  # a torque that misbehaves part-way: NaN rates there, the run ends with a status
 
     if formulation == "body":
 
@@ -243,7 +244,7 @@ def simulate(
                 [2 * (x * yq + w * z), 1 - 2 * (x * x + z * z), 2 * (yq * z - w * x)],
                 [2 * (x * z - w * yq), 2 * (yq * z + w * x), 1 - 2 * (x * x + yq * yq)],
             ])
-            M = tq(np.array([o1, o2, o3]), C, nu)
+            M = evaluate(tq, np.array([o1, o2, o3]), C, nu, (3,))
             return float(M[0]), float(M[1]), float(M[2])
 
         body_torque = body_torque_object if generic else body_torque_drag
@@ -254,7 +255,11 @@ def simulate(
             w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
             o1, o2, o3 = g1 / A1, g2 / A2, g3 / A3
             nu = nu_of(tau, y, 7)
-            L1, L2, L3 = body_torque(o1, o2, o3, w, x, yq, z, nu)
+            try:
+                L1, L2, L3 = body_torque(o1, o2, o3, w, x, yq, z, nu)
+            except RESULT_ERRORS as exc:
+                misfire.note(tau, exc)
+                L1 = L2 = L3 = math.nan
             dg1 = (g2 * o3 - g3 * o2) * ie2 + L1
             dg2 = (g3 * o1 - g1 * o3) * ie2 + L2
             dg3 = (g1 * o2 - g2 * o1) * ie2 + L3
@@ -328,9 +333,11 @@ def simulate(
         def torques_generic(y: np.ndarray, nu: float) -> tuple[float, ...]:
             # the torque object in body axes, projected on Oy: L = alpha M, C = Y alpha
             G, de, la = y[0], y[1], y[2]
+            if not math.isfinite(y[3] + y[4] + y[5]):  # a stage after a misfire (NaN rates): NaN again
+                return math.nan, math.nan, math.nan
             alpha = euler.dcm(y[5], y[3], y[4])  # alpha_ij = y_i . z_j (body -> Oy)
             omega = G * alpha[2] / body.A
-            M = tq(omega, _frame_y(de, la) @ alpha, nu)
+            M = evaluate(tq, omega, _frame_y(de, la) @ alpha, nu, (3,))
             L = alpha @ M
             return float(L[0]), float(L[1]), float(L[2])
 
@@ -339,7 +346,11 @@ def simulate(
         def rhs(tau: float, y: np.ndarray) -> list[float]:
             G, de, th, ph, ps, T = y[0], y[1], y[3], y[4], y[5], y[6]
             nu = nu_of(tau, y, 7)
-            L1, L2, L3 = torques(y, nu)
+            try:
+                L1, L2, L3 = torques(y, nu)
+            except RESULT_ERRORS as exc:
+                misfire.note(tau, exc)
+                L1 = L2 = L3 = math.nan
             s2, c2 = math.sin(th), math.cos(th)
             sp, cp = math.sin(ph), math.cos(ph)
             sps, cps = math.sin(ps), math.cos(ps)
@@ -405,17 +416,17 @@ def simulate(
         def ev_k2(tau: float, y: np.ndarray) -> float:
             return _k2_osc(Alab, G_D(y)[1]) - stop
 
-        ev_sep = Event(ev_k2, "separatrix", True, 1.0,
-                       f"the osculating k2 reached {k2_max:g}: the motion is at the separatrix 2T A2 = G^2")
+        ev_sep = Event(ev_k2, "separatrix", True, 1.0, stop_message("separatrix_full", k2_max=k2_max))
     if not circular:
         y0.append(nu0)
     events = [
         ev_sep,
-        Event(ev_spin, "slow_rotation", True, -1.0, _slow_msg(min_spin_ratio)),
+        Event(ev_spin, "slow_rotation", True, -1.0, stop_message("slow_rotation", min_spin_ratio=min_spin_ratio)),
         *extra_events,
     ]
     res = integrate(rhs, tau_span, y0, rtol=rtol, atol=atol, method=method, dense_output=True,
                     events=events, time_name="tau")
+    misfire.settle(res)
 
     def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
         G, T = GT(y)

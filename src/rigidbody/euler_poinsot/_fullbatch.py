@@ -25,9 +25,12 @@ import numpy as np
 from ..core.batch import integrate_batch, member_records
 from ..core.euler import dcm_from_unit_quat
 from ..core.ode import Event, Solution
+from ..core.validate import result_message
 from . import _kernel as _k
-from ._batch import Members, slow_message
+from ._batch import Members
 from ._model import Body, Orbit
+from ._protocol import ROLE, evaluate
+from ._stops import stop_message
 
 __all__ = ["FullRun", "full_batch"]
 
@@ -105,7 +108,9 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
                 y0[j, 7] = mem.nu0[i]
         ie = 1.0 / mem.eps[idx]
         mx = run.kind[idx] == "max"  # the labelled moments A1, A3 of each member's initial kind (the k2_max stop)
-        args = (ie, ie * ie, mem.nu0[idx], np.where(mx, A1, A3), np.where(mx, A3, A1))
+        # the last arg: each member's index, to note where its torque turned non-finite (t_bad; see below)
+        args = (ie, ie * ie, mem.nu0[idx], np.where(mx, A1, A3), np.where(mx, A3, A1), idx.astype(float))
+        t_bad = np.full(B, np.nan)
         Ab = np.array(A)
         drag = run.what == "drag"
         if drag:
@@ -127,9 +132,13 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
                 L1 = f3 * (A3 - A2) * r2 * r3 - (I11 * o1 + I12 * o2 + I13 * o3)
                 L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
                 L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
-            else:
+            else:  # the torque's type and shape checked, its finiteness per member (a NaN ends that member only)
                 C = dcm_from_unit_quat(w, x, yq, z)
-                M = np.asarray(run.torque(np.stack([o1, o2, o3], axis=1), C, nu), dtype=float)
+                M = np.broadcast_to(evaluate(run.torque, np.stack([o1, o2, o3], axis=1), C, nu, (t.size, 3),
+                                             finite=False), (t.size, 3))
+                bad = ~np.isfinite(M).all(axis=1)
+                if bad.any():
+                    t_bad[lab[2][bad].astype(int)] = t[bad]
                 L1, L2, L3 = M[:, 0], M[:, 1], M[:, 2]
             out = np.empty_like(y)
             out[:, 0] = (g2 * o3 - g3 * o2) * ie2 + L1
@@ -182,9 +191,9 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
         else:
             stop = run.k2_max
             ev_sep = Event(lambda t, y, *a: _k2_initial_kind(a[3], A2, a[4], GD(y)[1]) - stop, "separatrix", True, 1.0,
-                           f"the osculating k2 reached {stop:g}: the motion is at the separatrix 2T A2 = G^2")
+                           stop_message("separatrix_full", k2_max=stop))
         # passages of the azimuth through its branch cut (n2 = 0 with n1 < 0), both ways
-        events = [ev_sep, Event(ev_spin, "slow_rotation", True, -1.0, slow_message(r)),
+        events = [ev_sep, Event(ev_spin, "slow_rotation", True, -1.0, stop_message("slow_rotation", min_spin_ratio=r)),
                   Event(n2, "_cut_up", False, 1.0, ""), Event(n2, "_cut_down", False, -1.0, "")]
         sol = integrate_batch(rhs, (t0, t1), y0, t_eval=te, rtol=run.rtol, atol=run.atol, events=events, args=args,
                               time_name="tau")
@@ -196,6 +205,10 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
         t_final[idx] = sol.t_final
         for name in t_ev:
             t_ev[name][idx] = sol.t_events[name]
+        # a member whose torque turned non-finite where it failed: the message names the torque and the time
+        why = result_message(getattr(run.torque, "fun", run.torque), (3,), "non-finite values (NaN or inf)", ROLE)
+        for i in idx[(status[idx] == -1) & (t_bad[idx] >= t_final[idx])].tolist():
+            message[i] = stop_message("torque", tau=t_bad[i], why=why)
         for j, i in enumerate(idx):
             for name, sign in (("_cut_up", -1.0), ("_cut_down", 1.0)):
                 tc, yc = sol.t_events[name][j], sol.y_events[name][j]

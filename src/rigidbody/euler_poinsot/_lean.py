@@ -33,6 +33,7 @@ from ..core import averaging as avg
 from ..core.elliptic import jacobi
 from ._engine import Grid, nu_nodes
 from ._model import Body, Orbit, _labels
+from ._protocol import evaluate
 
 __all__ = ["LeanMean"]
 
@@ -184,11 +185,10 @@ class LeanMean:
         else:
             nu_a = self.nu
         if self.compact:
-            M = self.torque(omega[None, None], C[None], nu_a)
+            M = evaluate(self.torque, omega[None, None], C[None], nu_a, shape)
         else:
-            M = self.torque(np.broadcast_to(omega, shape), np.broadcast_to(C, (*shape, 3)),
-                            np.broadcast_to(nu_a, shape[:3]))
-        M = np.asarray(M, dtype=float)
+            M = evaluate(self.torque, np.broadcast_to(omega, shape), np.broadcast_to(C, (*shape, 3)),
+                         np.broadcast_to(nu_a, shape[:3]), shape)
         if M.shape != shape:
             M = np.broadcast_to(M, shape)
         if self.held:

@@ -73,6 +73,8 @@ from ..core import euler
 from ..core.validate import real
 from ._engine import frame, nu_nodes
 from ._model import KINDS, Body, Orbit, _as_orbit, _check_body, _check_kind, k2_from, kind_of
+from ._protocol import evaluate
+from ._stops import stop_message
 from ._torques import drag_as_torque, resolve
 
 __all__ = ["ARCS", "REGIONS", "Separatrix", "SeparatrixCrossing", "SeparatrixLimits", "separatrix_crossing",
@@ -250,11 +252,9 @@ def _psi_average(body: Body, torque: TorqueFn, g: np.ndarray, n: np.ndarray, nus
     Lb = np.zeros((3, g.shape[1]))
     Lo = np.zeros((3, g.shape[1]))
     for nu, w in zip(nus, wnu):
-        M = np.asarray(torque(omega, C, np.full(C.shape[:-2], nu)), dtype=float)
+        M = evaluate(torque, omega, C, np.full(C.shape[:-2], nu), omega.shape)
         if M.shape != omega.shape:
-            raise ValueError(f"the torque must return body components of shape {omega.shape}, got {M.shape}")
-        if not np.all(np.isfinite(M)):
-            raise ValueError("the torque returned non-finite values on the separatrix")
+            M = np.broadcast_to(M, omega.shape)
         Lb += w * M.mean(axis=0).T
         Lo += w * np.einsum("...ij,...j->...i", C, M).mean(axis=0).T
     return Lb, Lo
@@ -659,8 +659,7 @@ def _choose(crossing: SeparatrixCrossing, branch: Any, index: int, rng: np.rando
     if isinstance(branch, tuple) and index < len(branch):
         want = branch[index]
         if probs[want] <= 0.0:
-            return None, (f"the requested branch {want} is not entered: its averaged drift points back to the "
-                          f"separatrix (capture probability 0; probabilities {text})")
+            return None, stop_message("branch", region=want, probabilities=text)
         return want, ""
     if branch == "random":
         regions = [r for r in REGIONS if probs[r] > 0]

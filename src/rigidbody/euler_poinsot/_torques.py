@@ -18,7 +18,11 @@ vectorised over leading axes, so that the averaging engine evaluates a whole qua
 ``nu``
     the true anomaly, shape ``(...)`` (a float for a single state);
 returns
-    the body components of the torque, shape ``(..., 3)``.
+    the body components of the torque, shape ``(..., 3)`` (or a shape that broadcasts to it, such as a constant
+    ``(3,)``): finite real numbers. What a torque returns is checked wherever it is evaluated
+    (:func:`._protocol.evaluate`): None, complex numbers, a scalar, another shape, NaN or infinities raise a
+    ``TypeError``/``ValueError`` naming the torque (at a run's start), or end a run part-way with
+    ``status = -1`` and a message naming the torque and the time.
 
 The leading axes of the three arguments broadcast against each other but need not be equal: the averaging
 engine passes ``omega`` of shape ``(1, 1, n, 3)``, ``C`` of shape ``(1, m, n, 3, 3)`` and ``nu`` of shape
@@ -39,15 +43,16 @@ the bare function). The catalogue classes are frozen, validated dataclasses.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field, fields
 from typing import Any, ClassVar
 
 import numpy as np
 from scipy import special
 
+from ..core.validate import RESULT_ERRORS, returned
 from ._engine import _Mean, _State, amplitudes, nu_nodes
 from ._model import Body, Orbit, _as_orbit, _check_body, _dk2, _drag_rates, _nstar, _ratios, as_drag
+from ._protocol import FunctionTorque, Torque, TorqueSum, evaluate
 
 __all__ = [
     "ConstantTorque",
@@ -59,54 +64,6 @@ __all__ = [
     "TorqueSum",
     "ViscousCavity",
 ]
-
-
-class Torque:
-    """Base class of the torque objects (see the module docstring for the protocol).
-
-    Subclasses implement ``__call__(omega, C, nu)``. Adding two torques (or a torque and a plain function)
-    gives a :class:`TorqueSum`.
-    """
-
-    #: whether ``__call__`` broadcasts the leading axes of its arguments (declared by the catalogue torques that
-    #: call no user function; tested): the engine then passes compact arguments at once, other torques it
-    #: checks first, on its first grid
-    _broadcasts: ClassVar[bool] = False
-
-    def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
-        raise NotImplementedError
-
-    def __add__(self, other: Any) -> TorqueSum:
-        return TorqueSum((*_parts(self), *_parts(as_torque(other, "other"))))
-
-    def __radd__(self, other: Any) -> TorqueSum:
-        return TorqueSum((*_parts(as_torque(other, "other")), *_parts(self)))
-
-    def parts(self) -> tuple[Torque, ...]:
-        """The torques this one is the sum of (itself for a single torque)."""
-        return (self,)
-
-    def _check_setup(self, body: Body, orbit: Orbit) -> None:
-        """Refuse a run whose body or orbit differs from the one this torque was built for."""
-
-    def _closed(self, st: _State) -> _Mean | None:
-        """The closed-form average at a slow state, or None when the torque has none (the engine is used)."""
-        return None
-
-
-def _parts(t: Torque) -> tuple[Torque, ...]:
-    return t.parts()
-
-
-def as_torque(value: Any, name: str = "torque") -> Torque:
-    """``value`` as a :class:`Torque`: a torque object is returned as is, a plain callable is wrapped."""
-    if isinstance(value, Torque):
-        return value
-    if callable(value):
-        return FunctionTorque(value)
-    raise TypeError(
-        f"{name} must be a torque object or a callable torque(omega, C, nu) -> M, got {type(value).__name__}"
-    )
 
 
 @dataclass(frozen=True, eq=False)
@@ -131,51 +88,6 @@ def _frozen_array(a: np.ndarray) -> np.ndarray:
     a = np.array(a, dtype=float)
     a.setflags(write=False)
     return a
-
-
-@dataclass(frozen=True)
-class FunctionTorque(Torque):
-    """A plain function ``fun(omega, C, nu) -> M`` used as a torque object (what ``as_torque`` wraps)."""
-
-    fun: Callable[..., Any]
-
-    def __post_init__(self) -> None:
-        if not callable(self.fun):
-            raise TypeError(f"fun must be callable (omega, C, nu) -> M, got {type(self.fun).__name__}")
-
-    def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
-        return np.asarray(self.fun(omega, C, nu), dtype=float)
-
-
-@dataclass(frozen=True)
-class TorqueSum(Torque):
-    """The sum of torques (what ``a + b`` returns); nested sums are flattened."""
-
-    terms: tuple[Torque, ...]
-
-    def __post_init__(self) -> None:
-        flat: list[Torque] = []
-        for t in self.terms:
-            flat.extend(as_torque(t, "terms").parts())
-        if not flat:
-            raise ValueError("terms: a TorqueSum needs at least one torque")
-        object.__setattr__(self, "terms", tuple(flat))
-
-    def parts(self) -> tuple[Torque, ...]:
-        return self.terms
-
-    def __iter__(self) -> Iterator[Torque]:
-        return iter(self.terms)
-
-    def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
-        out = np.asarray(self.terms[0](omega, C, nu), dtype=float)
-        for t in self.terms[1:]:
-            out = out + np.asarray(t(omega, C, nu), dtype=float)
-        return out
-
-    def _check_setup(self, body: Body, orbit: Orbit) -> None:
-        for t in self.terms:
-            t._check_setup(body, orbit)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -337,18 +249,14 @@ def drag_as_torque(drag: Any, body: Body, orbit: Orbit, omega0: float = 1.0) -> 
 
 
 def probe(torque: Torque, omega: np.ndarray, C: np.ndarray, nu: Any) -> np.ndarray:
-    """Evaluate ``torque`` once and check its output (shape like ``omega``, finite) with a clear message."""
+    """Evaluate ``torque`` once at a run's start (through :func:`evaluate`: its output checked, the torque named);
+    an error the torque itself raises is reported with the shapes it was called with."""
     try:
-        M = np.asarray(torque(omega, C, nu), dtype=float)
+        return evaluate(torque, omega, C, nu, omega.shape)
+    except RESULT_ERRORS:
+        raise
     except (TypeError, ValueError) as exc:
         raise type(exc)(f"the torque failed on omega of shape {omega.shape}, C of shape {C.shape}: {exc}") from exc
-    if M.shape != omega.shape:
-        raise ValueError(
-            f"the torque must return body components of shape {omega.shape} (like omega), got {M.shape}"
-        )
-    if not np.all(np.isfinite(M)):
-        raise ValueError("the torque returned non-finite values at the initial state")
-    return M
 
 
 # --------------------------------------------------------------------------------------------------
@@ -574,8 +482,9 @@ class MagneticDipole(_ArrayEq):
     def field_at(self, nu: Any) -> np.ndarray:
         """:math:`\\mathbf B` in the orbital axes at the true anomaly ``nu``, shape ``(..., 3)``."""
         if callable(self.B):
-            out = np.asarray(self.B(nu), dtype=float)
-            return np.broadcast_to(out, (*np.shape(nu), 3)) if out.shape != (*np.shape(nu), 3) else out
+            shape = (*np.shape(nu), 3)
+            out = returned(self.B(nu), self.B, shape, role="the field B")
+            return out if out.shape == shape else np.broadcast_to(out, shape)
         return np.zeros((*np.shape(nu), 3)) + self.B
 
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:

@@ -40,10 +40,12 @@ _PSI_FLOOR = 1e-3
 #: a sign-change function below this fraction of its scale counts as zero (no flip): integration noise
 _FLIP_NOISE = 1e-10
 
+# the stops of an averaged run; each names the option that relaxes it where one does
 _MSG_DEG = ("u2 - u1 reached degenerate_tol (u3 - u1): regular precession, the determinant "
-            "(u1-u2)(u1-u3)(u2-u3) of (2.10) vanishes")
+            "(u1-u2)(u1-u3)(u2-u3) of (2.10) vanishes; pass chart='GHr' to go on through it (the (2.7)-averaged "
+            "system is regular there), or a smaller degenerate_tol to stop later")
 _MSG_SEP = ("u3 - u2 reached degenerate_tol (u3 - u1): sleeping top / separatrix k -> 1, the nutation "
-            "period is infinite")
+            "period is infinite and the averaging does not hold; a smaller degenerate_tol goes closer to it")
 _MSG_TRIPLE = (f"the roots of (1.5) merge, u1 = u2 = u3 = 1 (spread below {_TRIPLE_TOL:g}): a sleeping top at "
                "its stability limit C^2 r^2 = 4 A mgl, the nutation period is infinite")
 _MSG_BRANCH = ("Gz^2 - C^2 r^2 or r is near zero: a sign delta1/delta2 of (2.8) may change; use "

@@ -1,0 +1,184 @@
+r"""The torque protocol: the base class, a plain function as a torque, sums, and the one evaluation.
+
+Every evaluation of a torque in the module (the averaging engine and its lean mean, the separatrix averages,
+the full equations, single and batch) goes through :func:`evaluate`, which passes what a torque that may run
+the user's code returned through :func:`rigidbody.core.validate.returned`: a torque that returns None, complex
+numbers, a scalar, a wrong shape, NaN or infinities is named (by its repr, or its function's) with what was
+expected. The catalogue torques that call no user function (they declare ``_broadcasts``) are trusted: their
+output is not checked, so the engine's cost is unchanged for them. A run whose torque misbehaves part-way
+notes it in a :class:`Misfire` and ends with a status and a message naming the torque and the time.
+
+See :mod:`._torques` for the protocol itself and the catalogue.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ..core.ode import Solution
+from ..core.validate import returned
+from ._stops import stop_message
+
+__all__ = ["FunctionTorque", "Misfire", "Torque", "TorqueSum", "as_torque", "evaluate"]
+
+#: what a torque is called in the messages of :func:`rigidbody.core.validate.returned`
+ROLE = "the torque"
+
+
+class Torque:
+    """Base class of the torque objects: ``torque(omega, C, nu) -> M``, body components of shape ``(..., 3)``
+    (see ``docs/euler_poinsot.md``, "The protocol").
+
+    Subclasses implement ``__call__(omega, C, nu)``. Adding two torques (or a torque and a plain function)
+    gives a :class:`TorqueSum`.
+    """
+
+    #: whether ``__call__`` broadcasts the leading axes of its arguments (declared by the catalogue torques that
+    #: call no user function; tested): the engine then passes compact arguments at once, other torques it
+    #: checks first, on its first grid; and :func:`evaluate` trusts their output (only a class that declares
+    #: it itself: a user's subclass is checked)
+    _broadcasts: ClassVar[bool] = False
+
+    def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
+        raise NotImplementedError
+
+    def __add__(self, other: Any) -> TorqueSum:
+        return TorqueSum((*self.parts(), *as_torque(other, "other").parts()))
+
+    def __radd__(self, other: Any) -> TorqueSum:
+        return TorqueSum((*as_torque(other, "other").parts(), *self.parts()))
+
+    def parts(self) -> tuple[Torque, ...]:
+        """The torques this one is the sum of (itself for a single torque)."""
+        return (self,)
+
+    def _check_setup(self, body: Any, orbit: Any) -> None:
+        """Refuse a run whose body or orbit differs from the one this torque was built for."""
+
+    def _closed(self, st: Any) -> Any:
+        """The closed-form average at a slow state, or None when the torque has none (the engine is used)."""
+        return None
+
+
+def as_torque(value: Any, name: str = "torque") -> Torque:
+    """``value`` as a :class:`Torque`: a torque object is returned as is, a plain callable is wrapped."""
+    if isinstance(value, Torque):
+        return value
+    if callable(value):
+        return FunctionTorque(value)
+    raise TypeError(
+        f"{name} must be a torque object or a callable torque(omega, C, nu) -> M, got {type(value).__name__}"
+    )
+
+
+@dataclass(frozen=True)
+class FunctionTorque(Torque):
+    """A plain function ``fun(omega, C, nu) -> M`` used as a torque object (what ``as_torque`` wraps).
+
+    Calling it returns the function's value checked by :func:`evaluate` (finite real components of shape
+    ``(..., 3)``; otherwise a ``TypeError``/``ValueError`` naming the function).
+    """
+
+    fun: Callable[..., Any]
+
+    def __post_init__(self) -> None:
+        if not callable(self.fun):
+            raise TypeError(f"fun must be callable (omega, C, nu) -> M, got {type(self.fun).__name__}")
+
+    def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
+        return evaluate(self, omega, C, nu)
+
+
+@dataclass(frozen=True)
+class TorqueSum(Torque):
+    """The sum of torques (what ``a + b`` returns); nested sums are flattened."""
+
+    terms: tuple[Torque, ...]
+
+    def __post_init__(self) -> None:
+        flat: list[Torque] = []
+        for t in self.terms:
+            flat.extend(as_torque(t, "terms").parts())
+        if not flat:
+            raise ValueError("terms: a TorqueSum needs at least one torque")
+        object.__setattr__(self, "terms", tuple(flat))
+
+    def parts(self) -> tuple[Torque, ...]:
+        return self.terms
+
+    def __iter__(self) -> Iterator[Torque]:
+        return iter(self.terms)
+
+    def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
+        return evaluate(self, omega, C, nu)
+
+    def _check_setup(self, body: Any, orbit: Any) -> None:
+        for t in self.terms:
+            t._check_setup(body, orbit)
+
+
+def evaluate(torque: Any, omega: Any, C: Any, nu: Any, shape: tuple[int, ...] | None = None, *,
+             finite: bool = True) -> np.ndarray:
+    """The torque at ``(omega, C, nu)``, each part's output checked (the one evaluation of the module).
+
+    Parameters
+    ----------
+    torque : Torque or callable
+        A torque object (its parts are evaluated and added) or a plain function.
+    omega, C, nu
+        The arguments of the protocol.
+    shape : tuple of int, optional
+        The shape of the torque expected, ``leading + (3,)`` (default: the broadcast of the arguments' leading
+        axes); a part's output must broadcast to it.
+    finite : bool
+        Whether NaN and infinite values are refused (a batch finds them per member itself).
+
+    Returns
+    -------
+    numpy.ndarray
+        Body components, of ``shape`` or broadcastable to it.
+
+    Raises
+    ------
+    rigidbody.core.validate.ResultTypeError, rigidbody.core.validate.ResultValueError
+        (a ``TypeError``, a ``ValueError``) naming the part that misbehaved and what was expected.
+    """
+    if shape is None:
+        shape = (*np.broadcast_shapes(np.shape(omega)[:-1], np.shape(C)[:-2], np.shape(nu)), 3)
+    out: Any = None
+    for p in torque.parts() if isinstance(torque, Torque) else (torque,):
+        if type(p) is FunctionTorque:  # the user's function itself: named in the messages
+            M = returned(p.fun(omega, C, nu), p.fun, shape, role=ROLE, finite=finite)
+        elif type(p).__dict__.get("_broadcasts", False):  # a catalogue torque that calls no user function
+            M = p(omega, C, nu)
+        else:
+            M = returned(p(omega, C, nu), p, shape, role=ROLE, finite=finite)
+        out = M if out is None else out + M
+    return out  # an array: a torque has at least one part
+
+
+class Misfire:
+    """Where a run's torque misbehaved (:func:`evaluate` refused its output): the right-hand side notes it and
+    returns NaN, the integrator's step then shrinks onto the time where the torque turns bad and fails there,
+    and :meth:`settle` gives that failure the message naming the torque and the time."""
+
+    def __init__(self) -> None:
+        self.t = math.nan
+        self.why = ""
+
+    def note(self, t: float, exc: Exception) -> None:
+        """Note a refused evaluation at time ``t`` (the latest counts: the failing steps close in on it)."""
+        self.t, self.why = float(t), str(exc)
+
+    def settle(self, sol: Solution) -> Solution:
+        """``sol`` with the message naming the torque and the time if it failed (status -1) where the torque
+        misbehaved (at or after its last time: a refused trial point the integrator then went past is not the
+        cause)."""
+        if self.why and sol.status == -1 and (sol.time.size == 0 or self.t >= float(sol.time[-1])):
+            sol.message = stop_message("torque", tau=self.t, why=self.why)
+        return sol

@@ -1,0 +1,88 @@
+"""The checks of a run's start, each rule once: a single run raises them, a batch refuses its member with them.
+
+:func:`check_start` checks the values one member of a run starts from (``eps``, ``G0``, ``k2_0``, ``delta0``,
+``lam0``, ``nu0`` and, for the full equations, ``u0``, ``psi0``) against :class:`StartRules` (the body and the
+options they are checked against, already validated): :func:`~rigidbody.euler_poinsot.averaged` and
+:func:`~rigidbody.euler_poinsot.simulate` call it for their one run, their batches for each member (a member it
+refuses gets ``status = -1`` and the message the single call raises).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+from ..core.validate import real
+from ._model import K2_SPIN_CAP, Body, _labels, _nut_freq
+from ._separatrix import K2_SWITCH
+
+__all__ = ["StartRules", "check_start"]
+
+
+@dataclass(frozen=True)
+class StartRules:
+    """What the checks of a start need besides the member's values: the body, the separatrix stop ``k2_max``
+    (None: a run through the separatrix), ``min_spin_ratio`` (both validated reals), and whether the run is of
+    the full equations (``eps > 0``; no margin at the separatrix when it goes through)."""
+
+    body: Body
+    k2_max: float | None
+    min_spin_ratio: float
+    full: bool = False
+
+
+def check_start(rules: StartRules, kind: str, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, nu0: Any,
+                u0: Any = 0.0, psi0: Any = 0.0) -> tuple[float, float, float, float, float, float]:
+    """The start values as floats, checked in the single call's order.
+
+    Returns
+    -------
+    tuple of float
+        ``eps, G0, k2_0, delta0, lam0, nu0``.
+
+    Raises
+    ------
+    TypeError
+        If a value is not a real number.
+    ValueError
+        Naming the first value that is not finite or out of its range, a start at (or beyond the stop next to)
+        the separatrix, or a rotation too slow for ``eps`` (the way out in the message).
+    """
+    eps = real(eps, "eps")
+    if eps < 0:
+        raise ValueError(f"eps must be >= 0 (eps = omega0/omega), got {eps}")
+    G0 = real(G0, "G0")
+    if G0 <= 0:
+        raise ValueError(f"G0 must be positive, got {G0}")
+    k2_0 = real(k2_0, "k2_0")
+    if not (0.0 <= k2_0 < 1.0):
+        raise ValueError(f"k2_0 must lie in [0, 1) (k2 = 1 is the separatrix), got {k2_0}")
+    delta0 = real(delta0, "delta0")
+    if not (0.0 <= delta0 <= math.pi):
+        raise ValueError(f"delta0 (polar angle of G from x3) must lie in [0, pi], got {delta0}")
+    lam0, nu0 = real(lam0, "lam0"), real(nu0, "nu0")
+    if rules.full and eps <= 0:
+        raise ValueError("eps must be positive for the full equations (eps = 0 has no fast rotation to resolve)")
+    if rules.k2_max is None:
+        if not rules.full and k2_0 >= K2_SWITCH:
+            raise ValueError(f"k2_0 = {k2_0!r} lies within 1e-9 of the separatrix: start on either side of it "
+                             "(T0 slightly off G0^2/(2 A2))")
+    elif not (k2_0 < rules.k2_max <= 1.0):
+        raise ValueError(f"k2_max (the separatrix stop) must lie in (k2_0, 1] = ({k2_0}, 1], got {rules.k2_max}: "
+                         "raise k2_max or start further from the separatrix")
+    r = rules.min_spin_ratio
+    if eps > 0 and r > 0:
+        # within 0.01 of the separatrix a run through it takes the period at K2_SPIN_CAP (see there)
+        cap = K2_SPIN_CAP if rules.k2_max is None else 1.0
+        ratio = _nut_freq(_labels(rules.body, kind), G0, min(k2_0, cap)) / eps
+        if ratio <= r:
+            raise ValueError(
+                f"eps = {eps:g} is too large for this state: the Euler-Poinsot frequency over the orbital rate is "
+                f"{ratio:.3g} <= min_spin_ratio = {r:g} (the rotation is not fast); lower eps, or pass "
+                "min_spin_ratio=0 to integrate anyway outside the theory"
+            )
+    if rules.full:
+        real(u0, "u0")
+        real(psi0, "psi0")
+    return eps, G0, k2_0, delta0, lam0, nu0
