@@ -53,6 +53,19 @@ _MSG_BRANCH = ("Gz^2 - C^2 r^2 or r is near zero: a sign delta1/delta2 of (2.8) 
 _MSG_END = "the end of tau_span was reached"
 
 
+def _per_member(fn: Callable[..., tuple[float, float, float]], *cols: Any) -> tuple[Any, Any, Any]:
+    """The general engine's means ``fn(*floats)`` member by member on arrays of states. A member whose state
+    lies outside the chart's domain (a Runge-Kutta stage past a root collision, NaN coordinates: the engine
+    raises) gets NaN rates, so that its step is rejected, as the single run's right-hand side rejects it."""
+    out = np.full((3, *np.shape(cols[0])), np.nan)
+    for i in range(out.shape[1]):
+        try:
+            out[:, i] = fn(*(float(c[i]) for c in cols))
+        except (ZeroDivisionError, OverflowError, ValueError):
+            pass
+    return out[0], out[1], out[2]
+
+
 # ==================================================================================================
 # problem set-up shared by single and batch runs
 # ==================================================================================================
@@ -107,22 +120,15 @@ class _Setup:
         if self.drag is not None:
             return _k.drag_means(xp, self.A, self.C, self.mgl, self.drag.a, self.drag.b, s)
         if xp.array:
-            out = np.empty((3, *np.shape(s.Gz)))
-            for i in range(out.shape[1]):
-                out[:, i] = averaged_slow_rates(self.top, self.torque, float(s.Gz[i]), float(s.H[i]),
-                                                float(s.r[i]), (float(s.u1[i]), float(s.u2[i]), float(s.u3[i])),
-                                                n=self.n)
-            return out[0], out[1], out[2]
+            return _per_member(lambda Gz, H, r, u1, u2, u3: averaged_slow_rates(
+                self.top, self.torque, Gz, H, r, (u1, u2, u3), n=self.n), s.Gz, s.H, s.r, s.u1, s.u2, s.u3)
         return averaged_slow_rates(self.top, self.torque, s.Gz, s.H, s.r, (s.u1, s.u2, s.u3), n=self.n)
 
     def means_g(self, xp: Any, g: _k.GState) -> tuple[Any, Any, Any]:
         if self.drag is not None:
             return _k.drag_means_g(xp, self.A, self.C, self.mgl, self.drag.a, self.drag.b, g)
         if xp.array:
-            out = np.empty((3, *np.shape(g.Gz)))
-            for i in range(out.shape[1]):
-                out[:, i] = self.engine_ghr(float(g.Gz[i]), float(g.H[i]), float(g.r[i]))
-            return out[0], out[1], out[2]
+            return _per_member(self.engine_ghr, g.Gz, g.H, g.r)
         F = self.engine_ghr(g.Gz, g.H, g.r)
         return F[0], F[1], F[2]
 
