@@ -22,7 +22,7 @@ from scipy.optimize import brentq
 from rigidbody import euler_poinsot as ep
 from rigidbody.core.averaging import n_nodes
 from rigidbody.euler_poinsot._engine import Averager, _axis_error, _State
-from rigidbody.euler_poinsot._torques import as_torque
+from rigidbody.euler_poinsot._protocol import as_torque
 
 BODY = ep.Body(3.2, 2.6, 1.67)
 CASE1 = np.diag([2.322, 1.31, 1.425])
