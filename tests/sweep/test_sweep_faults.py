@@ -11,6 +11,7 @@ import itertools
 import os
 import signal
 import sys
+from concurrent.futures import ProcessPoolExecutor
 from functools import partial
 from pathlib import Path
 
@@ -120,9 +121,22 @@ def test_a_point_that_kills_every_dask_worker_it_lands_on_is_lost_alone(client, 
         ds = sweep(f, GRID, executor=client, progress=False, chunk_size=3)
     lost = ds.status.values == NOT_COMPUTED
     assert lost[4, 2] and lost.sum() == 1
-    # the chunk twice (Dask's allowed failures: 1, see conftest), then the point alone twice
-    assert lib.visits(str(calls)) == 4
+    # twice each (Dask's allowed failures: 1, see conftest): its chunk's task, its own task (beside those of
+    # its chunk's other points, which may fail with it), its task alone among the sweep's retries
+    assert lib.visits(str(calls)) == 6
     np.testing.assert_array_equal(ds["s"].values[~lost], reference()["s"].values[~lost])
+
+
+def test_a_worker_of_an_executor_you_made_that_dies_breaks_it_its_unfinished_points_are_lost(calls):
+    # the sweep cannot restart an executor it did not make: the points of the tasks not returned get -1
+    f = partial(lib.killing, calls_dir=str(calls), kill_at=(4.0, 0.5))
+    with ProcessPoolExecutor(max_workers=1) as pool, pytest.warns(
+            RuntimeWarning, match=r"^12 of 24 points were not computed \(the executor broke \(BrokenProcessPool\)"):
+        ds = sweep(f, GRID, executor=pool, progress=False, chunk_size=3)
+    lost = ds.status.values == NOT_COMPUTED
+    assert lost[4:].all() and not lost[:4].any()  # one worker: the chunks (rows) before the killer had returned
+    assert ds.message.values[7, 1].startswith("not computed: the executor broke (BrokenProcessPool): one of its")
+    np.testing.assert_array_equal(ds["s"].values[:4], reference()["s"].values[:4])
 
 
 # ------------------------------------------------------------------------ resuming computes nothing twice

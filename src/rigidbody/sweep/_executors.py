@@ -11,6 +11,7 @@ from __future__ import annotations
 import os
 import sys
 import uuid
+from collections import deque
 from collections.abc import Generator, Iterator
 from concurrent.futures import FIRST_COMPLETED, BrokenExecutor, Executor, Future, wait
 from dataclasses import dataclass, replace
@@ -120,32 +121,46 @@ def run_dask(client: Any, tasks: Iterator[Task]) -> Events:
     """Run on a Dask cluster through ``client``.
 
     The scheduler runs a task again when its worker dies, up to its ``allowed-failures``, then fails it
-    with ``KilledWorker``. Such a task's points are then run again one per task: only the point that
-    kills every worker it runs on is lost (status -1).
+    with ``KilledWorker``. Such a task's points are then run again one per task. The scheduler fails every
+    task a dying worker held, the innocent ones queued beside the one that killed it too: a point whose
+    task fails so is run once more, alone among the sweep's retries (one such task on the cluster at a
+    time). Only a point that kills its worker then too is lost (status -1).
     """
     distributed = sys.modules["distributed"]
     futures = {client.submit(run_task, t, pure=False): t for t in tasks}
     ac = distributed.as_completed(list(futures), loop=client.loop)
+    alone: deque[Task] = deque()  # points to run one at a time
+    running_alone = False
+
+    def submit(t: Task) -> None:
+        fut = client.submit(run_task, t, pure=False)
+        futures[fut] = t
+        ac.add(fut)
+
     try:
         for fut in ac:
             t = futures.pop(fut)
+            running_alone = running_alone and not t.alone
             try:
                 # a result whose worker died after it finished is recomputed by the scheduler: result() waits
                 res = fut.result()
             except distributed.KilledWorker as exc:
-                if t.retry:
+                if t.alone:
                     yield Lost(t.chunk, t.positions(), f"its worker process died each time the cluster ran this "
                                                       f"point ({type(exc).__name__})")
+                elif t.retry:
+                    alone.append(replace(t, alone=True))
                 else:
                     for p in t.positions().tolist():
-                        again = client.submit(run_task, replace(t, subset=(p,), retry=True), pure=False)
-                        futures[again] = replace(t, subset=(p,), retry=True)
-                        ac.add(again)
+                        submit(replace(t, subset=(p,), retry=True))
             except Exception as exc:  # the task failed as a whole
                 yield Lost(t.chunk, t.positions(), f"the task failed on the cluster: {type(exc).__name__}: {exc}")
             else:
                 yield res
             fut.release()
+            if alone and not running_alone:
+                submit(alone.popleft())
+                running_alone = True
     finally:
         if futures:
             client.cancel(list(futures))

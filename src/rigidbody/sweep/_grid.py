@@ -6,7 +6,7 @@ import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
-from functools import partial
+from functools import cached_property, partial
 from typing import Any
 
 import numpy as np
@@ -80,7 +80,7 @@ class Layout:
     shape: tuple[int, ...]
     block: tuple[int, ...]
 
-    @property
+    @cached_property
     def n_chunks_per_dim(self) -> tuple[int, ...]:
         return tuple(-(-s // b) for s, b in zip(self.shape, self.block))
 
@@ -104,8 +104,13 @@ class Layout:
     def flat(self, c: int, local: np.ndarray) -> np.ndarray:
         """Grid positions (flat, C order over the grid) of the points ``local`` (flat, C order in the chunk)."""
         sl = self.slices(c)
-        idx = np.unravel_index(np.asarray(local, dtype=np.int64), self.block_of(c))
-        return np.ravel_multi_index(tuple(i + s.start for i, s in zip(idx, sl)), self.shape)
+        idx = np.unravel_index(np.asarray(local, dtype=np.int64), tuple(s.stop - s.start for s in sl))
+        flat = idx[-1] + sl[-1].start
+        stride = 1
+        for d in range(len(sl) - 2, -1, -1):
+            stride *= self.shape[d + 1]
+            flat = flat + (idx[d] + sl[d].start) * stride
+        return flat
 
 
 def chunk_points(coords: list[np.ndarray]) -> list[np.ndarray]:

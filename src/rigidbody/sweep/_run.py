@@ -60,8 +60,9 @@ class Task:
 
     ``subset``: the flat positions in the chunk to compute (default all, in C order); ``journal``: the file to
     record them in as they finish; ``retry``: a point run again alone after its worker process died computing
-    it; ``one_by_one``: a batched function called on one point at a time (to find a point that ends its
-    process); ``deaths_loading``: how often a worker died loading the function for these points.
+    it; ``alone``: on Dask, such a point run once more, with no other retry on the cluster; ``one_by_one``: a
+    batched function called on one point at a time (to find a point that ends its process);
+    ``deaths_loading``: how often a worker died loading the function for these points.
     """
 
     chunk: int
@@ -72,6 +73,7 @@ class Task:
     subset: tuple[int, ...] | None = None
     journal: str | None = None
     retry: bool = False
+    alone: bool = False
     one_by_one: bool = False
     deaths_loading: int = 0
 

@@ -155,10 +155,12 @@ class Store:
                              f"function now returns {_fmt(schema)}: use another store path (or delete this one)")
 
     def set_outputs(self, schema: dict[str, tuple[int, ...]], layout: Layout) -> None:
+        """Make the output arrays, then record the outputs (arrays left by a crash in between: made again)."""
         dims = list(self.meta["grid"])
         for name, shp in schema.items():
             self.group.create_array(name, shape=layout.shape + shp, chunks=layout.block + shp, dtype="float64",
-                                    fill_value=np.nan, dimension_names=dims + list(output_dims(name, shp)))
+                                    fill_value=np.nan, dimension_names=dims + list(output_dims(name, shp)),
+                                    overwrite=True)
         self.meta["outputs"] = {k: list(v) for k, v in schema.items()}
         self.group["sweep"].attrs["outputs"] = self.meta["outputs"]
 
