@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import itertools
 import os
+import re
 import signal
 import sys
 from concurrent.futures import ProcessPoolExecutor
@@ -231,8 +232,9 @@ def test_a_store_in_use_is_refused_and_a_killed_sweep_leaves_no_lock(tmp_path, c
     try:
         wait_for_calls(calls, 2, proc)
         f = partial(lib.counted, calls_dir=str(calls))
-        with pytest.raises(RuntimeError, match=rf"^store '{store}' is in use: another sweep is writing it \(pid "
-                                               rf"{proc.pid} on .*, since .*\); a store is written by one sweep"):
+        in_use = (rf"^store '{re.escape(str(store))}' is in use: another sweep is writing it \(pid {proc.pid} on .*, "
+                  r"since .*\); a store is written by one sweep")
+        with pytest.raises(RuntimeError, match=in_use):
             sweep(f, GRID, store=store, progress=False, chunk_size=3, executor="serial")
     finally:
         proc.kill()  # SIGKILL: the OS releases its lock

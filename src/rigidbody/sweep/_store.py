@@ -167,7 +167,7 @@ class Store:
     # ------------------------------------------------------------------------------------------ points
     @property
     def journal_dir(self) -> Path:
-        return self.path / "sweep" / "journal"
+        return self.path.absolute() / "sweep" / "journal"  # absolute: the workers' paths
 
     def journals(self) -> list[tuple[Path, int]]:
         """The journals left in the store, with their chunks (a journal is named ``<chunk>-<id>.jnl``)."""
