@@ -111,8 +111,9 @@ class Results:
                 self.add(res)
 
     def finish(self) -> None:
+        """The run is over: a point no result came back for stays not computed; the held points are written."""
+        self.pending[:] = False
         self._decide()
-        assert not self.held, "every point of the run has finished: the outputs are known"
 
     # ------------------------------------------------------------------------------------------ deciding
     def _decide(self) -> None:
