@@ -24,11 +24,14 @@ def cluster():
     """A real distributed.LocalCluster: two single-threaded worker processes on this machine (no mock).
 
     The dashboard gets a free port (":0"): with ``dashboard_address=None`` distributed still tries 8787 and
-    warns (an error under our warning filter) when another cluster on the machine holds it."""
+    warns (an error under our warning filter) when another cluster on the machine holds it. The scheduler
+    runs a task whose worker died once more (``allowed-failures`` 1; Dask's default is 3): a point that kills
+    every worker then costs four deaths and restarts, not eight."""
+    import dask
     import distributed
 
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
-                                  host="127.0.0.1") as lc:
+    with dask.config.set({"distributed.scheduler.allowed-failures": 1}), distributed.LocalCluster(
+            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0", host="127.0.0.1") as lc:
         yield lc
 
 

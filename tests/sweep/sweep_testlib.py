@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import math
 import os
+import signal
+import sys
+import time
 import uuid
 from pathlib import Path
 
@@ -67,23 +70,27 @@ def hold(calls_dir: object, on: bool = True) -> None:
 
 
 def counted(a: float, b: float, *, calls_dir: str, interrupt_at: float | None = None,
-            kill_at: float | None = None, kill_times: int = 1, delay: float = 0.0) -> dict:
-    """:func:`poly` that records its calls.
+            kill_at: float | None = None, kill_times: int = 1, delay: float = 0.0,
+            stop_at: tuple[float, float] | None = None, stop: str = "self", stop_signal: int = signal.SIGKILL) -> dict:
+    """:func:`poly` that records its calls once it has computed them (so a call recorded has finished).
 
     The first visit of ``(interrupt_at, 0)`` raises KeyboardInterrupt (like Ctrl-C), the first ``kill_times``
     visits of ``(kill_at, 0)`` end its own process (a killed worker); later visits (a resumed run with the
-    same function) compute normally. "First" is told by marker files."""
+    same function) compute normally. The first visit of ``stop_at`` sends ``stop_signal`` to its own process
+    (``stop='self'``) or to its parent (``'parent'``: the sweeping process of a local worker) and waits to be
+    ended. "First" is told by marker files."""
     if interrupt_at is not None and a == interrupt_at and b == 0.0 and _first(calls_dir, "interrupted"):
         raise KeyboardInterrupt
     if kill_at is not None and a == kill_at and b == 0.0 and _first(calls_dir, "killed", kill_times):
         os._exit(3)
-    record_call(calls_dir, a=a, b=b)
+    if stop_at is not None and (a, b) == tuple(stop_at) and _first(calls_dir, "stopped"):
+        os.kill(os.getpid() if stop == "self" else os.getppid(), stop_signal)
+        time.sleep(60)  # a KeyboardInterrupt in the sweeping process ends this; a worker is ended
     if Path(f"{calls_dir}.hold").exists():  # a test holds each call back (same function, so a store accepts it)
         delay = max(delay, HOLD_S)
     if delay:
-        import time
-
         time.sleep(delay)
+    record_call(calls_dir, a=a, b=b)
     return poly(a, b)
 
 
@@ -118,3 +125,52 @@ def changing(a: float, b: float, *, calls_dir: str) -> dict:
     if (Path(calls_dir).parent / "new_outputs").exists():
         out["q"] = np.array([a, b])
     return out
+
+
+class Abort(BaseException):
+    """A BaseException that is not an Exception (some libraries raise such to unwind)."""
+
+
+def exiting(a: float, b: float, *, interrupt: bool = False) -> dict:
+    """:func:`poly`, except that ``(2, 0)`` calls sys.exit(3), ``(3, 0.5)`` raises :class:`Abort`, and with
+    ``interrupt`` ``(1, 0.5)`` raises KeyboardInterrupt (in the sweeping process that is the user's Ctrl-C)."""
+    if (a, b) == (2.0, 0.0):
+        sys.exit(3)
+    if (a, b) == (3.0, 0.5):
+        raise Abort("abandoned")
+    if interrupt and (a, b) == (1.0, 0.5):
+        raise KeyboardInterrupt
+    return poly(a, b)
+
+
+def killing(a: float, b: float, *, calls_dir: str, kill_at: tuple[float, float], how: str = "sigkill") -> dict:
+    """:func:`counted` whose point ``kill_at`` ends its own process at every visit (each visit leaves a file
+    ``visit-*`` beside ``calls_dir``): by SIGKILL (a killed worker, a segfault) or ``os._exit``."""
+    if (a, b) == tuple(kill_at):
+        (Path(calls_dir).parent / f"visit-{uuid.uuid4().hex}").touch()
+        if how == "sigkill":
+            os.kill(os.getpid(), signal.SIGKILL)
+        os._exit(5)
+    return counted(a, b, calls_dir=calls_dir)
+
+
+def visits(calls_dir: str) -> int:
+    return len(list(Path(calls_dir).parent.glob("visit-*")))
+
+
+def shifting(a: float, b: float, *, slow: float = 0.0) -> dict:
+    """Other outputs from ``a = 2`` on (a function whose outputs are not the same everywhere); the first point
+    takes ``slow`` seconds (so that on workers later chunks finish first)."""
+    if (a, b) == (0.0, 0.0):
+        time.sleep(slow)
+    if a < 2.0:
+        return {"x": a + b}
+    return {"y": np.array([a, b])}
+
+
+def nested(a: float, *, store: str) -> dict:
+    """Starts a second sweep on ``store`` (which the sweep calling it writes)."""
+    from rigidbody.sweep import sweep
+
+    sweep(poly, {"a": [a], "b": [0.0]}, executor="serial", store=store, progress=False)
+    return {"x": a}

@@ -122,7 +122,7 @@ def test_every_way_a_point_can_fail_is_recorded_and_the_rest_computed():
     msg = ds.message.values
     assert msg[0].startswith("TypeError: the function must return a mapping")
     assert msg[1].startswith("TypeError: output 'x' must be real numbers")
-    assert "differ from those of the other points" in msg[6]
+    assert "differ from the sweep's outputs {\"x\": []}, those of the point a=2" in msg[6]
     assert "reserved" in msg[3] or "collides" in msg[3]
     assert msg[4] == "ZeroDivisionError: division by zero"
 
@@ -134,7 +134,7 @@ def test_outputs_that_change_between_chunks_make_those_points_fail():
     ds = sweep(f, {"a": np.arange(4.0)}, executor="serial", progress=False, chunk_size=2)
     assert "y" not in ds
     np.testing.assert_array_equal(ds.status.values, [0, 0, 1, 1])
-    assert "differ from those of the other points" in ds.message.values[3]
+    assert "differ from the sweep's outputs {\"x\": []}, those of the point a=0.0" in ds.message.values[3]
 
 
 def test_no_successful_point_gives_status_and_message_only():

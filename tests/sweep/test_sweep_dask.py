@@ -2,16 +2,12 @@
 
 from __future__ import annotations
 
-import os
 import signal
-import subprocess
-import sys
-import time
 from functools import partial
 
 import sweep_testlib as lib
 import xarray as xr
-from test_sweep_store import GRID, HERE, SRC, _quiet, _reference, _resume, _same_results
+from sweep_checks import GRID, quiet, reference, resume, run_python, same_results, wait_for_calls
 
 from rigidbody.sweep import sweep
 
@@ -37,7 +33,7 @@ def test_a_killed_dask_worker_loses_nothing(client, tmp_path):
     calls.mkdir()
     f = partial(lib.counted, calls_dir=str(calls), kill_at=4.0)
     ds = sweep(f, GRID, executor=client, progress=False, chunk_size=3)
-    _same_results(ds, _reference())
+    same_results(ds, reference())
     assert (tmp_path / "killed.0").exists()
 
 
@@ -58,17 +54,14 @@ def test_an_interrupted_dask_client_resumes_from_its_store(client, cluster, tmp_
     # each call held to >= 0.2 s: the 15 points left after the 9th call need >= 1.5 s on the two workers, so
     # the Ctrl-C below lands before the sweep can finish, also on a loaded machine
     lib.hold(calls)
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(SRC), str(HERE), os.environ.get("PYTHONPATH", "")]))
-    proc = subprocess.Popen([sys.executable, "-c", code], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True)
-    t0 = time.monotonic()
-    while len(list(calls.iterdir())) < 9:
-        assert proc.poll() is None, proc.communicate()
-        assert time.monotonic() - t0 < 60
-        time.sleep(0.02)
+    proc = run_python(code)
+    wait_for_calls(calls, 9, proc)
     proc.send_signal(signal.SIGINT)  # Ctrl-C in the client
     _, err = proc.communicate(timeout=60)
     assert proc.returncode != 0 and "KeyboardInterrupt" in err
-    _quiet(calls)
+    quiet(calls)
     lib.hold(calls, on=False)
-    _resume(store, calls, partial(lib.counted, calls_dir=str(calls), delay=0.05), executor=client)
+    # on Dask a task is the unit of recovery (its worker may be on another machine: no journal of its points):
+    # the resumed run computes exactly the points the store does not hold
+    resume(store, calls, partial(lib.counted, calls_dir=str(calls), delay=0.05), executor=client,
+            stored_only=True)

@@ -3,64 +3,31 @@
 from __future__ import annotations
 
 import itertools
-import os
 import signal
-import subprocess
-import sys
-import time
 from functools import partial
-from pathlib import Path
 
 import numpy as np
 import pytest
 import sweep_testlib as lib
 import xarray as xr
+from sweep_checks import (
+    GRID,
+    A,
+    B,
+    calls_after,
+    quiet,
+    reference,
+    resume,
+    run_python,
+    same_results,
+    stored_points,
+    tag,
+    wait_for_calls,
+)
 
 from rigidbody.sweep import NOT_COMPUTED, load, sweep
 
 pytest.importorskip("zarr")  # stores need zarr-python 3 (Python >= 3.11); the sweep extra installs it there
-
-A = np.arange(8.0)
-B = np.array([0.0, -1.0, 0.5])
-GRID = {"a": A, "b": B}
-HERE = Path(__file__).resolve().parent
-SRC = Path(__file__).resolve().parents[2] / "src"
-
-
-def _tag(a: float, b: float) -> str:
-    return f"a={float(a)!r}_b={float(b)!r}"  # as lib.record_call names a call
-
-
-def _reference() -> xr.Dataset:
-    return sweep(lib.poly, GRID, executor="serial", progress=False, chunk_size=3)
-
-
-def _same_results(ds: xr.Dataset, ref: xr.Dataset) -> None:
-    xr.testing.assert_identical(ds.drop_attrs(), ref.drop_attrs())
-
-
-def _stored_points(store: Path) -> set[str]:
-    part = load(store)
-    done = part.status.values != NOT_COMPUTED
-    return {_tag(a, b) for (i, a), (j, b) in itertools.product(enumerate(A), enumerate(B)) if done[i, j]}
-
-
-def _calls_after(calls: Path, before: set[str]) -> list[str]:
-    return sorted(p.name.split("__")[0] for p in calls.iterdir() if p.name not in before)
-
-
-def _resume(store: Path, calls: Path, func, **kw) -> xr.Dataset:
-    stored = _stored_points(store)
-    all_points = {_tag(a, b) for a, b in itertools.product(A, B)}
-    assert stored and stored != all_points, "the interruption should leave a partial store"
-    before = {p.name for p in calls.iterdir()}
-    ds = sweep(func, GRID, store=store, progress=False, chunk_size=3, **kw)
-    second = _calls_after(calls, before)
-    assert len(second) == len(set(second)), "a point was computed twice in the resumed run"
-    assert set(second) == all_points - stored, "the resumed run must compute exactly the missing points"
-    _same_results(ds, _reference())
-    return ds
-
 
 @pytest.fixture
 def calls(tmp_path):
@@ -78,7 +45,7 @@ def test_a_complete_store_is_not_recomputed_and_loads_as_the_dataset(tmp_path, c
     assert len(lib.calls(str(calls))) == A.size * B.size  # nothing called again
     xr.testing.assert_identical(again, ds)
     xr.testing.assert_identical(load(store), ds)
-    _same_results(ds, _reference())
+    same_results(ds, reference())
     # the store is a plain Zarr store: xarray reads it (the sweep's bookkeeping is a sub-group it ignores)
     z = xr.open_zarr(store, consolidated=False).load()
     np.testing.assert_array_equal(z["v"].values, ds["v"].values)
@@ -91,50 +58,28 @@ def test_ctrl_c_in_process_then_resume_serial(tmp_path, calls):
     with pytest.raises(KeyboardInterrupt):
         sweep(f, GRID, executor="serial", store=store, progress=False, chunk_size=3)
     # chunks are rows of 3 points: rows a = 0..4 finished, row 5 was interrupted at its first point
-    assert _stored_points(store) == {_tag(a, b) for a, b in itertools.product(A[:5], B)}
-    _resume(store, calls, f, executor="serial")
-
-
-def test_interrupt_raised_in_a_worker_process_then_resume_on_processes(tmp_path, calls):
-    store = tmp_path / "s.zarr"
-    f = partial(lib.counted, calls_dir=str(calls), interrupt_at=5.0, delay=0.05)
-    with pytest.raises(KeyboardInterrupt):
-        sweep(f, GRID, store=store, progress=False, chunk_size=3, max_workers=2)
-    assert _tag(5.0, 0.0) not in _stored_points(store)
-    _resume(store, calls, f, max_workers=2)
+    assert stored_points(store) == {tag(a, b) for a, b in itertools.product(A[:5], B)}
+    resume(store, calls, f, executor="serial")
 
 
 def test_a_worker_killed_once_loses_nothing(tmp_path, calls):
-    # the chunks in flight with the dying worker are run again, one at a time, and complete
+    # the point its worker was computing runs again alone and completes; the other workers go on
     f = partial(lib.counted, calls_dir=str(calls), kill_at=4.0, delay=0.02)
     ds = sweep(f, GRID, progress=False, chunk_size=3, max_workers=2)
-    _same_results(ds, _reference())
+    same_results(ds, reference())
     assert (tmp_path / "killed.0").exists()
 
 
-def test_a_chunk_that_kills_its_worker_twice_is_lost_and_a_rerun_computes_it(tmp_path, calls):
+def test_a_point_that_kills_its_worker_twice_is_lost_and_a_rerun_computes_it(tmp_path, calls):
     store = tmp_path / "s.zarr"
     f = partial(lib.counted, calls_dir=str(calls), kill_at=4.0, kill_times=2, delay=0.02)
-    with pytest.warns(RuntimeWarning, match=r"3 of 24 points were not computed \(its worker process died"):
+    with pytest.warns(RuntimeWarning, match=r"1 of 24 points were not computed \(its worker process died twice"):
         ds = sweep(f, GRID, store=store, progress=False, chunk_size=3, max_workers=2)
     lost = ds.status.values == NOT_COMPUTED
-    assert lost[4].all() and lost.sum() == 3, "only the chunk whose worker died twice is lost"
-    assert ds.message.values[4, 0].startswith("not computed: its worker process died")
-    _resume(store, calls, f, max_workers=2)  # its third visit computes
-
-
-def _run_script(code: str) -> subprocess.Popen:
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(SRC), str(HERE), os.environ.get("PYTHONPATH", "")]))
-    return subprocess.Popen([sys.executable, "-c", code], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                            text=True)
-
-
-def _wait_for_calls(calls: Path, n: int, proc: subprocess.Popen, timeout: float = 60.0) -> None:
-    t0 = time.monotonic()
-    while len(list(calls.iterdir())) < n:
-        assert proc.poll() is None, proc.communicate()
-        assert time.monotonic() - t0 < timeout
-        time.sleep(0.02)
+    assert lost[4, 0] and lost.sum() == 1, "only the point whose worker died twice is lost"
+    assert ds.message.values[4, 0] == ("not computed: its worker process died twice while computing this point "
+                                       "(exit code 3)")
+    resume(store, calls, f, max_workers=2)  # its third visit computes
 
 
 _SCRIPT = """
@@ -150,19 +95,7 @@ if __name__ == "__main__":
 """
 
 
-def _quiet(calls: Path, for_s: float = 1.0, timeout: float = 30.0) -> None:
-    """Wait until no call file appears for ``for_s`` seconds (workers that outlive a killed parent finish)."""
-    t0 = time.monotonic()
-    n, since = -1, time.monotonic()
-    while time.monotonic() - since < for_s:
-        m = len(list(calls.iterdir()))
-        if m != n:
-            n, since = m, time.monotonic()
-        assert time.monotonic() - t0 < timeout
-        time.sleep(0.05)
-
-
-@pytest.mark.parametrize("executor", ['"serial"', "None"], ids=["serial", "processes"])
+@pytest.mark.parametrize("executor", ['"serial"', "None, max_workers=2"], ids=["serial", "processes"])
 @pytest.mark.parametrize("sig", [signal.SIGKILL, signal.SIGINT], ids=["killed", "ctrl-c"])
 def test_a_killed_or_interrupted_sweeping_process_resumes_from_its_store(tmp_path, calls, sig, executor):
     # the whole sweeping process ends (a killed machine: SIGKILL; Ctrl-C: SIGINT) at an arbitrary moment,
@@ -172,16 +105,17 @@ def test_a_killed_or_interrupted_sweeping_process_resumes_from_its_store(tmp_pat
     # each call held to >= 0.2 s: the 14 points left after the 10th call need >= 1.4 s even on two worker
     # processes, so the signal lands before the sweep can finish, also on a loaded machine
     lib.hold(calls)
-    proc = _run_script(_SCRIPT.format(calls=str(calls), store=str(store), executor=executor))
-    _wait_for_calls(calls, 10, proc)
+    proc = run_python(_SCRIPT.format(calls=str(calls), store=str(store), executor=executor))
+    wait_for_calls(calls, 10, proc)
     proc.send_signal(sig)
     _, err = proc.communicate(timeout=60)
     assert proc.returncode != 0
     if sig == signal.SIGINT:
         assert "KeyboardInterrupt" in err
-    _quiet(calls)  # the workers of a killed sweeping process end themselves (communicate() waited for them)
+    quiet(calls)  # the workers of a killed sweeping process end themselves (communicate() waited for them)
     lib.hold(calls, on=False)
-    _resume(store, calls, partial(lib.counted, calls_dir=str(calls), delay=0.05), executor="serial")
+    resume(store, calls, partial(lib.counted, calls_dir=str(calls), delay=0.05), executor="serial",
+            in_flight=1 if executor == '"serial"' else 2)
 
 
 def test_a_chunk_cut_short_before_its_flag_is_computed_again(tmp_path, calls):
@@ -189,14 +123,14 @@ def test_a_chunk_cut_short_before_its_flag_is_computed_again(tmp_path, calls):
     store = tmp_path / "s.zarr"
     f = partial(lib.counted, calls_dir=str(calls))
     ref = sweep(f, GRID, executor="serial", store=store, progress=False, chunk_size=3)
-    (store / "sweep" / "done" / "c" / "2").unlink()  # chunk 2 = row a = 2
+    (store / "sweep" / "done" / "c" / "2" / "0").unlink()  # chunk 2 = row a = 2 (flags: one per point)
     (store / "s" / "c" / "2" / "0").write_bytes(b"")  # its data torn
     part = load(store)
     assert (part.status.values[2] == NOT_COMPUTED).all() and np.isnan(part["s"].values[2]).all()
     assert (part.status.values[[0, 1, 3]] != NOT_COMPUTED).all()
     before = {p.name for p in calls.iterdir()}
     again = sweep(f, GRID, executor="serial", store=store, progress=False, chunk_size=3)
-    assert _calls_after(calls, before) == sorted(_tag(2.0, b) for b in B)
+    assert calls_after(calls, before) == sorted(tag(2.0, b) for b in B)
     xr.testing.assert_identical(again, ref)
 
 
@@ -204,7 +138,7 @@ def test_a_torn_flag_counts_as_not_finished(tmp_path, calls):
     store = tmp_path / "s.zarr"
     f = partial(lib.counted, calls_dir=str(calls))
     ref = sweep(f, GRID, executor="serial", store=store, progress=False, chunk_size=3)
-    (store / "sweep" / "done" / "c" / "5").write_bytes(b"\x28")  # a flag file cut short
+    (store / "sweep" / "done" / "c" / "5" / "0").write_bytes(b"\x28")  # a flag file cut short
     part = load(store)
     assert (part.status.values[5] == NOT_COMPUTED).all()
     xr.testing.assert_identical(sweep(f, GRID, executor="serial", store=store, progress=False), ref)

@@ -4,8 +4,8 @@ r"""Parameter studies at scale: a function over a grid, on local processes or a 
 ``xarray.Dataset`` (one dimension per grid name, one variable per output, a ``status`` and ``message``
 per point). The same call runs in-process (``executor='serial'``), on local worker processes (the
 default: no server to start) or on a Dask cluster (a ``distributed.Client`` or a scheduler address);
-with ``store=PATH`` finished chunks are written to a Zarr store as they complete and an interrupted sweep
-resumes where it stopped.
+with ``store=PATH`` the points are written to a Zarr store as their chunks complete and an interrupted
+sweep resumes where it stopped, computing only the points not finished.
 
 :func:`batched`
     marks a function that takes a whole chunk (1-D arrays) per call.
@@ -22,7 +22,8 @@ tqdm). ``import rigidbody`` does not import any of them. See ``docs/sweeps.md``.
 """
 
 from ._api import load, sweep
-from ._run import NOT_COMPUTED, OK, RAISED, batched
+from ._results import NOT_COMPUTED, OK, RAISED
+from ._run import batched
 from ._wrappers import RUN_FAILED, euler_poinsot_averaged, gyrostat_stability, lagrange_averaged
 
 __all__ = ["NOT_COMPUTED", "OK", "RAISED", "RUN_FAILED", "batched", "euler_poinsot_averaged", "gyrostat_stability",

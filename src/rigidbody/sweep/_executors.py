@@ -1,31 +1,40 @@
-"""Where the chunks run: in-process, on local worker processes, on a Dask cluster.
+"""Where the tasks run: in-process, on an executor the user made, on a Dask cluster (local worker processes
+owned by the sweep: ``_pool``).
 
-Each driver takes an iterator of tasks and yields, as they complete, either a :class:`ChunkResult` or a
-:class:`Lost` (a chunk whose task failed as a whole: its worker died, or the function could not be loaded
-there). The sweeping process writes the results; the workers never touch the store.
+Each driver takes an iterator of tasks and yields, as they complete, a :class:`ChunkResult` (the points of a
+task, or those a dead worker had finished) or a :class:`Lost` (points not computed, with the reason). The
+sweeping process writes the results; the workers never touch the store (only their tasks' journals).
 """
 
 from __future__ import annotations
 
-import multiprocessing
 import os
 import sys
+import uuid
 from collections import deque
-from collections.abc import Iterator
-from concurrent.futures import FIRST_COMPLETED, Executor, Future, ProcessPoolExecutor, wait
-from concurrent.futures.process import BrokenProcessPool
-from dataclasses import dataclass
+from collections.abc import Generator, Iterator
+from concurrent.futures import FIRST_COMPLETED, BrokenExecutor, Executor, Future, wait
+from dataclasses import dataclass, replace
+from pathlib import Path
 from typing import Any
 
-from ._run import ChunkResult, Task, compute_chunk, init_worker, run_task
+import numpy as np
+
+from ._results import ChunkResult
+from ._run import Task, compute, run_task
 
 
 @dataclass(frozen=True)
 class Lost:
-    """A chunk whose task failed as a whole (not written to a store: a re-run computes it)."""
+    """Points of a chunk not computed (not written to a store: a re-run computes them), and why."""
 
     chunk: int
+    index: np.ndarray
     reason: str
+
+
+#: what a driver yields as its tasks complete
+Events = Generator[ChunkResult | Lost, None, None]
 
 
 def local_cpu_count() -> int:
@@ -36,121 +45,69 @@ def local_cpu_count() -> int:
         return os.cpu_count() or 1
 
 
-def run_serial(func: Any, tasks: Iterator[Task]) -> Iterator[ChunkResult | Lost]:
+def with_journal(task: Task, journal_dir: Path | None) -> Task:
+    """The task with a fresh journal file in ``journal_dir`` (none without a directory)."""
+    if journal_dir is None:
+        return task
+    return replace(task, journal=str(journal_dir / f"{task.chunk}-{uuid.uuid4().hex}.jnl"))
+
+
+def run_serial(func: Any, tasks: Iterator[Task], journal_dir: Path | None) -> Events:
+    """In the sweeping process (a Ctrl-C in the function stops the sweep)."""
     for t in tasks:
-        yield compute_chunk(func, t.is_batched, t.names, t.coords, t.chunk)
+        yield compute(func, with_journal(t, journal_dir), in_caller=True)
 
 
-def _end_pool(pool: ProcessPoolExecutor) -> None:
-    """Stop a pool we own at once (Ctrl-C): cancel what waits, end the running workers."""
-    terminate = getattr(pool, "terminate_workers", None)  # Python >= 3.14
-    if terminate is not None:
-        terminate()
-    else:
-        # before 3.14 the pool has no public way to end running workers; its process table is private
-        for p in list(getattr(pool, "_processes", {}).values()):
-            p.terminate()
-    pool.shutdown(wait=False, cancel_futures=True)
+def run_executor(executor: Executor, tasks: Iterator[Task]) -> Events:
+    """Run on a ``concurrent.futures`` executor the user made.
 
-
-def new_pool(max_workers: int) -> ProcessPoolExecutor:
-    # spawn: a fresh interpreter per worker (no fork of a process that may hold threads: a Dask client, a
-    # GUI); the function travels pickled by value where it must (cloudpickle), so functions of a script's
-    # or a notebook's __main__ work
-    return ProcessPoolExecutor(max_workers=max_workers, mp_context=multiprocessing.get_context("spawn"),
-                               initializer=init_worker, initargs=(os.getpid(),))
-
-
-def run_executor(executor: Executor | None, max_workers: int, tasks: Iterator[Task]) -> Iterator[ChunkResult | Lost]:
-    """Run on a ``concurrent.futures`` executor; ``None``: local processes we own.
-
-    When a worker process dies, every chunk in flight fails with the pool. We restart the pool and run
-    those chunks again one at a time: the one that kills its worker again is lost (reported, not stored),
-    the others complete. A pool that breaks before finishing any chunk at all raises (the workers cannot
-    start, typically a script without a ``__main__`` guard).
+    An executor that breaks (a ``ProcessPoolExecutor`` whose worker died) cannot be restarted by the sweep:
+    the tasks not finished are lost (status -1; a re-run with the same store computes them).
     """
-    owned = executor is None
-    pool: Executor = new_pool(max_workers) if executor is None else executor
-    n_workers = max_workers if owned else int(getattr(executor, "_max_workers", None) or local_cpu_count())
-    limit = 2 * max(1, n_workers)  # few chunks in flight: a broken pool or Ctrl-C loses little
+    n_workers = int(getattr(executor, "_max_workers", None) or local_cpu_count())
+    limit = 2 * max(1, n_workers)  # few tasks in flight: a broken executor or Ctrl-C loses little
     pending: dict[Future[ChunkResult], Task] = {}
-    backlog: deque[Task] = deque()
     todo = iter(tasks)
-    clean = False
-    completed = 0
-
-    def restart() -> Executor:
-        pool.shutdown(wait=False, cancel_futures=True)
-        return new_pool(max_workers)
-
+    broken = ""
     try:
         while True:
-            broken = False
-            while len(pending) < limit:
-                t = backlog.popleft() if backlog else next(todo, None)
+            while not broken and len(pending) < limit:
+                t = next(todo, None)
                 if t is None:
                     break
                 try:
-                    pending[pool.submit(run_task, t)] = t
-                except BrokenProcessPool:
-                    backlog.appendleft(t)
-                    broken = True
-                    break
-            if not pending and not broken:
+                    pending[executor.submit(run_task, t)] = t
+                except BrokenExecutor as err:
+                    broken = _broken(err)
+                    yield Lost(t.chunk, t.positions(), broken)
+            if not pending:
                 break
-            suspects: list[Task] = []
-            if pending:
-                done, _ = wait(pending, return_when=FIRST_COMPLETED)
-                for fut in done:
-                    t = pending.pop(fut)
-                    exc = fut.exception()
-                    if exc is None:
-                        completed += 1
-                        yield fut.result()
-                    elif isinstance(exc, BrokenProcessPool):
-                        broken = True
-                        suspects.append(t)
-                    elif not isinstance(exc, Exception):
-                        raise exc  # KeyboardInterrupt, SystemExit raised in a worker: stop the sweep
-                    else:
-                        yield Lost(t.chunk, f"the chunk's task failed: {type(exc).__name__}: {exc}")
-            if not broken:
-                continue
-            if not completed:
-                raise RuntimeError(
-                    "a local worker process died before any chunk finished: a script must start the sweep under "
-                    "`if __name__ == '__main__':` (the workers are spawned and import the script), or the "
-                    "function ended its process")
-            suspects += list(pending.values())  # they fail with the pool
-            pending.clear()
-            if not owned:
-                for t in [*suspects, *backlog, *todo]:
-                    yield Lost(t.chunk, "a worker process died and broke the executor")
-                break
-            pool = restart()
-            for t in sorted(suspects, key=lambda x: x.chunk):  # one at a time: find the chunk that kills
-                fut = pool.submit(run_task, t)
-                exc = wait([fut]) and fut.exception()
+            # a broken executor fails all its tasks at once: then wait for them all
+            done, _ = wait(pending, return_when="ALL_COMPLETED" if broken else FIRST_COMPLETED)
+            for fut in done:
+                t = pending.pop(fut)
+                exc = fut.exception()
                 if exc is None:
                     yield fut.result()
-                elif isinstance(exc, BrokenProcessPool):
-                    yield Lost(t.chunk, "its worker process died (twice: once among others, once alone)")
-                    pool = restart()
+                elif isinstance(exc, BrokenExecutor):
+                    broken = _broken(exc)
+                    yield Lost(t.chunk, t.positions(), broken)
                 elif not isinstance(exc, Exception):
-                    raise exc
+                    raise exc  # not a point's failure (those are recorded): the executor's own interruption
                 else:
-                    yield Lost(t.chunk, f"the chunk's task failed: {type(exc).__name__}: {exc}")
-        clean = True
+                    yield Lost(t.chunk, t.positions(), f"the task failed: {type(exc).__name__}: {exc}")
+        for t in todo:
+            yield Lost(t.chunk, t.positions(), broken)
     finally:
-        if owned:
-            assert isinstance(pool, ProcessPoolExecutor)
-            if clean:
-                pool.shutdown(wait=True)
-            else:
-                _end_pool(pool)
-        else:
-            for fut in pending:
-                fut.cancel()
+        for fut in pending:
+            fut.cancel()
+
+
+def _broken(exc: BaseException) -> str:
+    return (f"the executor broke ({type(exc).__name__}): one of its worker processes died (the function ended "
+            "it, or, if no task finished, the workers could not start: a script must start the sweep under "
+            "`if __name__ == '__main__':`); a sweep cannot restart an executor it did not make (executor=None "
+            "gives local processes that it restarts)")
 
 
 def dask_workers(client: Any) -> int:
@@ -160,22 +117,50 @@ def dask_workers(client: Any) -> int:
         return 1
 
 
-def run_dask(client: Any, tasks: Iterator[Task]) -> Iterator[ChunkResult | Lost]:
-    """Run on a Dask cluster through ``client`` (its scheduler retries tasks of workers that die)."""
+def run_dask(client: Any, tasks: Iterator[Task]) -> Events:
+    """Run on a Dask cluster through ``client``.
+
+    The scheduler runs a task again when its worker dies, up to its ``allowed-failures``, then fails it
+    with ``KilledWorker``. Such a task's points are then run again one per task. The scheduler fails every
+    task a dying worker held, the innocent ones queued beside the one that killed it too: a point whose
+    task fails so is run once more, alone among the sweep's retries (one such task on the cluster at a
+    time). Only a point that kills its worker then too is lost (status -1).
+    """
     distributed = sys.modules["distributed"]
-    futures = {client.submit(run_task, t, pure=False): t.chunk for t in tasks}
-    remaining = dict(futures)
+    futures = {client.submit(run_task, t, pure=False): t for t in tasks}
+    ac = distributed.as_completed(list(futures), loop=client.loop)
+    alone: deque[Task] = deque()  # points to run one at a time
+    running_alone = False
+
+    def submit(t: Task) -> None:
+        fut = client.submit(run_task, t, pure=False)
+        futures[fut] = t
+        ac.add(fut)
+
     try:
-        for fut in distributed.as_completed(list(futures), loop=client.loop):
-            c = remaining.pop(fut)
+        for fut in ac:
+            t = futures.pop(fut)
+            running_alone = running_alone and not t.alone
             try:
                 # a result whose worker died after it finished is recomputed by the scheduler: result() waits
                 res = fut.result()
-            except Exception as exc:  # the task failed as a whole (e.g. KilledWorker after Dask's retries)
-                yield Lost(c, f"the chunk's task failed on the cluster: {type(exc).__name__}: {exc}")
+            except distributed.KilledWorker as exc:
+                if t.alone:
+                    yield Lost(t.chunk, t.positions(), f"its worker process died each time the cluster ran this "
+                                                      f"point ({type(exc).__name__})")
+                elif t.retry:
+                    alone.append(replace(t, alone=True))
+                else:
+                    for p in t.positions().tolist():
+                        submit(replace(t, subset=(p,), retry=True))
+            except Exception as exc:  # the task failed as a whole
+                yield Lost(t.chunk, t.positions(), f"the task failed on the cluster: {type(exc).__name__}: {exc}")
             else:
                 yield res
             fut.release()
+            if alone and not running_alone:
+                submit(alone.popleft())
+                running_alone = True
     finally:
-        if remaining:
-            client.cancel(list(remaining))
+        if futures:
+            client.cancel(list(futures))

@@ -6,7 +6,7 @@ import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
-from functools import partial
+from functools import cached_property, partial
 from typing import Any
 
 import numpy as np
@@ -35,8 +35,18 @@ def check_grid(grid: Any) -> dict[str, np.ndarray]:
             raise ValueError(f"grid[{name!r}] is empty")
         if a.dtype.kind not in "biufU":
             raise TypeError(f"grid[{name!r}] must hold numbers or strings, got dtype {a.dtype}")
+        _refuse_duplicates(name, a)
         out[name] = a
     return out
+
+
+def _refuse_duplicates(name: str, a: np.ndarray) -> None:
+    """A value given twice would name two points of the Dataset alike (``ds.sel`` could not tell them apart)."""
+    _, inverse, counts = np.unique(a, return_inverse=True, return_counts=True)
+    if np.any(counts > 1):
+        where = np.flatnonzero(inverse == int(np.flatnonzero(counts > 1)[0]))
+        raise ValueError(f"grid[{name!r}] holds the value {a[where[0]].item()!r} more than once (at positions "
+                         f"{where.tolist()}): each value of a grid parameter must be distinct")
 
 
 def default_chunk_size(n_points: int, n_workers: int, is_batched: bool) -> int:
@@ -70,7 +80,7 @@ class Layout:
     shape: tuple[int, ...]
     block: tuple[int, ...]
 
-    @property
+    @cached_property
     def n_chunks_per_dim(self) -> tuple[int, ...]:
         return tuple(-(-s // b) for s, b in zip(self.shape, self.block))
 
@@ -86,6 +96,21 @@ class Layout:
 
     def size(self, c: int) -> int:
         return math.prod(s.stop - s.start for s in self.slices(c))
+
+    def block_of(self, c: int) -> tuple[int, ...]:
+        """The shape of chunk ``c`` (the last block along a dimension may be cut short)."""
+        return tuple(s.stop - s.start for s in self.slices(c))
+
+    def flat(self, c: int, local: np.ndarray) -> np.ndarray:
+        """Grid positions (flat, C order over the grid) of the points ``local`` (flat, C order in the chunk)."""
+        sl = self.slices(c)
+        idx = np.unravel_index(np.asarray(local, dtype=np.int64), tuple(s.stop - s.start for s in sl))
+        flat = idx[-1] + sl[-1].start
+        stride = 1
+        for d in range(len(sl) - 2, -1, -1):
+            stride *= self.shape[d + 1]
+            flat = flat + (idx[d] + sl[d].start) * stride
+        return flat
 
 
 def chunk_points(coords: list[np.ndarray]) -> list[np.ndarray]:

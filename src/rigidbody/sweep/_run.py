@@ -1,4 +1,4 @@
-"""What a worker does with one chunk: call the function on its points and pack the results.
+"""What a worker does with a task: call the function on the task's points of one chunk and pack the results.
 
 This module is imported by the worker processes (local or Dask): it needs NumPy only.
 """
@@ -6,22 +6,18 @@ This module is imported by the worker processes (local or Dask): it needs NumPy 
 from __future__ import annotations
 
 import hashlib
+import math
+import os
 import pickle
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from functools import partial
 from typing import Any
 
 import numpy as np
 
 from ._grid import RESERVED, chunk_points
-
-#: status of a point: computed
-OK = 0
-#: status of a point whose function raised (its message has the exception)
-RAISED = 1
-#: status of a point not computed (a lost chunk, or missing from a partial store)
-NOT_COMPUTED = -1
+from ._results import OK, RAISED, ChunkResult, Group, Journal, describe, pack, schema_of
 
 _BATCHED_ATTR = "__rigidbody_batched__"
 
@@ -32,8 +28,8 @@ def batched(func: Callable[..., Any]) -> Callable[..., Any]:
     A batched function is called once per chunk with each grid parameter as a 1-D array of the chunk's
     points (all of the same length ``n``) and returns a mapping of output names to arrays of shape
     ``(n,)`` or ``(n, ...)``; optionally also ``'status'`` (``n`` integers >= 0, 0 = ok) and
-    ``'message'`` (``n`` strings) per point. If the call raises, the chunk is retried point by point
-    (arrays of length 1), so one bad point does not sink its chunk.
+    ``'message'`` (``n`` strings) per point. If the call raises, or ends its worker process, the chunk is
+    retried point by point (arrays of length 1), so one bad point does not sink its chunk.
 
     Parameters
     ----------
@@ -58,27 +54,33 @@ def is_batched(func: Any) -> bool:
     return bool(getattr(func, _BATCHED_ATTR, False))
 
 
-@dataclass
-class ChunkResult:
-    """The outputs of one chunk: arrays over its points (flat, C order), with a status and message each."""
-
-    chunk: int
-    n: int
-    schema: dict[str, tuple[int, ...]] | None
-    outputs: dict[str, np.ndarray] = field(default_factory=dict)
-    status: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=np.int64))
-    message: list[str] = field(default_factory=list)
-
-
 @dataclass(frozen=True)
 class Task:
-    """One chunk to compute: its index, the pickled function and the coordinates of its block."""
+    """Points of one chunk to compute: the chunk's index, the pickled function, the coordinates of its block.
+
+    ``subset``: the flat positions in the chunk to compute (default all, in C order); ``journal``: the file to
+    record them in as they finish; ``retry``: a point run again alone after its worker process died computing
+    it; ``alone``: on Dask, such a point run once more, with no other retry on the cluster; ``one_by_one``: a
+    batched function called on one point at a time (to find a point that ends its process);
+    ``deaths_loading``: how often a worker died loading the function for these points.
+    """
 
     chunk: int
     func: bytes
     is_batched: bool
     names: tuple[str, ...]
     coords: tuple[np.ndarray, ...]
+    subset: tuple[int, ...] | None = None
+    journal: str | None = None
+    retry: bool = False
+    alone: bool = False
+    one_by_one: bool = False
+    deaths_loading: int = 0
+
+    def positions(self) -> np.ndarray:
+        if self.subset is not None:
+            return np.array(self.subset, dtype=np.int64)
+        return np.arange(math.prod(c.size for c in self.coords), dtype=np.int64)
 
 
 def dumps_function(func: Any) -> bytes:
@@ -100,10 +102,6 @@ def _load_function(blob: bytes) -> Any:
             _loaded.clear()
         _loaded[key] = pickle.loads(blob)  # pickled by the sweeping process itself
     return _loaded[key]
-
-
-def _describe(exc: BaseException) -> str:
-    return f"{type(exc).__name__}: {exc}"
 
 
 def _as_outputs(out: Any, names: tuple[str, ...], allow_status: bool = False) -> dict[str, Any]:
@@ -129,65 +127,40 @@ def _as_outputs(out: Any, names: tuple[str, ...], allow_status: bool = False) ->
     return res
 
 
-def _schema(outputs: dict[str, Any], lead: int = 0) -> dict[str, tuple[int, ...]]:
-    return {k: () if type(v) is float else tuple(int(s) for s in np.shape(v)[lead:]) for k, v in outputs.items()}
-
-
-def _pack(chunk: int, rows: list[dict[str, Any] | None], status: np.ndarray,
-          message: list[str]) -> ChunkResult:
-    """Stack per-point outputs; a point whose outputs differ from the chunk's first good point fails."""
-    n = len(rows)
-    schema: dict[str, tuple[int, ...]] | None = None
-    for i, row in enumerate(rows):
-        if row is None:
-            continue
-        s = _schema(row)
-        if schema is None:
-            schema = s
-        elif s != schema:
-            rows[i] = None
-            status[i] = RAISED
-            message[i] = (f"ValueError: the outputs {s} differ from those of the other points {schema} "
-                          "(a sweep's function returns the same names and shapes at every point)")
-    outputs: dict[str, np.ndarray] = {}
-    if schema is not None:
-        for k, shp in schema.items():
-            if shp == ():
-                outputs[k] = np.array([np.nan if row is None else row[k] for row in rows], dtype=float)
-                continue
-            a = np.full((n, *shp), np.nan)
-            for i, row in enumerate(rows):
-                if row is not None:
-                    a[i] = row[k]
-            outputs[k] = a
-    return ChunkResult(chunk, n, schema, outputs, status, message)
-
-
-def _per_point(func: Any, names: tuple[str, ...], points: list[np.ndarray], chunk: int) -> ChunkResult:
-    n = points[0].size if points else 0
+def _per_point(func: Any, task: Task, points: list[np.ndarray], journal: Journal, in_caller: bool) -> ChunkResult:
+    index = task.positions()
+    n = index.size
     rows: list[dict[str, Any] | None] = []
     status = np.zeros(n, dtype=np.int64)
     message = [""] * n
     columns = [p.tolist() for p in points]  # Python scalars
-    for i in range(n):
+    names = task.names
+    record = journal.point if journal.fd is not None else None
+    for k, i in enumerate(index.tolist()):
         kwargs = {name: c[i] for name, c in zip(names, columns)}
+        row: dict[str, Any] | None = None
         try:
-            rows.append(_as_outputs(func(**kwargs), names))
-        except Exception as exc:  # a failing point is recorded, the sweep goes on
-            rows.append(None)
-            status[i] = RAISED
-            message[i] = _describe(exc)
-    return _pack(chunk, rows, status, message)
+            row = _as_outputs(func(**kwargs), names)
+        except BaseException as exc:  # a failing point is recorded, the sweep goes on
+            if in_caller and isinstance(exc, KeyboardInterrupt):
+                raise  # the user's Ctrl-C in the sweeping process
+            status[k] = RAISED
+            message[k] = describe(exc)
+        rows.append(row)
+        if record is not None:
+            record(i, status[k], message[k], row)
+    return pack(task.chunk, index, rows, status, message)
 
 
-def _batched_call(func: Any, names: tuple[str, ...], points: list[np.ndarray], chunk: int) -> ChunkResult:
+def _batched_call(func: Any, names: tuple[str, ...], points: list[np.ndarray], chunk: int,
+                  index: np.ndarray) -> ChunkResult:
     n = points[0].size
     out = func(**dict(zip(names, points)))
     outputs = _as_outputs(out, names, allow_status=True)
     for k, v in outputs.items():
-        if v.ndim == 0 or v.shape[0] != n:
+        if np.ndim(v) == 0 or np.shape(v)[0] != n:
             raise ValueError(f"a batched function returns arrays with a leading axis of the chunk's {n} "
-                             f"points; output {k!r} has shape {v.shape}")
+                             f"points; output {k!r} has shape {np.shape(v)}")
     status = np.zeros(n, dtype=np.int64)
     message = [""] * n
     if "status" in out:
@@ -200,52 +173,99 @@ def _batched_call(func: Any, names: tuple[str, ...], points: list[np.ndarray], c
         if len(msg) != n:
             raise ValueError(f"a batched function's 'message' must hold {n} strings, got {len(msg)}")
         message = msg
-    bad = status != OK
-    for v in outputs.values():
-        v[bad] = np.nan  # outputs of a point that did not succeed are not results
-    return ChunkResult(chunk, n, _schema(outputs, lead=1) if not np.all(bad) else None, outputs, status, message)
+    good = np.flatnonzero(status == OK)
+    groups = [Group(schema_of(outputs, lead=1), good, {k: v[good] for k, v in outputs.items()})] if good.size else []
+    return ChunkResult(chunk, index, status, message, groups)
 
 
-def compute_chunk(func: Any, is_batched_func: bool, names: tuple[str, ...], coords: tuple[np.ndarray, ...],
-                  chunk: int) -> ChunkResult:
-    """Call ``func`` on the points of one block (once for a batched function, else once per point)."""
-    points = chunk_points(list(coords))
-    if not is_batched_func:
-        return _per_point(func, names, points, chunk)
+def _batched(func: Any, task: Task, points: list[np.ndarray], journal: Journal, in_caller: bool) -> ChunkResult:
+    index = task.positions()
+    if not task.one_by_one:
+        try:
+            res = _batched_call(func, task.names, [p[index] for p in points], task.chunk, index)
+        except BaseException as exc:
+            if in_caller and isinstance(exc, KeyboardInterrupt):
+                raise
+        else:
+            journal.result(res)
+            return res
+    # isolate the failing point(s): the same function on one point at a time
+    rows: list[dict[str, Any] | None] = []
+    status = np.zeros(index.size, dtype=np.int64)
+    message = [""] * index.size
+    for k, i in enumerate(index.tolist()):
+        try:
+            part = _batched_call(func, task.names, [p[i:i + 1] for p in points], task.chunk, index[k:k + 1])
+            status[k], message[k] = part.status[0], part.message[0]
+            rows.append({name: v[0] for name, v in part.groups[0].outputs.items()} if part.groups else None)
+        except BaseException as exc:
+            if in_caller and isinstance(exc, KeyboardInterrupt):
+                raise
+            status[k], message[k] = RAISED, describe(exc)
+            rows.append(None)
+        journal.point(i, status[k], message[k], rows[-1])
+    return pack(task.chunk, index, rows, status, message)
+
+
+def compute(func: Any, task: Task, in_caller: bool = False) -> ChunkResult:
+    """Call ``func`` on the task's points (once for a batched function, else once per point).
+
+    Every exception a point raises is recorded as its failure (status 1), ``SystemExit`` included; a
+    ``KeyboardInterrupt`` too, except in the sweeping process itself (``in_caller``), where it is the
+    user's Ctrl-C. Each finished point is recorded in the task's journal.
+    """
+    points = chunk_points(list(task.coords))
+    journal = Journal(task.journal)
     try:
-        return _batched_call(func, names, points, chunk)
-    except Exception:
-        # isolate the failing point(s): the same function on one point at a time
-        parts = []
-        for i in range(points[0].size):
-            one = [p[i:i + 1] for p in points]
-            try:
-                parts.append(_batched_call(func, names, one, chunk))
-            except Exception as exc:
-                parts.append(ChunkResult(chunk, 1, None, {}, np.array([RAISED]), [_describe(exc)]))
-        rows: list[dict[str, Any] | None] = []
-        for part in parts:
-            ok = part.schema is not None and part.status[0] == OK
-            rows.append({k: v[0] for k, v in part.outputs.items()} if ok else None)
-        status = np.concatenate([p.status for p in parts])
-        message = [m for p in parts for m in p.message]
-        return _pack(chunk, rows, status, message)
+        if task.is_batched:
+            res = _batched(func, task, points, journal, in_caller)
+        else:
+            res = _per_point(func, task, points, journal, in_caller)
+    finally:
+        journal.close()
+    res.journal = task.journal
+    return res
 
 
 def run_task(task: Task) -> ChunkResult:
-    """The worker's entry point: load the function, compute the chunk."""
-    func = _load_function(task.func)
-    return compute_chunk(func, task.is_batched, task.names, task.coords, task.chunk)
+    """The entry point of a task on a Dask worker or an executor: load the function, compute the points."""
+    return compute(_load_function(task.func), task)
+
+
+def worker_main(conn: Any, parent: int) -> None:
+    """A local worker process: says it is ready, then computes the tasks it receives until it gets None.
+
+    Answers ``('ready', pid)`` once started, then per task ``('done', result)``, or ``('unloadable', why)``
+    when the function cannot be loaded here, or ``('failed', why)`` when the task fails as a whole.
+    """
+    init_worker(parent)
+    conn.send(("ready", os.getpid()))
+    while True:
+        try:
+            task = conn.recv()
+        except EOFError:  # the sweeping process is gone
+            return
+        if task is None:
+            return
+        try:
+            func = _load_function(task.func)
+        except BaseException as exc:
+            conn.send(("unloadable", describe(exc)))
+            continue
+        try:
+            res = compute(func, task)
+        except BaseException as exc:  # not a point's failure (those are recorded): e.g. the journal's disk is full
+            conn.send(("failed", describe(exc)))
+            continue
+        conn.send(("done", res))
 
 
 def init_worker(parent: int) -> None:
-    """Initializer of local worker processes.
+    """Prepare a local worker process.
 
     Ctrl-C is handled by the sweeping process, which ends its workers. A worker whose sweeping process
-    died (killed: it could not end them) ends itself: its task queue would never close, and it would wait
-    forever.
+    died (killed: it could not end them) ends itself: nobody would read its results.
     """
-    import os
     import signal
     import threading
     import time
