@@ -3,9 +3,9 @@
 ``Solution._repr_html_`` and ``Solution.plot`` are one-line delegations to :func:`solution_html` and
 :func:`plot_solution` here, so that the result class stays small and the display logic has one home.
 
-* :func:`solution_html` renders an HTML table of the fields (name, shape, range), the time span, the status
-  and the message; for a batch run (``sol.batch_shape != ()``) the batch shape and a summary of the
-  members' statuses, events and messages.
+* :func:`solution_html` renders an HTML table of the fields (name, shape, range), the time span, the
+  producer, the status and the message; for a batch run (``sol.batch_shape != ()``) the batch shape and a
+  summary of the members' statuses, events and messages.
 * :func:`plot_solution` draws the module's standard figure with the plotting backend: the module named by
   ``Solution.plot_backend`` (``'rigidbody.plotting'``), imported by name when called, as pandas finds its
   plotting backend. ``rigidbody.core`` imports neither Matplotlib nor the plotting layer.
@@ -73,6 +73,9 @@ def solution_html(sol: Any) -> str:
     batch_shape = tuple(getattr(sol, "batch_shape", ()))
     span = f"[{_num(time[0])}, {_num(time[-1])}]" if time.size else "empty"
     lines = [f"<b>Solution</b>: {name} ∈ {span}, {time.size} samples"]
+    producer = getattr(sol, "producer", None)
+    if producer:
+        lines[0] += f" (from <code>{html.escape(str(producer))}</code>)"
     if batch_shape:
         n = int(np.prod(batch_shape))
         lines.append(f"batch shape {batch_shape} ({n} members)")
