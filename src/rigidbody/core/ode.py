@@ -361,7 +361,7 @@ class Solution:
         return self.batch_shape[0]
 
     def __dir__(self) -> list[str]:
-        return sorted(set(super().__dir__()) | set(self._data) | {self.time_name})
+        return sorted(set(super().__dir__()) | set(self._data) | set(OPTIONAL_FIELDS) | {self.time_name})
 
     def _repr_html_(self) -> str:
         return _display.solution_html(self)
