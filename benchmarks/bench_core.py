@@ -6,18 +6,32 @@ best of several interleaved repetitions; the ratios (library / SciPy) are what t
 largest error against mpmath (40 digits) on a sample of the same inputs -- relative for K, E, dn,
 absolute for sn, cn, am.
 
-Run: python benchmarks/bench_core.py
+The integrators (``integrators``): the DOP853 on Python floats (``integrate(engine='python')``) against
+``solve_ivp(method='DOP853')`` on the same system and tolerances (a 2-state pendulum with a terminal and a
+non-terminal event and 401 output points; a 7-state chain of coupled pendulums; a single averaged run of
+``lagrange`` and of ``euler_poinsot``, which run on it), and the vectorised DOP853
+(``integrate_batch``) on one member and on 1000 members against a loop of the float integrator. CPU
+seconds of this process, the best of a few repeats.
+
+Run: python benchmarks/bench_core.py [elliptic] [integrators]   (both by default)
 """
 
 from __future__ import annotations
 
+import math
+import sys
 import time
+from functools import partial
 
 import mpmath
 import numpy as np
+from common import cpu_time
 from scipy import special
+from scipy.integrate import solve_ivp
 
 from rigidbody.core import averaging, elliptic
+from rigidbody.core.batch import integrate_batch
+from rigidbody.core.ode import Event, integrate
 
 N = 10**6
 SAMPLE = 300
@@ -77,7 +91,7 @@ def _mp_am(x, m):
     return j * mpmath.pi + mpmath.atan2(par * s, abs(par * c))
 
 
-def main() -> None:
+def elliptic_core() -> None:
     rng = np.random.default_rng(0)
     idx = rng.choice(N, SAMPLE, replace=False)
     print(f"elliptic core on {N:,} elements: library / raw SciPy (best of interleaved runs), max error vs mpmath")
@@ -164,5 +178,94 @@ def main() -> None:
         print(f"  sn2_average at 1-k^2={mcv:g}: {nn:4d} nodes, {t['avg'] * 1e6:7.1f} us per call")
 
 
+# ------------------------------------------------------------------------------------------------ integrators
+def pendulum(t, y):
+    return [y[1], -math.sin(y[0])]
+
+
+def chain(t, y):
+    """Seven pendulums coupled to their neighbours by springs (a 7-state first-order system: angles only, each
+    driven by its neighbours' differences, so that every state enters every few stages)."""
+    return [-math.sin(y[i]) + 0.3 * ((y[i - 1] if i else 0.0) - 2.0 * y[i] + (y[i + 1] if i < 6 else 0.0))
+            + 0.1 * math.cos(t) for i in range(7)]
+
+
+PEND_EVENTS = [Event(lambda t, y: y[0], "zero", terminal=False),
+               Event(lambda t, y: y[1] - 1.7, "fast", terminal=True, direction=1.0)]  # beyond the top speed 1.68
+
+
+def _scalar_case(name: str, fun, span, y0, kw: dict) -> None:
+    """The float integrator against solve_ivp on one system."""
+    wrapped = []
+    for ev in kw.get("events", ()):
+        def g(t, y, ev=ev):
+            return ev.fun(t, y)
+        g.terminal, g.direction = ev.terminal, ev.direction
+        wrapped.append(g)
+    skw = dict(t_eval=kw.get("t_eval"), events=wrapped or None)
+    ours = partial(integrate, fun, span, y0, rtol=1e-10, atol=1e-12, engine="python", **kw)
+    t_py = cpu_time(ours, repeat=5)
+    t_sp = cpu_time(partial(solve_ivp, fun, span, y0, method="DOP853", rtol=1e-10, atol=1e-12, **skw), repeat=3)
+    run = ours()
+    print(f"  integrate(engine='python') {name}: {t_py * 1e3:.2f} ms ({run.nfev} evaluations, "
+          f"{t_py / run.nfev * 1e6:.2f} us each) vs solve_ivp {t_sp * 1e3:.2f} ms")
+    print(f"RATIO integrate(engine='python') vs solve_ivp, {name}: {t_sp / t_py:.2f}x faster")
+
+
+def spiral(t, y, a, w):
+    return np.stack([-a * y[:, 0] + w * y[:, 1], -w * y[:, 0] - a * y[:, 1]], axis=1)
+
+
+def spiral_one(t, y, a, w):
+    return [-a * y[0] + w * y[1], -w * y[0] - a * y[1]]
+
+
+def _loop(a, w, tb, n_loop):
+    ev = [Event(lambda t, y, a, w: y[0] - 0.05, "small", terminal=True, direction=-1.0)]
+    return [integrate(spiral_one, (0.0, 30.0), [1.0, 0.0], t_eval=tb, args=(a[i], w[i]), events=ev, engine="python")
+            for i in range(n_loop)]
+
+
+def _batch_case(B: int, rng) -> None:
+    """integrate_batch on B members against a loop of the float integrator (at most 50 runs, scaled)."""
+    a, w = rng.uniform(0.05, 0.2, B), rng.uniform(0.5, 3.0, B)
+    tb = np.linspace(0.0, 30.0, 61)
+    ev = [Event(lambda t, y, a, w: y[:, 0] - 0.05, "small", terminal=True, direction=-1.0)]
+    t_b = cpu_time(partial(integrate_batch, spiral, (0.0, 30.0), np.tile([1.0, 0.0], (B, 1)), t_eval=tb,
+                           args=(a, w), events=ev), repeat=3)
+    n_loop = min(B, 50)
+    t_l = cpu_time(partial(_loop, a, w, tb, n_loop), repeat=3) * B / n_loop
+    print(f"  integrate_batch, {B} member(s), spiral with a terminal event: {t_b * 1e3:.2f} ms vs a loop of "
+          f"integrate(engine='python') {t_l * 1e3:.2f} ms")
+    print(f"RATIO integrate_batch of {B} vs a loop of integrate(engine='python'): {t_l / t_b:.2f}x")
+
+
+def integrators() -> None:
+    print("integrators: CPU time per run (best of repeats)")
+    _scalar_case("pendulum, 2 states, 2 events, 401 samples", pendulum, (0.0, 200.0), [2.0, 0.0],
+                 dict(t_eval=np.linspace(0.0, 200.0, 401), events=PEND_EVENTS))
+    _scalar_case("coupled chain, 7 states", chain, (0.0, 100.0), [0.1 * (i + 1) for i in range(7)], {})
+
+    from rigidbody import euler_poinsot as ep
+    from rigidbody import lagrange as lg
+
+    t_lg = cpu_time(partial(lg.paper_solution, 2, n_out=101, tau_end=100.0), repeat=5)
+    print(f"  lagrange.paper_solution(2), tau in [0, 100] (one averaged run on floats): {t_lg * 1e3:.2f} ms")
+    t_ep = cpu_time(partial(ep.averaged, ep.Body(3.2, 2.6, 1.67), np.diag([2.322, 1.31, 1.425]), 0.0, G0=1.0,
+                            k2_0=0.9, delta0=math.pi / 4, lam0=math.pi / 4, tau_span=(0.0, 30.0)), repeat=5)
+    print(f"  euler_poinsot.averaged closed forms, tau in [0, 30] (one run on floats): {t_ep * 1e3:.2f} ms")
+    rng = np.random.default_rng(0)
+    for B in (1, 1000):
+        _batch_case(B, rng)
+
+
+def main(argv: list[str]) -> None:
+    parts = argv or ["elliptic", "integrators"]
+    if "elliptic" in parts:
+        elliptic_core()
+    if "integrators" in parts:
+        integrators()
+
+
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])

@@ -193,3 +193,54 @@ def test_bad_input():
         integrate_batch(f, (0.0, np.ones(3)), np.ones((2, 1)))
     with pytest.raises(ValueError, match="at least one"):
         integrate_batch(f, (0.0, 1.0), np.ones((0, 1)))
+
+
+def test_two_terminal_roots_in_one_step_stop_the_member_at_the_earlier():
+    # y' = 1 with the step pinned to the whole span (first_step = max_step = 1; a constant field has no error
+    # estimate to shrink it): the roots y = 0.3 and y = 0.6 of two terminal events fall in the one step. The
+    # member stops at the earlier root, whichever event is listed first; a non-terminal root before it is recorded,
+    # one after it is not (catches a member stopped at the later root, or at the first event listed)
+    c = np.array([[0.6, 0.3], [0.3, 0.6]])  # member 0: the second event is the earlier, member 1: the first
+    evs = [Event(lambda t, y, c: y[:, 0] - c[:, 0], "first", message="first level"),
+           Event(lambda t, y, c: y[:, 0] - c[:, 1], "second", message="second level"),
+           Event(lambda t, y, c: y[:, 0] - 0.1, "before", terminal=False),
+           Event(lambda t, y, c: y[:, 0] - 0.8, "after", terminal=False)]
+    s = integrate_batch(lambda t, y, c: np.ones_like(y), (0.0, 1.0), np.zeros((2, 1)), args=(c,), events=evs,
+                        first_step=1.0, max_step=1.0)
+    assert list(s.status) == [1, 1] and list(s.event) == ["second", "first"]
+    # the roots of a linear event function on an exact (linear) dense output: located to the root finder's
+    # tolerance, 4 ulp of t or 1e-12 of the step
+    np.testing.assert_allclose(s.t_final, [0.3, 0.3], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(s.y_final[:, 0], [0.3, 0.3], rtol=0, atol=1e-12)
+    assert "second level" in s.message[0] and "first level" in s.message[1]
+    for i in range(2):
+        assert s.t_events["before"][i] == pytest.approx([0.1], abs=1e-12)
+        assert s.t_events["after"][i].size == 0
+        assert s.t_events["first" if i else "second"][i] == pytest.approx([0.3], abs=1e-12)
+        assert s.t_events["second" if i else "first"][i].size == 0
+    # the float integrator follows the same rule
+    for i in range(2):
+        one = integrate(lambda t, y: [1.0], (0.0, 1.0), [0.0], engine="python", first_step=1.0, max_step=1.0,
+                        events=[Event(lambda t, y, ci=ci: y[0] - ci, e.name, e.terminal)
+                                for e, ci in zip(evs, [*c[i], 0.1, 0.8])])
+        assert one.event == s.event[i] and one.t[-1] == pytest.approx(0.3, abs=1e-12)
+        assert one.t_events["before"] == pytest.approx([0.1], abs=1e-12) and one.t_events["after"].size == 0
+
+
+@pytest.mark.parametrize("events", [False, True])
+def test_each_member_reports_the_step_size_its_single_run_would_take_next(events):
+    # last_step is what continues a run (first_step of the next segment): each member's is its own single
+    # run's. The two integrators take the same steps with the same controller, so the proposals agree to the
+    # rounding of the error estimate: a combination of stages that cancel to rtol, so relative eps/rtol ~ 1e-6,
+    # raised to the controller's power 1/8 (measured 5e-7); 1e-4 leaves room, while another member's or another
+    # step's proposal differs by tens of percent
+    a, w = np.array([0.1, 0.4, 0.05]), np.array([1.0, 2.5, 0.7])
+    ev = [Event(lambda t, y, a, w: y[:, 0] - 0.2, "low", direction=-1.0)] if events else []
+    ev1 = [Event(lambda t, y, a, w: y[0] - 0.2, "low", direction=-1.0)] if events else []
+    s = integrate_batch(spiral, (0.0, 8.0), np.tile([1.0, 0.0], (3, 1)), args=(a, w), events=ev, rtol=RTOL,
+                        atol=ATOL)
+    for i in range(3):
+        one = integrate(lambda t, y, a, w: [-a * y[0] + w * y[1], -w * y[0] - a * y[1]], (0.0, 8.0), [1.0, 0.0],
+                        args=(a[i], w[i]), events=ev1, rtol=RTOL, atol=ATOL, engine="python")
+        assert one.status == s.status[i]
+        assert s.last_step[i] == pytest.approx(one.last_step, rel=1e-4, abs=0)

@@ -4,10 +4,10 @@ import doctest
 
 import pytest
 
-from rigidbody.core import averaging, elliptic, euler, ode, quadform, validate
+from rigidbody.core import averaging, dop853, elliptic, euler, ode, quadform, validate
 
 
-@pytest.mark.parametrize("module", [averaging, elliptic, euler, ode, quadform, validate])
+@pytest.mark.parametrize("module", [averaging, dop853, elliptic, euler, ode, quadform, validate])
 def test_docstring_examples(module):
     result = doctest.testmod(module, optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
     assert result.failed == 0

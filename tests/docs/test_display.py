@@ -106,6 +106,13 @@ def test_html_lists_every_field_with_its_shape_and_a_range_that_bounds_it(kind):
     assert f"status {sol.status}" in page and html.escape(sol.message) in page
 
 
+def test_html_names_the_producer():
+    t = np.linspace(0.0, 1.0, 3)
+    sol = Solution.build(producer="tests.<by hand>", time=t, y=t[None, :], status=0, message="done")
+    assert "(from <code>tests.&lt;by hand&gt;</code>)" in sol._repr_html_()
+    assert "from <code>" not in Solution("t", t, t[None, :], {}, 0, "", None, {}, {}, None, 0)._repr_html_()
+
+
 def test_html_escapes_the_message_and_lists_the_events():
     t = np.linspace(0.0, 1.0, 5)
     sol = Solution("t", t, t[None, :], {"x": t}, 1, "stopped: k2 < 0 & <b>", "flip", {"flip": np.array([0.5])},
@@ -198,6 +205,36 @@ def test_a_result_without_a_standard_plot_says_so():
     sol = Solution("t", t, t[None, :], {"x": t}, 0, "", None, {}, {}, None, 0)
     with pytest.raises(ValueError, match="no standard plot"):
         sol.plot()
+
+
+BACKEND = """
+def plot_solution(sol, ax=None, **kwargs):
+    return ("drawn by {name}", sol.fields, ax, kwargs)
+"""
+
+
+def test_plot_finds_its_drawing_code_by_name_when_called(tmp_path, monkeypatch):
+    # a plotting backend is any module with plot_solution(sol, ax=None, **kwargs), named when plot() is called: per
+    # call (backend=...), per result or for every result (Solution.plot_backend); the default draws with
+    # rigidbody.plotting (the tests above)
+    for name in ("rb_backend_a", "rb_backend_b"):
+        (tmp_path / f"{name}.py").write_text(BACKEND.format(name=name))
+    (tmp_path / "rb_not_a_backend.py").write_text("x = 1\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    t = np.linspace(0.0, 1.0, 3)
+    sol = Solution.build(producer="tests", time=t, y=t[None, :], status=0, message="", fields={"x": t})
+    assert Solution.plot_backend == "rigidbody.plotting"
+    assert sol.plot("axes", backend="rb_backend_a", lw=2) == ("drawn by rb_backend_a", ("x",), "axes", {"lw": 2})
+    monkeypatch.setattr(Solution, "plot_backend", "rb_backend_b")  # set for every result, restored after the test
+    assert sol.plot()[0] == "drawn by rb_backend_b"
+    sol.plot_backend = "rb_backend_a"  # for this result only
+    assert sol.plot()[0] == "drawn by rb_backend_a"
+    with pytest.raises(ImportError, match=r"'rb_no_such_module'.*cannot be imported"):
+        sol.plot(backend="rb_no_such_module")
+    with pytest.raises(TypeError, match="'rb_not_a_backend' has no function plot_solution"):
+        sol.plot(backend="rb_not_a_backend")
+    with pytest.raises(TypeError, match="name of a module"):
+        sol.plot(backend=3)
 
 
 def test_display_needs_no_matplotlib_until_plot_is_called():

@@ -7,11 +7,14 @@
 :mod:`rigidbody.core.averaging`
     Spectrally convergent period averages over motions written in Jacobi functions.
 :mod:`rigidbody.core.ode`
-    ``solve_ivp`` wrapper returning named trajectories with a clear status; the :class:`~.ode.Solution`
-    result, for one run or a batch.
+    ``solve_ivp`` wrapper returning named trajectories with a clear status, or DOP853 on Python floats for
+    small systems; the :class:`~.ode.Solution` result, for one run or a batch.
 :mod:`rigidbody.core.batch`
     Many independent systems integrated together (vectorised DOP853 with per-member step control,
     events and status).
+:mod:`rigidbody.core.dop853`
+    The numerics both integrators share: the DOP853 coefficients, error norm, step-size controller,
+    initial step and event rules.
 :mod:`rigidbody.core.kernel`
     One formula for a single run and a batch: ``math``/NumPy namespaces for right-hand sides, elliptic
     means (``<sn^2>``, ``E/K``) by the AGM without cancellation.
@@ -22,6 +25,6 @@
     Validation of scalar user input (clear ``TypeError``/``ValueError`` naming the parameter).
 """
 
-from . import averaging, batch, elliptic, euler, kernel, ode, quadform, validate
+from . import averaging, batch, dop853, elliptic, euler, kernel, ode, quadform, validate
 
-__all__ = ["averaging", "batch", "elliptic", "euler", "kernel", "ode", "quadform", "validate"]
+__all__ = ["averaging", "batch", "dop853", "elliptic", "euler", "kernel", "ode", "quadform", "validate"]

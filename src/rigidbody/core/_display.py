@@ -3,16 +3,18 @@
 ``Solution._repr_html_`` and ``Solution.plot`` are one-line delegations to :func:`solution_html` and
 :func:`plot_solution` here, so that the result class stays small and the display logic has one home.
 
-* :func:`solution_html` renders an HTML table of the fields (name, shape, range), the time span, the status
-  and the message; for a batch run (``sol.batch_shape != ()``) the batch shape and a summary of the
-  members' statuses, events and messages.
-* :func:`plot_solution` draws the module's standard figure through :func:`rigidbody.plotting.plot_solution`,
-  imported only when called: ``rigidbody.core`` does not import Matplotlib or the plotting layer.
+* :func:`solution_html` renders an HTML table of the fields (name, shape, range), the time span, the
+  producer, the status and the message; for a batch run (``sol.batch_shape != ()``) the batch shape and a
+  summary of the members' statuses, events and messages.
+* :func:`plot_solution` draws the module's standard figure with the plotting backend: the module named by
+  ``Solution.plot_backend`` (``'rigidbody.plotting'``), imported by name when called, as pandas finds its
+  plotting backend. ``rigidbody.core`` imports neither Matplotlib nor the plotting layer.
 """
 
 from __future__ import annotations
 
 import html
+import importlib
 from collections import Counter
 from typing import Any
 
@@ -71,6 +73,9 @@ def solution_html(sol: Any) -> str:
     batch_shape = tuple(getattr(sol, "batch_shape", ()))
     span = f"[{_num(time[0])}, {_num(time[-1])}]" if time.size else "empty"
     lines = [f"<b>Solution</b>: {name} ∈ {span}, {time.size} samples"]
+    producer = getattr(sol, "producer", None)
+    if producer:
+        lines[0] += f" (from <code>{html.escape(str(producer))}</code>)"
     if batch_shape:
         n = int(np.prod(batch_shape))
         lines.append(f"batch shape {batch_shape} ({n} members)")
@@ -99,9 +104,42 @@ def solution_html(sol: Any) -> str:
     return f"<div class='rigidbody-solution'><p>{head}</p>{table}</div>"
 
 
-def plot_solution(sol: Any, ax: Any = None, **kwargs: Any) -> Any:
-    """Draw the standard figure of the module that produced ``sol`` (see
-    :func:`rigidbody.plotting.plot_solution`) and return its Axes (an array of Axes for several panels)."""
-    from rigidbody.plotting import plot_solution as _plot
+def plot_solution(sol: Any, ax: Any = None, *, backend: str, **kwargs: Any) -> Any:
+    """Draw the standard figure of the module that produced ``sol`` with the plotting backend ``backend``.
 
-    return _plot(sol, ax, **kwargs)
+    Parameters
+    ----------
+    sol : Solution
+        A single run or a batch run.
+    ax : Axes or array of Axes, optional
+        Where to draw.
+    backend : str
+        The name of a module with a function ``plot_solution(sol, ax=None, **kwargs)`` that draws a result and
+        returns its Axes (``'rigidbody.plotting'``: :func:`rigidbody.plotting.plot_solution`); imported now.
+    **kwargs
+        Passed to the drawing function.
+
+    Returns
+    -------
+    Axes or numpy.ndarray of Axes
+        What the backend drew on.
+
+    Raises
+    ------
+    TypeError
+        If ``backend`` is not a module name or the module has no function ``plot_solution``.
+    ImportError
+        If the module cannot be imported.
+    """
+    if not isinstance(backend, str) or not backend:
+        raise TypeError(f"the plotting backend (Solution.plot_backend, or plot(backend=...)) is the name of a module, "
+                        f"got {backend!r}")
+    try:
+        module = importlib.import_module(backend)
+    except ImportError as exc:
+        raise ImportError(f"the plotting backend {backend!r} (Solution.plot_backend, or plot(backend=...)) cannot be "
+                          f"imported: {exc}") from exc
+    draw = getattr(module, "plot_solution", None)
+    if not callable(draw):
+        raise TypeError(f"the plotting backend {backend!r} has no function plot_solution(sol, ax=None, **kwargs)")
+    return draw(sol, ax, **kwargs)

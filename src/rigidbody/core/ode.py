@@ -24,17 +24,17 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
-from functools import cache
 from types import SimpleNamespace
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
-from scipy.integrate import DOP853, solve_ivp
-from scipy.optimize import brentq
+from scipy.integrate import solve_ivp
 
 from . import _display
+from ._scalar import solve_small
+from .dop853 import crossed
 
-__all__ = ["Event", "Solution", "crossed", "integrate"]
+__all__ = ["OPTIONAL_FIELDS", "Event", "Solution", "crossed", "integrate"]
 
 
 @dataclass(frozen=True)
@@ -64,37 +64,23 @@ class Event:
     message: str = ""
 
 
-def crossed(g_old: Any, g_new: Any, direction: float) -> Any:
-    """Whether an event function crossed zero over a step, in the sense of ``direction``.
+def _empty_lists(batch_shape: tuple[int, ...]) -> Any:
+    """``[]`` for a single run, an object array of empty lists (one per member) for a batch."""
+    if not batch_shape:
+        return []
+    out = np.empty(batch_shape, dtype=object)
+    for i in np.ndindex(*batch_shape):
+        out[i] = []
+    return out
 
-    A root at the end of a step (``g_new == 0``) belongs to that step; a step that starts on a root
-    (``g_old == 0``) does not count it again, so one passage through zero is one event even when the
-    event function is exactly zero at a step boundary (a motion held on a separatrix). Works on floats
-    and elementwise on arrays (the batch integrator).
 
-    Parameters
-    ----------
-    g_old, g_new : float or ndarray
-        The event function at the start and at the end of the step.
-    direction : float
-        As in ``solve_ivp``: 0 any crossing, +1 upward, -1 downward.
-
-    Returns
-    -------
-    bool or ndarray of bool
-
-    Examples
-    --------
-    >>> crossed(-1.0, 0.0, 0), crossed(0.0, 1.0, 0), crossed(1.0, -1.0, +1)
-    (True, False, False)
-    """
-    up = (g_old < 0) & (g_new >= 0)
-    down = (g_old > 0) & (g_new <= 0)
-    if direction > 0:
-        return up
-    if direction < 0:
-        return down
-    return up | down
+#: The optional fields of a result that only some producers record (those of a separatrix-crossing averaged run):
+#: name -> the default of a result that does not record it, as a function of ``batch_shape``
+OPTIONAL_FIELDS: dict[str, Callable[[tuple[int, ...]], Any]] = {
+    "crossings": _empty_lists,
+    "quad_error": lambda shape: np.zeros(shape) if shape else 0.0,
+    "resonances": _empty_lists,
+}
 
 
 class Solution:
@@ -106,7 +92,13 @@ class Solution:
     batch calls of the analyses) has a leading ``batch_shape`` on every field and on ``y``, the common output
     grid as ``time``, per-member ``status`` (int array), ``message`` and ``event`` (object arrays),
     ``success`` (bool array) and NaN in a member's samples after its end; ``sol[i]`` (or
-    :meth:`member`) is the single-run view of member ``i``.
+    :meth:`member`) is the single-run view of member ``i``, with the member's entries of the per-member
+    fields below.
+
+    A producer builds its result by keywords with :meth:`build` (``Solution.build(producer=
+    "euler_poinsot.averaged", time=tau, y=y, status=0, message=..., fields={...}, crossings=[...])``); the
+    positional form ``Solution(time_name, time, y, data, status, message, event, t_events, y_events, sol,
+    nfev, *, batch_shape=(), producer=None, **optional)`` is kept for the producers not yet converted.
 
     Attributes
     ----------
@@ -119,26 +111,52 @@ class Solution:
     fields : tuple of str
         Names of the derived arrays, each an attribute.
     status : int or numpy.ndarray
-        -1 failure, 0 end of the span reached, 1 a terminal event (per member for a batch).
+        -1 failure, 0 end of the span reached, 1 a terminal event (per member for a batch: an int array of
+        shape ``batch_shape``).
     message : str or numpy.ndarray
+        What ended the run and, for a failure or a stop, how to go on (per member: an object array).
     success : bool or numpy.ndarray
         ``status >= 0``.
     event : str or None, or numpy.ndarray
-        Name of the terminal event that ended the run (per member for a batch).
+        Name of the terminal event that ended the run (per member for a batch: an object array, None for a
+        member that no event ended).
     t_events : dict
         Event name -> times at which it occurred (for a batch: an object array of per-member arrays).
     y_events : dict
         Event name -> states at those times (likewise).
-    sol : scipy.integrate.OdeSolution or None
-        Dense output of the raw state when requested (single runs only).
+    sol : callable or None
+        Dense output of the raw state when requested (single runs only): ``sol(t)`` gives the state's rows at
+        a scalar or an array of times, like SciPy's ``OdeSolution``.
     nfev : int or numpy.ndarray
         Number of right-hand-side evaluations (per member for a batch).
+    producer : str or None
+        The function that produced the result (``'core.ode.integrate'``, ``'core.batch.integrate_batch'``,
+        ``'euler_poinsot.averaged'``, ...); None where the producer does not record itself.
     t_final, y_final : float and numpy.ndarray, or arrays
         The time at which the run ended (the end of the span, a terminal event, a failure) and the raw state
-        there; per member for a batch. None where the producer does not record them.
-    last_step : float or None
-        The step size the integrator would have taken next (``engine='python'`` runs), to continue a run.
+        there; per member for a batch. Default None (not recorded).
+    last_step : float or numpy.ndarray or None
+        The step size the integrator would have taken next, to continue a run (``first_step`` of the next
+        segment); per member for a batch. Default None (not recorded, e.g. ``solve_ivp`` runs).
+    crossings : list of dict
+        Separatrix crossings of an averaged run (time, regions, capture probabilities, ...); for a batch an
+        object array of per-member lists. Default: empty (no crossing, or a producer that crosses none).
+    quad_error : float or numpy.ndarray
+        The largest error estimate of the numerical period averages the run used (per member for a batch).
+        Default 0.0 (closed forms, or no averaging).
+    resonances : list
+        Resonances met on the way (per member for a batch: an object array of lists). Default: empty.
+
+    Notes
+    -----
+    :data:`OPTIONAL_FIELDS` declares the last three with their defaults; a result that does not record one
+    gives its default when asked. :meth:`plot` draws with the module named by :attr:`plot_backend`.
     """
+
+    #: The module whose ``plot_solution(sol, ax=None, **kwargs)`` draws a result: looked up by name when
+    #: :meth:`plot` is called (as pandas finds its plotting backend), so :mod:`rigidbody.core` imports nothing
+    #: above it. Set it (on the class, or on one result) to draw results with other code.
+    plot_backend: ClassVar[str] = "rigidbody.plotting"
 
     def __init__(
         self,
@@ -155,8 +173,8 @@ class Solution:
         nfev: Any,
         *,
         batch_shape: tuple[int, ...] = (),
-        t_final: Any = None,
-        y_final: Any = None,
+        producer: str | None = None,
+        **optional: Any,
     ) -> None:
         self.time_name = time_name
         self.time = time
@@ -172,9 +190,95 @@ class Solution:
         self.y_events = y_events
         self.sol = sol
         self.nfev = nfev
-        self.t_final = t_final
-        self.y_final = y_final
-        self.last_step: Any = None
+        self.producer = producer
+        self.t_final = optional.pop("t_final", None)
+        self.y_final = optional.pop("y_final", None)
+        self.last_step: Any = optional.pop("last_step", None)
+        unknown = sorted(set(optional) - set(OPTIONAL_FIELDS))
+        if unknown:
+            raise TypeError(f"Solution got unknown field(s) {unknown}; the optional fields are t_final, y_final, "
+                            f"last_step and {sorted(OPTIONAL_FIELDS)}")
+        # kept in the instance's dict (a result that does not record one gives the default: __getattr__)
+        self.__dict__.update(optional)
+
+    @classmethod
+    def build(
+        cls,
+        *,
+        producer: str,
+        time: Any,
+        y: Any,
+        status: Any,
+        message: Any,
+        fields: Mapping[str, Any] | None = None,
+        event: Any = None,
+        t_events: Mapping[str, Any] | None = None,
+        y_events: Mapping[str, Any] | None = None,
+        dense: Any = None,
+        nfev: Any = 0,
+        time_name: str = "t",
+        **optional: Any,
+    ) -> Solution:
+        """A result built by keywords: what every producer records, and the optional fields it has.
+
+        Parameters
+        ----------
+        producer : str
+            The function that produced it (``'euler_poinsot.averaged'``).
+        time : array_like
+            The output times, shape ``(n_t,)``.
+        y : array_like
+            The raw state, shape ``batch_shape + (n_state, n_t)``.
+        status : int or array_like of int
+            -1 failure, 0 end of the span, 1 a terminal event; its shape is the batch shape (``()`` for one
+            run).
+        message : str or array_like of str
+            Per member for a batch.
+        fields : mapping of str to array_like, optional
+            The named arrays (each ``batch_shape + (..., n_t)``).
+        event : str or None, or array_like, optional
+            The terminal event that ended the run (per member for a batch; default None: none).
+        t_events, y_events : mapping, optional
+            Event name -> times, states (for a batch: object arrays of per-member arrays).
+        dense : callable, optional
+            Dense output of the raw state (single runs).
+        nfev : int or array_like of int
+            Right-hand-side evaluations (per member for a batch).
+        time_name : str
+            ``'t'`` or ``'tau'``.
+        **optional
+            ``t_final``, ``y_final``, ``last_step`` and the fields of :data:`OPTIONAL_FIELDS` (``crossings``,
+            ``quad_error``, ``resonances``); those not given take their defaults (see the class).
+
+        Returns
+        -------
+        Solution
+
+        Raises
+        ------
+        TypeError
+            For a producer that is not a non-empty string, or an unknown optional field.
+        ValueError
+            For a ``y``, ``message``, ``event`` or ``nfev`` whose shape does not fit the batch shape and ``time``.
+        """
+        if not isinstance(producer, str) or not producer:
+            raise TypeError(f"producer must name the function that made the result (a non-empty str), got "
+                            f"{producer!r}")
+        batch_shape = tuple(np.shape(status))
+        t = np.asarray(time, dtype=float)
+        ya = np.asarray(y)
+        if t.ndim != 1 or ya.ndim != len(batch_shape) + 2 or ya.shape[:len(batch_shape)] != batch_shape \
+                or ya.shape[-1] != t.size:
+            raise ValueError(f"y must have shape batch_shape + (n_state, n_t) = {batch_shape} + (n_state, {t.size})"
+                             f" for time of shape {t.shape}, got {ya.shape}")
+        if batch_shape:
+            event = np.full(batch_shape, None, dtype=object) if event is None else event
+            for name, value in (("message", message), ("event", event), ("nfev", nfev)):
+                if np.shape(value) != batch_shape:
+                    raise ValueError(f"{name} must have one entry per member, shape {batch_shape}, got shape "
+                                     f"{np.shape(value)}")
+        return cls(time_name, t, ya, dict(fields or {}), status, message, event, dict(t_events or {}),
+                   dict(y_events or {}), dense, nfev, batch_shape=batch_shape, producer=producer, **optional)
 
     def __getattr__(self, name: str) -> Any:
         if name == self.__dict__.get("time_name"):
@@ -182,6 +286,10 @@ class Solution:
         data = self.__dict__.get("_data", {})
         if name in data:
             return data[name]
+        if name in OPTIONAL_FIELDS and "batch_shape" in self.__dict__:
+            value = OPTIONAL_FIELDS[name](self.batch_shape)  # not recorded: the declared default
+            self.__dict__[name] = value
+            return value
         raise AttributeError(f"Solution has no field {name!r}; fields: {self.__dict__.get('fields')}")
 
     def __getitem__(self, key: Any) -> Any:
@@ -231,11 +339,18 @@ class Solution:
         t_events = {k: np.asarray(v[idx], dtype=float) for k, v in self.t_events.items()}
         y_events = {k: np.asarray(v[idx], dtype=float) for k, v in self.y_events.items()}
         nfev = self.nfev[idx] if np.ndim(self.nfev) else self.nfev
-        t_final = None if self.t_final is None else float(np.asarray(self.t_final)[idx])
-        y_final = None if self.y_final is None else np.asarray(self.y_final)[idx]
+        names = ("t_final", "y_final", "last_step", *(f for f in OPTIONAL_FIELDS if f in self.__dict__))
+        optional = {f: self._member_value(getattr(self, f), idx) for f in names}
         return Solution(self.time_name, self.time[keep], y[..., keep], data, int(self.status[idx]),
                         str(self.message[idx]), self.event[idx], t_events, y_events, None, int(nfev),
-                        t_final=t_final, y_final=y_final)
+                        producer=self.producer, **optional)
+
+    def _member_value(self, value: Any, idx: tuple[int, ...]) -> Any:
+        """A member's entry of a per-member field (an array with the batch's leading shape), else the value."""
+        if isinstance(value, np.ndarray) and value.shape[:len(self.batch_shape)] == self.batch_shape:
+            entry = value[idx]
+            return entry.item() if isinstance(entry, np.generic) else entry
+        return value
 
     def __bool__(self) -> bool:
         return True
@@ -246,14 +361,31 @@ class Solution:
         return self.batch_shape[0]
 
     def __dir__(self) -> list[str]:
-        return sorted(set(super().__dir__()) | set(self._data) | {self.time_name})
+        return sorted(set(super().__dir__()) | set(self._data) | set(OPTIONAL_FIELDS) | {self.time_name})
 
     def _repr_html_(self) -> str:
         return _display.solution_html(self)
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """Draw the module's standard figure (:func:`rigidbody.plotting.plot_solution`); returns the Axes."""
-        return _display.plot_solution(self, ax, **kwargs)
+    def plot(self, ax: Any = None, *, backend: str | None = None, **kwargs: Any) -> Any:
+        """Draw the module's standard figure; returns the Axes it drew on.
+
+        Parameters
+        ----------
+        ax : Axes or array of Axes, optional
+            Where to draw (new ones by default).
+        backend : str, optional
+            The module whose ``plot_solution(sol, ax, **kwargs)`` draws (default :attr:`plot_backend`,
+            ``'rigidbody.plotting'``: :func:`rigidbody.plotting.plot_solution`), imported when called.
+        **kwargs
+            Passed to the drawing function.
+
+        Returns
+        -------
+        Axes or numpy.ndarray of Axes
+        """
+        return _display.plot_solution(self, ax, backend=self.plot_backend if backend is None else backend,
+                                      **kwargs)
+
     def to_xarray(self, batch_dims: Any = None) -> Any:
         """This result as an ``xarray.Dataset``: time as a dimension, batch axes kept (needs xarray).
 
@@ -286,276 +418,6 @@ class Solution:
             f"Solution({self.time_name}={span}, n={n}, fields={list(self.fields)}, "
             f"status={self.status}, message={self.message!r})"
         )
-
-
-# ==================================================================================================
-# DOP853 for one small system in plain Python floats
-# ==================================================================================================
-# SciPy's solve_ivp spends ~50 us of NumPy overhead per DOP853 step (~100 us with dense output) on any
-# system; for the 3- to 7-state systems of the analyses that is several times the cost of the right-hand
-# side itself. engine='python' runs the same method (Hairer's coefficients as scipy.integrate.DOP853 holds
-# them, the same error norm, step-size controller, initial-step heuristic, 7th-order dense output and event
-# location by brentq to 4 ulp) on lists of floats, with each stage written out for the system's size.
-_SAFETY, _MIN_FACTOR, _MAX_FACTOR = 0.9, 0.2, 10.0
-_ERR_EXP = -1.0 / (DOP853.error_estimator_order + 1)
-_EPS = float(np.finfo(float).eps)
-
-
-def _lin(terms: list[tuple[int, float]], comp: int) -> str:
-    return " + ".join(f"{a!r} * k{j}[{comp}]" for j, a in terms) or "0.0"
-
-
-@cache
-def _dop853_code(n: int) -> tuple[Callable[..., Any], Callable[..., Any], Callable[..., Any]]:
-    """One DOP853 step and its dense-output coefficients for ``n`` states, the stages written out (the
-    Butcher tableau's zeros skipped) so that a step is straight-line float arithmetic."""
-    A, C = np.asarray(DOP853.A), np.asarray(DOP853.C)
-    ns = DOP853.n_stages
-    lines = ["def step(fun, t, y, k0, h, args):"]
-    for s in range(1, ns):
-        nz = [(j, float(A[s, j])) for j in range(s) if A[s, j] != 0.0]
-        ys = ", ".join(f"y[{i}] + h * ({_lin(nz, i)})" for i in range(n))
-        lines.append(f"    k{s} = fun(t + {float(C[s])!r} * h, [{ys}], *args)")
-    nzb = [(j, float(DOP853.B[j])) for j in range(ns) if DOP853.B[j] != 0.0]
-    lines.append("    y_new = [" + ", ".join(f"y[{i}] + h * ({_lin(nzb, i)})" for i in range(n)) + "]")
-    lines.append(f"    k{ns} = fun(t + h, y_new, *args)")
-    nz5 = [(j, float(DOP853.E5[j])) for j in range(ns + 1) if DOP853.E5[j] != 0.0]
-    nz3 = [(j, float(DOP853.E3[j])) for j in range(ns + 1) if DOP853.E3[j] != 0.0]
-    lines.append("    e5 = [" + ", ".join(_lin(nz5, i) for i in range(n)) + "]")
-    lines.append("    e3 = [" + ", ".join(_lin(nz3, i) for i in range(n)) + "]")
-    lines.append("    return y_new, k12, e5, e3, (" + ", ".join(f"k{j}" for j in range(ns + 1)) + ")")
-    Ax, Cx, D = np.asarray(DOP853.A_EXTRA), np.asarray(DOP853.C_EXTRA), np.asarray(DOP853.D)
-    lines.append("def dense(fun, t, y, y_new, h, K, args):")
-    lines.append("    (" + ", ".join(f"k{j}" for j in range(ns + 1)) + ",) = K")
-    for e in range(3):
-        s = ns + 1 + e
-        nz = [(j, float(Ax[e, j])) for j in range(s) if Ax[e, j] != 0.0]
-        ys = ", ".join(f"y[{i}] + h * ({_lin(nz, i)})" for i in range(n))
-        lines.append(f"    k{s} = fun(t + {float(Cx[e])!r} * h, [{ys}], *args)")
-    lines.append("    dy = [b - a for a, b in zip(y, y_new)]")
-    lines.append(f"    F = [dy, [h * k0[i] - dy[i] for i in range({n})], "
-                 f"[2.0 * dy[i] - h * (k{ns}[i] + k0[i]) for i in range({n})]]")
-    for r in range(D.shape[0]):
-        nz = [(j, float(D[r, j])) for j in range(D.shape[1]) if D[r, j] != 0.0]
-        lines.append("    F.append([" + ", ".join(f"h * ({_lin(nz, i)})" for i in range(n)) + "])")
-    lines.append("    return F")
-    # evaluation of the interpolant at x in [0, 1] (scipy's Dop853DenseOutput: alternate factors x, 1 - x)
-    lines.append("def interp(F, y_old, x):")
-    lines.append("    x1 = 1.0 - x")
-    for i in range(n):
-        expr = f"F[6][{i}]"
-        for r, fac in zip(range(5, -1, -1), ["x", "x1", "x", "x1", "x", "x1"]):
-            expr = f"({expr}) * {fac} + F[{r}][{i}]"
-        lines.append(f"    v{i} = y_old[{i}] + ({expr}) * x")
-    lines.append("    return [" + ", ".join(f"v{i}" for i in range(n)) + "]")
-    code: dict[str, Any] = {}
-    exec("\n".join(lines), code)  # generated from the coefficient tables above, nothing else
-    return code["step"], code["dense"], code["interp"]
-
-
-class _DenseStep:
-    """The dense output of one accepted step: ``y(t) = y_old + sum`` of the 7 coefficient rows (Hairer's
-    DOP853 interpolant, evaluated as scipy's Dop853DenseOutput does)."""
-
-    __slots__ = ("F", "h", "interp", "t_old", "y_old")
-
-    def __init__(self, t_old: float, h: float, y_old: list[float], F: list[list[float]],
-                 interp: Callable[..., list[float]]) -> None:
-        self.t_old, self.h, self.y_old, self.F, self.interp = t_old, h, y_old, F, interp
-
-    def __call__(self, t: float) -> list[float]:
-        return self.interp(self.F, self.y_old, (t - self.t_old) / self.h)
-
-
-class _LazyDense:
-    """Dense output of a run of ``engine='python'`` over its whole span, like SciPy's ``OdeSolution``: each step
-    keeps its stages, and the three extra stages of its interpolant are computed the first time a time in
-    that step is asked for (so a run whose dense output is never used costs nothing more)."""
-
-    def __init__(self, fun: Callable[..., Any], args: tuple, coeffs: Callable[..., Any], interp: Callable[..., Any],
-                 steps: list[list[Any]], y0: list[float]) -> None:
-        self.fun, self.args, self.coeffs, self.interp = fun, args, coeffs, interp
-        self.steps = steps  # [t_old, h, y_old, y_new, K, _DenseStep or None] per accepted step
-        self.starts = np.array([st[0] for st in steps], dtype=float)
-        self.y0 = list(y0)
-
-    def _step(self, i: int) -> _DenseStep:
-        st = self.steps[i]
-        if st[5] is None:
-            t_old, h, y_old, y_new, K = st[:5]
-            st[5] = _DenseStep(t_old, h, y_old, self.coeffs(self.fun, t_old, y_old, y_new, h, K, self.args),
-                               self.interp)
-        return st[5]
-
-    def __call__(self, t: Any) -> np.ndarray:
-        ta = np.asarray(t, dtype=float)
-        tt = np.atleast_1d(ta).ravel()
-        out = np.empty((len(self.y0), tt.size))
-        if not self.steps:
-            out[:] = np.asarray(self.y0, dtype=float)[:, None]
-        else:
-            idx = np.clip(np.searchsorted(self.starts, tt, side="right") - 1, 0, len(self.steps) - 1)
-            for k, (i, tv) in enumerate(zip(idx.tolist(), tt.tolist())):
-                out[:, k] = self._step(i)(tv)
-        return out[:, 0] if ta.ndim == 0 else out
-
-
-def _rms(v: list[float]) -> float:
-    return math.sqrt(sum(x * x for x in v) / len(v))
-
-
-def _solve_small(
-    fun: Callable[..., Any], t0: float, t1: float, y0: list[float], t_eval: np.ndarray | None, rtol: list[float],
-    atol: list[float], events: list[tuple[Callable[..., float], bool, float]], args: tuple, max_step: float,
-    first_step: float | None = None, dense_output: bool = False,
-) -> dict[str, Any]:
-    """DOP853 on one system of floats; returns what :func:`integrate` reads from a solve_ivp result."""
-    n = len(y0)
-    step, dense_coeffs, interp = _dop853_code(n)
-    rtol = [max(v, 100.0 * _EPS) for v in rtol]
-    y = list(y0)
-    f = [float(v) for v in fun(t0, y, *args)]
-    nfev = 1
-    t = t0
-    # initial step (Hairer, Norsett, Wanner II.4; scipy.integrate._ivp.common.select_initial_step)
-    span = t1 - t0
-    if span == 0.0:
-        h_abs = 0.0
-    elif first_step is not None:
-        h_abs = min(first_step, span, max_step)
-    else:
-        scale = [a + abs(v) * rt for a, v, rt in zip(atol, y, rtol)]
-        d0 = _rms([v / s for v, s in zip(y, scale)])
-        d1 = _rms([v / s for v, s in zip(f, scale)])
-        h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
-        h0 = min(h0, span)
-        f1 = fun(t0 + h0, [v + h0 * d for v, d in zip(y, f)], *args)
-        nfev += 1
-        d2 = _rms([(a - b) / s for a, b, s in zip(f1, f, scale)]) / h0
-        if d1 <= 1e-15 and d2 <= 1e-15:
-            h1 = max(1e-6, h0 * 1e-3)
-        else:
-            h1 = (0.01 / max(d1, d2)) ** (1.0 / (DOP853.error_estimator_order + 1))
-        h_abs = min(100.0 * h0, h1, span, max_step)
-        if not (h_abs > 0.0):  # a NaN from the heuristic: start with the span and let the control shrink it
-            h_abs = span
-    g = [ev(t, y, *args) for ev, _, _ in events]
-    t_events: list[list[float]] = [[] for _ in events]
-    y_events: list[list[list[float]]] = [[] for _ in events]
-    ts: list[float] = []
-    ys: list[list[float]] = []
-    if t_eval is None:
-        ts.append(t)
-        ys.append(y)
-        te_list: list[float] = []
-    else:
-        te_list = t_eval.tolist()
-    ti = 0
-    if t_eval is not None:
-        while ti < len(te_list) and te_list[ti] <= t0:
-            if te_list[ti] == t0:
-                ts.append(t0)
-                ys.append(list(y))
-            ti += 1
-    status: int | None = None if span > 0.0 else 0
-    message = "The solver successfully reached the end of the integration interval."
-    rejected = False
-    steps: list[list[Any]] = []  # the accepted steps, for the dense output
-    while status is None:
-        min_step = 10.0 * abs(math.nextafter(t, math.inf) - t)
-        h_abs = min(max(h_abs, min_step), max_step)
-        while True:
-            if h_abs < min_step:
-                status, message = -1, "Required step size is less than spacing between numbers."
-                break
-            t_new = t + h_abs
-            if t_new > t1:
-                t_new = t1
-            h = t_new - t
-            y_new, f_new, e5, e3, K = step(fun, t, y, f, h, args)
-            nfev += 12
-            y_new = [float(v) for v in y_new]
-            f_new = [float(v) for v in f_new]
-            scale = [a + max(abs(p), abs(q)) * rt for a, p, q, rt in zip(atol, y, y_new, rtol)]
-            e5n = sum((e / s) ** 2 for e, s in zip(e5, scale))
-            e3n = sum((e / s) ** 2 for e, s in zip(e3, scale))
-            if e5n == 0.0 and e3n == 0.0:
-                err = 0.0
-            else:
-                err = h * e5n / math.sqrt((e5n + 0.01 * e3n) * n)
-            if err < 1.0:
-                fac = _MAX_FACTOR if err == 0.0 else min(_MAX_FACTOR, _SAFETY * err ** _ERR_EXP)
-                if rejected:
-                    fac = min(1.0, fac)
-                h_abs *= fac
-                rejected = False
-                break
-            h_abs *= max(_MIN_FACTOR, _SAFETY * err ** _ERR_EXP) if err == err else _MIN_FACTOR
-            rejected = True
-        if status is not None:
-            break
-        t_old, y_old = t, y
-        t, y, f = t_new, y_new, f_new
-        sol: _DenseStep | None = None
-        step_data = (t_old, h, y_old, y_new, K)
-
-        def _dense(d: tuple = step_data) -> _DenseStep:
-            nonlocal nfev
-            nfev += 3
-            return _DenseStep(d[0], d[1], d[2], dense_coeffs(fun, d[0], d[2], d[3], d[1], d[4], args), interp)
-
-        if dense_output:
-            steps.append([t_old, h, y_old, y_new, K, None])
-        if events:
-            g_new = [ev(t, y, *args) for ev, _, _ in events]
-            active = []
-            for e, ((_, _, direction), a, b) in enumerate(zip(events, g, g_new)):
-                if crossed(a, b, direction):
-                    active.append(e)
-            if active:
-                sol = _dense()
-                if dense_output:
-                    steps[-1][5] = sol
-                roots = [brentq(lambda tt, e=e, d=sol: events[e][0](tt, d(tt), *args), t_old, t,
-                                xtol=4 * _EPS, rtol=4 * _EPS) for e in active]
-                hits = sorted(zip(roots, active))
-                term = [k for k, (_, e) in enumerate(hits) if events[e][1]]
-                if term:
-                    hits = hits[: term[0] + 1]
-                for rt, e in hits:
-                    t_events[e].append(rt)
-                    y_events[e].append(sol(rt))
-                if term:
-                    status = 1
-                    t = hits[-1][0]
-                    y = sol(t)
-            g = g_new
-        if t_eval is None:
-            ts.append(t)
-            ys.append(y)
-        else:
-            j = ti
-            while j < len(te_list) and te_list[j] <= t:
-                j += 1
-            if j > ti:
-                if sol is None:
-                    sol = _dense()
-                    if dense_output:
-                        steps[-1][5] = sol
-                for tt in te_list[ti:j]:
-                    ts.append(tt)
-                    ys.append(sol(tt))
-                ti = j
-        if status is None and t >= t1:
-            status = 0
-    return {
-        "sol": _LazyDense(fun, args, dense_coeffs, interp, steps, list(y0)) if dense_output else None,
-        "t": np.array(ts, dtype=float),
-        "y": np.array(ys, dtype=float).reshape(-1, n).T,
-        "t_events": [np.array(v, dtype=float) for v in t_events],
-        "y_events": [np.array(v, dtype=float).reshape(-1, n) for v in y_events],
-        "status": status, "message": message, "nfev": nfev, "last_step": h_abs,
-    }
 
 
 def integrate(
@@ -653,7 +515,7 @@ def integrate(
         ev_small = [(ev.fun, ev.terminal, ev.direction) for ev in evs] + [(_finite, True, 0.0)]
         with np.errstate(all="ignore"):
             rtol_l = np.broadcast_to(np.asarray(rtol, dtype=float), (n,)).tolist()
-            out = _solve_small(fun, t0, t1, y0a.tolist(), te_arr, rtol_l, atol_l, ev_small, tuple(args or ()),
+            out = solve_small(fun, t0, t1, y0a.tolist(), te_arr, rtol_l, atol_l, ev_small, tuple(args or ()),
                                float(max_step), first_step, dense_output)
         res: Any = SimpleNamespace(**out)  # what integrate reads from a solve_ivp result
     else:
@@ -693,7 +555,6 @@ def integrate(
                 )
                 break
     data = dict(fields(t, y)) if fields is not None and t.size else {}
-    sol = Solution(time_name, t, y, data, status, message, event, t_events, y_events,
-                   res.sol if dense_output else None, int(res.nfev))
-    sol.last_step = getattr(res, "last_step", None)
-    return sol
+    return Solution.build(producer="core.ode.integrate", time=t, y=y, status=status, message=message, fields=data,
+                          event=event, t_events=t_events, y_events=y_events, dense=res.sol if dense_output else None,
+                          nfev=int(res.nfev), time_name=time_name, last_step=getattr(res, "last_step", None))

@@ -1,6 +1,7 @@
 """Plotting helpers: compute functions return data, these draw it on a given (or new) ``Axes``.
 
-``plot_solution(sol)`` draws the standard figure of any result (it is what ``sol.plot()`` calls).
+``plot_solution(sol)`` draws the standard figure of any result: this package is the default plotting backend
+of results (``Solution.plot_backend = "rigidbody.plotting"``), whose ``plot_solution`` ``sol.plot()`` calls.
 Every helper is available at the top level (``rigidbody.plotting.hodograph_3d``) and in the submodule of
 its analysis (``rigidbody.plotting.euler_poinsot.hodograph_3d``). :mod:`rigidbody.plotting.common` holds
 what every module uses (axes creation, the unit sphere, time series). Matplotlib is imported by these
