@@ -14,7 +14,7 @@ from pathlib import Path
 
 import rigidbody
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))  # gallery_order.py, named in sphinx_gallery_conf
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # gallery_order.py, paper_equations.py
 
 project = "rigidbody"
 author = "rigidbody developers"
@@ -31,6 +31,7 @@ extensions = [
     "sphinx-mathjax-offline",  # MathJax 3 and its fonts copied into the site: equations render offline
     "sphinx.ext.viewcode",  # [source] links: a gallery figure's function leads to the code that draws it
     "sphinx_gallery.gen_gallery",
+    "paper_equations",  # docs/paper_equations.py: $$ ... $$ (eq-lagrange-3-4) is numbered (3.4), as in the paper
 ]
 
 source_suffix = {".rst": "restructuredtext", ".md": "myst-nb", ".ipynb": "myst-nb"}

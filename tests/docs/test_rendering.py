@@ -1,17 +1,14 @@
 """What a reader of the built site sees: formulas as written, no internal file names, no script from a CDN.
 
-A real Sphinx build (a subprocess, warnings as errors) of a few pages with the site's own configuration
-(``docs/conf.py``) less what needs the whole tree (the gallery, the API pages, notebook execution); it
-takes a few seconds. The complete site is built by CI with the command of CONTRIBUTING.md.
+A real Sphinx build of a few pages (``build_site`` of ``tests/docs/conftest.py``: the site's own configuration
+less what needs the whole tree, warnings as errors; a few seconds).
 """
 
 from __future__ import annotations
 
 import html
-import os
 import re
-import subprocess
-import sys
+from collections.abc import Callable
 from pathlib import Path
 
 import pytest
@@ -24,33 +21,10 @@ PAGES = ["errata", "references"]
 OCR_NAME = re.compile(r"\b\d{3}_(?:[0-9a-f]{6,}|…)")
 CDN = re.compile(r"cdn\.jsdelivr|cdnjs|unpkg\.com|mathjax@|polyfill\.io|cdn\.mathjax")
 
-CONF = """\
-import runpy
-
-globals().update({{k: v for k, v in runpy.run_path({conf!r}).items() if not k.startswith("__")}})
-extensions = [e for e in extensions if e not in {{"sphinx_gallery.gen_gallery", "sphinx.ext.autosummary",
-                                               "sphinx.ext.autodoc", "numpydoc", "sphinx.ext.viewcode"}}]
-del sphinx_gallery_conf
-nb_execution_mode = "off"
-"""
-
 
 @pytest.fixture(scope="module")
-def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    src = tmp_path_factory.mktemp("src")
-    out = tmp_path_factory.mktemp("html")
-    (src / "conf.py").write_text(CONF.format(conf=str(DOCS / "conf.py")), encoding="utf-8")
-    toctree = "\n".join(PAGES)
-    (src / "index.md").write_text(f"# Pages\n\n```{{toctree}}\n{toctree}\n```\n", encoding="utf-8")
-    for page in PAGES:
-        (src / f"{page}.md").write_text((DOCS / f"{page}.md").read_text(encoding="utf-8"), encoding="utf-8")
-    env = dict(os.environ,
-               PYTHONPATH=os.pathsep.join(p for p in (str(ROOT / "src"), os.environ.get("PYTHONPATH")) if p))
-    result = subprocess.run([sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html",
-                             str(src), str(out)], env=env, capture_output=True, text=True, timeout=300,
-                            check=False)
-    assert result.returncode == 0, f"the Sphinx build failed:\n{result.stdout}\n{result.stderr}"
-    return out
+def site(build_site: Callable[[dict[str, str]], Path]) -> Path:
+    return build_site({page: (DOCS / f"{page}.md").read_text(encoding="utf-8") for page in PAGES})
 
 
 def display_math_of_source(page: str) -> list[str]:
