@@ -23,16 +23,32 @@ limit ``eps = 0`` (dashed) and ``eps = 0.005`` with the true anomaly kept (``nu0
 ``tau in [0, 6]``; at ``eps = 0.005`` the run ends at ``tau = 4.77`` where the decaying rotation is no longer
 fast (``event == 'slow_rotation'``).
 
-Drawn by :func:`rigidbody.paperfigs.euler_poinsot.fig3_spiral_axis_case1`.
+Computed above with :func:`rigidbody.euler_poinsot.averaged`; drawn by
+:func:`rigidbody.paperfigs.euler_poinsot.fig3_spiral_axis_case1` (the axis by
+:func:`rigidbody.plotting.spiral_axis`).
 """
+
+import math
 
 import matplotlib.pyplot as plt
 import numpy as np
 
+from rigidbody import euler_poinsot as ep
 from rigidbody import plotting
 from rigidbody.paperfigs import euler_poinsot as figs
 
-sols = figs.hodograph_data(1)  # {eps: averaged Solution} for eps = 0 and 0.005
+# the paper's satellite (principal moments of inertia) and the drag tensor of case 1 (chi < 0)
+body = ep.Body(A1=3.2, A2=2.6, A3=1.67)
+I = np.diag([2.322, 1.31, 1.425])
+
+# the averaged system (9) in the slow time tau = eps^2 t from the paper's initial state, for the
+# orbit-averaged limit eps = 0 and for eps = 0.005 with the true anomaly kept (nu0 = 0)
+tau = np.linspace(0.0, 6.0, 3001)
+sols = {eps: ep.averaged(body, I, eps, G0=1.0, k2_0=0.99, delta0=math.pi / 4, lam0=math.pi / 4, nu0=0.0,
+                         tau_span=(0.0, 6.0), tau_eval=tau)
+        for eps in (0.0, 0.005)}
+
+# the axis of the cone fitted to the eps = 0.005 run (within the theory: x3, up to O(eps))
 axis = plotting.spiral_axis(sols[0.005])
 print("spiral axis:", np.round(axis, 5), f" {np.degrees(np.arccos(axis[2])):.3f} deg from x3")
 

@@ -21,17 +21,36 @@ Choices the paper leaves open: ``eps``, the initial true anomaly and the end tim
 limit ``eps = 0`` (dashed) and ``eps = 0.005`` with the true anomaly kept (``nu0 = 0``), for
 ``tau in [0, 6]``.
 
-Drawn by :func:`rigidbody.paperfigs.euler_poinsot.fig4_hodograph_case2`.
+Computed above with :func:`rigidbody.euler_poinsot.averaged`; drawn by
+:func:`rigidbody.paperfigs.euler_poinsot.fig4_hodograph_case2`.
 """
 
+import math
+
 import matplotlib.pyplot as plt
+import numpy as np
 
 from rigidbody import euler_poinsot as ep
 from rigidbody.paperfigs import euler_poinsot as figs
 
-sols = figs.hodograph_data(2)  # {eps: averaged Solution} for eps = 0 and 0.005
+# the paper's satellite (principal moments of inertia) and the drag tensor of case 2 (chi > 0)
 body = ep.Body(A1=3.2, A2=2.6, A3=1.67)
-print("chi (7) =", round(ep.chi(body, figs.CASES[2]), 4), " k2 equilibria (8):", ep.k2_equilibria(body, figs.CASES[2]))
+I = np.diag([0.919, 5.228, 1.666])
+
+# the averaged system (9) in the slow time tau = eps^2 t from the paper's initial state, for the
+# orbit-averaged limit eps = 0 and for eps = 0.005 with the true anomaly kept (nu0 = 0)
+tau = np.linspace(0.0, 6.0, 3001)
+sols = {eps: ep.averaged(body, I, eps, G0=1.0, k2_0=0.99, delta0=math.pi / 4, lam0=math.pi / 4, nu0=0.0,
+                         tau_span=(0.0, 6.0), tau_eval=tau)
+        for eps in (0.0, 0.005)}
+
+print(f"chi (7) = {ep.chi(body, I):.4f}; equilibria of k2 under (8): {ep.k2_equilibria(body, I)}")
+print(f"eps = 0.005: ends at tau = {sols[0.005].tau[-1]:.3f} ({sols[0.005].event or 'end of the span'})")
+# on the cone delta = pi/4 about the orbit normal |G| shrinks; with eps > 0 delta wiggles by O(eps)
+print("  tau   G (eps = 0)  delta (eps = 0)   G (eps = 0.005)  delta (eps = 0.005)")
+for j in range(0, tau.size, 500):
+    cells = [f"{s.G[j]:11.4f}  {s.delta[j]:15.4f}" if j < s.tau.size else f"{'(ended)':>28}" for s in sols.values()]
+    print(f"{tau[j]:5.1f}  " + "   ".join(cells))
 
 fig = figs.fig4_hodograph_case2(sols)
 plt.show()

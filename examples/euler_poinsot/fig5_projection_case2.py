@@ -19,17 +19,34 @@ Choices the paper leaves open: ``eps``, the initial true anomaly and the end tim
 limit ``eps = 0`` (dashed) and ``eps = 0.005`` with the true anomaly kept (``nu0 = 0``), for
 ``tau in [0, 6]``.
 
-Drawn by :func:`rigidbody.paperfigs.euler_poinsot.fig5_projection_case2`.
+Computed above with :func:`rigidbody.euler_poinsot.averaged`; drawn by
+:func:`rigidbody.paperfigs.euler_poinsot.fig5_projection_case2`.
 """
+
+import math
 
 import matplotlib.pyplot as plt
 import numpy as np
 
+from rigidbody import euler_poinsot as ep
 from rigidbody.paperfigs import euler_poinsot as figs
 
-sols = figs.hodograph_data(2)  # {eps: averaged Solution} for eps = 0 and 0.005
+# the paper's satellite (principal moments of inertia) and the drag tensor of case 2 (chi > 0)
+body = ep.Body(A1=3.2, A2=2.6, A3=1.67)
+I = np.diag([0.919, 5.228, 1.666])
+
+# the averaged system (9) in the slow time tau = eps^2 t from the paper's initial state, for the
+# orbit-averaged limit eps = 0 and for eps = 0.005 with the true anomaly kept (nu0 = 0)
+tau = np.linspace(0.0, 6.0, 3001)
+sols = {eps: ep.averaged(body, I, eps, G0=1.0, k2_0=0.99, delta0=math.pi / 4, lam0=math.pi / 4, nu0=0.0,
+                         tau_span=(0.0, 6.0), tau_eval=tau)
+        for eps in (0.0, 0.005)}
+
+# the spiral in the orbit plane: turns of lambda and the shrinking |G|
+print("  eps    tau_end   turns of lambda   G from 1 to   end")
 for eps, sol in sols.items():
-    print(f"eps = {eps}: {(sol.lam[0] - sol.lam[-1]) / (2 * np.pi):.2f} turns, G from 1 to {sol.G[-1]:.4f}")
+    turns = (sol.lam[0] - sol.lam[-1]) / (2 * np.pi)
+    print(f"{eps:5g}  {sol.tau[-1]:8.3f}  {turns:16.2f}  {sol.G[-1]:12.4f}   {sol.event or 'end of the span'}")
 
 fig = figs.fig5_projection_case2(sols)
 plt.show()

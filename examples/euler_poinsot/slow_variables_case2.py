@@ -11,16 +11,34 @@ decrease strictly (6); ``k2`` follows (8): Case 2 (``chi > 0``): ``k2 -> 0`` (do
 the rotation tends to the axis of the largest moment. With ``eps > 0`` ``delta`` oscillates with the orbital
 period, by ``O(eps)``, about its constant orbit-averaged value.
 
-Drawn by :func:`rigidbody.paperfigs.euler_poinsot.slow_variables_case2`.
+Computed above with :func:`rigidbody.euler_poinsot.averaged`; drawn by
+:func:`rigidbody.paperfigs.euler_poinsot.slow_variables_case2`.
 """
 
-import matplotlib.pyplot as plt
+import math
 
+import matplotlib.pyplot as plt
+import numpy as np
+
+from rigidbody import euler_poinsot as ep
 from rigidbody.paperfigs import euler_poinsot as figs
 
-sols = figs.hodograph_data(2)
+# the paper's satellite (principal moments of inertia) and the drag tensor of case 2 (chi > 0)
+body = ep.Body(A1=3.2, A2=2.6, A3=1.67)
+I = np.diag([0.919, 5.228, 1.666])
+
+# the averaged system (9) in the slow time tau = eps^2 t from the paper's initial state, for the
+# orbit-averaged limit eps = 0 and for eps = 0.005 with the true anomaly kept (nu0 = 0)
+tau = np.linspace(0.0, 6.0, 3001)
+sols = {eps: ep.averaged(body, I, eps, G0=1.0, k2_0=0.99, delta0=math.pi / 4, lam0=math.pi / 4, nu0=0.0,
+                         tau_span=(0.0, 6.0), tau_eval=tau)
+        for eps in (0.0, 0.005)}
+
+print("  eps    tau_end     G        T        k2      delta   end")
 for eps, sol in sols.items():
-    print(f"eps = {eps}: tau_end = {sol.tau[-1]:.3f}, G = {sol.G[-1]:.4f}, k2 = {sol.k2[-1]:.4f}")
+    print(f"{eps:5g}  {sol.tau[-1]:8.3f}  {sol.G[-1]:.4f}  {sol.T[-1]:.5f}  {sol.k2[-1]:.4f}  {sol.delta[-1]:.4f}   "
+          f"{sol.event or 'end of the span'}")
+print("stable equilibria of k2 under (8):", [k for k, kind in ep.k2_equilibria(body, I) if kind == "stable"])
 
 fig = figs.slow_variables_case2(sols)
 plt.show()

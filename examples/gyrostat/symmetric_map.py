@@ -13,17 +13,24 @@ Choices: ``l/R = 0.1`` (``A1 = 0.01``, ``M = mu = R0 = 1``), ``theta0 in (-3.1, 
 ``A3 / A1 in (0.05, 2)``. Near ``cos theta0 = 0`` the ``O(l^2/R^2)`` terms decide, and ``sin theta0 = 0`` is
 singular for this chart (grey).
 
-Drawn by :func:`rigidbody.paperfigs.gyrostat.symmetric_map`.
+Computed above with :func:`rigidbody.gyrostat.symmetric_stability_map`; drawn by
+:func:`rigidbody.paperfigs.gyrostat.symmetric_map`.
 """
 
 import matplotlib.pyplot as plt
 import numpy as np
 
+from rigidbody import gyrostat
 from rigidbody.paperfigs import gyrostat as figs
 
-sm = figs.symmetric_map_data()
+# a symmetric satellite with l/R = 0.1 (A1 = A2 = M l^2, M = mu = R0 = 1); A3 / A1 is varied
+theta0 = np.linspace(-3.1, 3.1, 311)
+ratio = np.linspace(0.05, 2.0, 196)
+A1 = 0.1**2
+sat = gyrostat.Satellite(M=1.0, A1=A1, A2=A1, A3=A1)
+sm = gyrostat.symmetric_stability_map(sat, 1.0, theta0, A3=ratio * A1)  # (3.2)-(3.3), full second variation
 for verdict in ("stable", "unstable", "undecided"):
-    print(f"{verdict}: {np.mean(sm.verdict == verdict):.1%} of the grid")
+    print(f"{verdict:10}: {np.mean(sm.verdict == verdict):6.1%} of the grid")
 
-fig = figs.symmetric_map()
+fig = figs.symmetric_map(sm)
 plt.show()

@@ -17,8 +17,11 @@ Choices the paper leaves open: the span, ``tau in [0, 150]``; since case 1 evolv
 the variable to ``xi = ln(1 + tau)``, so the figure shows both abscissas (bottom row: ``xi``). Dotted
 verticals: the sign change of ``delta1`` in (2.8).
 
-Drawn by :func:`rigidbody.paperfigs.lagrange.fig1_case1_theta5`.
+Computed above with :func:`rigidbody.lagrange.averaged`; drawn by
+:func:`rigidbody.paperfigs.lagrange.fig1_case1_theta5`.
 """
+
+import math
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -26,10 +29,23 @@ import numpy as np
 from rigidbody import lagrange
 from rigidbody.paperfigs import lagrange as figs
 
-sol = lagrange.paper_solution(1)  # (3.4) from the paper's initial state, tau in [0, 150]
+# the paper's top and its linear drag (3.1), M = -eps (a p, a q, b r)
+top = lagrange.Top(A=1.5, C=1.0, mgl=0.5)
+drag = lagrange.LinearDrag(a=0.125, b=0.1)
+
+# spun about its axis with r0 = sqrt(3), tilted by theta0 = 5.0 degrees: (p, q, r, phi, theta, psi)
+state0 = (0.0, 0.0, math.sqrt(3.0), 0.0, math.radians(5.0), 0.0)
+Gz0, H0, r0 = lagrange.integrals(top, *state0[:5])  # the integrals (1.2)
+print("initial roots of (1.4):", np.round(lagrange.roots(top, Gz0, H0, r0), 3), " paper: (0.913, 0.996, 1.087)")
+
+# the averaged system (3.4) in the slow time tau = eps t (eps drops out), tau in [0, 150.0]
+sol = lagrange.averaged(top, drag, (Gz0, H0, r0), (0.0, 150.0), tau_eval=np.linspace(0.0, 150.0, 1501))
 print(sol.message)
-print("initial roots:", np.round(sol.u[:, 0], 3), " paper:", lagrange.PAPER_TABLE[1])
-print(f"at tau = {sol.tau[-1]:g}: u = {np.round(sol.u[:, -1], 5)}, H = {sol.H[-1]:.6f} (-mgl = -0.5)")
+print(" tau      u1        u2        u3        Gz         H         r")
+for j in (0, 100, 300, 600, 1000, 1500):
+    print(f"{sol.tau[j]:5.0f} " + " ".join(f"{x:9.5f}" for x in (*sol.u[:, j], sol.Gz[j], sol.H[j], sol.r[j])))
+
+print(f"H -> {sol.H[-1]:.6f} (-mgl = -0.5), u -> {np.round(sol.u[:, -1], 5)} (the top ends hanging down)")
 
 fig = figs.fig1_case1_theta5(sol)
 plt.show()

@@ -16,7 +16,8 @@ The quick grid runs in a second in this process (:func:`rigidbody.studies.evalua
 suffices); ``SIZE = "full"`` is for a cluster: set ``SWEEP`` to sweep it with :func:`rigidbody.sweep.sweep`
 (the ``sweep`` extra) on a Dask scheduler's address.
 
-Drawn by :func:`rigidbody.paperfigs.studies.spin_end`.
+Computed above with :func:`rigidbody.studies.evaluate` (or :func:`rigidbody.sweep.sweep`); drawn by
+:func:`rigidbody.paperfigs.studies.spin_end`.
 """
 
 import matplotlib.pyplot as plt
@@ -24,12 +25,18 @@ import numpy as np
 
 from rigidbody import studies
 from rigidbody.paperfigs import studies as figs
+from rigidbody.sweep import sweep
 
 SIZE = "quick"  # or "full"
 SWEEP: dict = {}  # in this process; or e.g. {"executor": "tcp://scheduler:8786"} (rigidbody.sweep)
 
 if __name__ == "__main__":  # a sweep's local worker processes are spawned and import this script
-    ds = figs.study_data("spin_end", SIZE, **SWEEP)
+    grid = studies.GRIDS["spin_end"][SIZE]  # the values of each parameter of the study
+    # in this process (the points integrated as batches), or swept on workers: the same numbers
+    if SWEEP:
+        ds = sweep(studies.spin_end, grid, **SWEEP)
+    else:
+        ds = studies.evaluate(studies.spin_end, grid)
     regime = studies.grid_values(ds, "regime", ("r1", "r3"))
     predicted = np.array([[studies.spin_end_predicted(a, b, k2_0=figs.K2_0) for b in studies.grid_values(ds, "r3")]
                           for a in studies.grid_values(ds, "r1")])

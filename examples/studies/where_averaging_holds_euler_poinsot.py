@@ -14,7 +14,8 @@ integrated as batches; the base install suffices). For the full grid set ``SIZE 
 run it with :func:`rigidbody.sweep.sweep` (the ``sweep`` extra): on a Dask cluster with its scheduler
 address, with a ``store`` that keeps finished chunks, so an interrupted run resumes where it stopped.
 
-Drawn by :func:`rigidbody.paperfigs.studies.where_averaging_holds_euler_poinsot`.
+Computed above with :func:`rigidbody.studies.evaluate` (or :func:`rigidbody.sweep.sweep`); drawn by
+:func:`rigidbody.paperfigs.studies.where_averaging_holds_euler_poinsot`.
 """
 
 import matplotlib.pyplot as plt
@@ -22,13 +23,19 @@ import numpy as np
 
 from rigidbody import studies
 from rigidbody.paperfigs import studies as figs
+from rigidbody.sweep import sweep
 
 SIZE = "quick"  # or "full"
 # {}: in this process; or sweep it, e.g. {"executor": "tcp://scheduler:8786", "store": "averaging_euler_poinsot.zarr"}
 SWEEP: dict = {}
 
 if __name__ == "__main__":  # a sweep's local worker processes are spawned and import this script
-    ds = figs.study_data("averaging_euler_poinsot", SIZE, **SWEEP)
+    grid = studies.GRIDS["averaging_euler_poinsot"][SIZE]  # the values of each parameter of the study
+    # in this process (the points integrated as batches), or swept on workers: the same numbers
+    if SWEEP:
+        ds = sweep(studies.averaging_error_euler_poinsot, grid, **SWEEP)
+    else:
+        ds = studies.evaluate(studies.averaging_error_euler_poinsot, grid)
     # the exponent p of error ~ eps^p at each distance from the separatrix (theory: 2)
     for k2_0, p in zip(studies.grid_values(ds, "k2_0"), np.asarray(studies.fitted_order(ds))):
         print(f"1 - k2_0 = {1 - k2_0:.3g}: p = {p:.2f}")

@@ -13,7 +13,8 @@ integrated as batches; the base install suffices). For the full grid set ``SIZE 
 run it with :func:`rigidbody.sweep.sweep` (the ``sweep`` extra): on a Dask cluster with its scheduler
 address, with a ``store`` that keeps finished chunks, so an interrupted run resumes where it stopped.
 
-Drawn by :func:`rigidbody.paperfigs.studies.where_averaging_holds_lagrange`.
+Computed above with :func:`rigidbody.studies.evaluate` (or :func:`rigidbody.sweep.sweep`); drawn by
+:func:`rigidbody.paperfigs.studies.where_averaging_holds_lagrange`.
 """
 
 import matplotlib.pyplot as plt
@@ -21,13 +22,19 @@ import numpy as np
 
 from rigidbody import studies
 from rigidbody.paperfigs import studies as figs
+from rigidbody.sweep import sweep
 
 SIZE = "quick"  # or "full"
 # {}: in this process; or sweep it, e.g. {"executor": "tcp://scheduler:8786", "store": "averaging_lagrange.zarr"}
 SWEEP: dict = {}
 
 if __name__ == "__main__":  # a sweep's local worker processes are spawned and import this script
-    ds = figs.study_data("averaging_lagrange", SIZE, **SWEEP)
+    grid = studies.GRIDS["averaging_lagrange"][SIZE]  # the values of each parameter of the study
+    # in this process (the points integrated as batches), or swept on workers: the same numbers
+    if SWEEP:
+        ds = sweep(studies.averaging_error_lagrange, grid, **SWEEP)
+    else:
+        ds = studies.evaluate(studies.averaging_error_lagrange, grid)
     # error / eps at the smallest eps and the fitted exponent (theory: 1), per initial tilt
     eps, theta0 = studies.grid_values(ds, "eps"), studies.grid_values(ds, "theta0")
     scaled = studies.grid_values(ds, "error", ("theta0", "eps"))[:, np.argmin(eps)] / eps.min()

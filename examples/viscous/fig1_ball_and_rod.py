@@ -15,7 +15,8 @@ mass 1 and radius 0.3 (their own inertia included), ``beta = 0.1``. The title gi
 ``theta12, theta3, B12, B3`` and the regime of the axis: it contracts to a point when
 ``B12 / theta12 > B3 / theta3``.
 
-Drawn by :func:`rigidbody.paperfigs.viscous.fig1_ball_and_rod`.
+Computed above with :func:`rigidbody.viscous.ball_and_rod`; drawn by
+:func:`rigidbody.paperfigs.viscous.fig1_ball_and_rod`.
 """
 
 import matplotlib.pyplot as plt
@@ -23,9 +24,12 @@ import matplotlib.pyplot as plt
 from rigidbody import viscous as vs
 from rigidbody.paperfigs import viscous as figs
 
-body, medium = vs.ball_and_rod(N=4, a=1.0, b=1.5, beta=0.1, mass=1.0, ball_radius=0.3)
-print(body, medium)
-print("decay rates B12/theta12, B3/theta3:", vs.decay_rates(body, medium), "->", vs.regime(body, medium))
+# N balls on a circle of radius a, two on the rod at +-b; each ball of mass 1, radius 0.3, drag -beta v
+structure = dict(N=4, a=1.0, b=1.5, beta=0.1, mass=1.0, ball_radius=0.3)
+body, medium = vs.ball_and_rod(**structure)  # the inertia (1.2) and drag (2.2) tensors
+print(f"theta12 = {body.theta12:.4f}, theta3 = {body.theta3:.4f}, B12 = {medium.B12:.4f}, B3 = {medium.B3:.4f}")
+rate12, rate3 = vs.decay_rates(body, medium)
+print(f"decay rates B12/theta12 = {rate12:.4f}, B3/theta3 = {rate3:.4f} -> {vs.regime(body, medium)} spiral")
 
-fig = figs.fig1_ball_and_rod()
+fig = figs.fig1_ball_and_rod(**structure)
 plt.show()

@@ -13,18 +13,34 @@ Choices (the paper prints no numbers): ``theta12 = 2, theta3 = 1``, ``B12 = 0.4,
 (:func:`rigidbody.viscous.axis_path`, checked against the full simulation in the tests) from ``t = 0`` to
 ``t = inf``; the far side of the sphere is dashed.
 
-Drawn by :func:`rigidbody.paperfigs.viscous.fig2_contracting_spiral`.
+Computed above with :func:`rigidbody.viscous.axis_path`; drawn by
+:func:`rigidbody.paperfigs.viscous.fig2_contracting_spiral`.
 """
 
 import matplotlib.pyplot as plt
+import numpy as np
 
 from rigidbody import viscous as vs
 from rigidbody.paperfigs import viscous as figs
 
-data = figs.figure_data("contracting")  # the path n(t) and the closed-form k, R, s, xi, zeta
-s_inf, xi_inf, zeta_inf = vs.limits(figs.BODY, figs.MEDIA["contracting"], figs.OMEGA0, 2)
-print(f"regime: {vs.regime(figs.BODY, figs.MEDIA['contracting'])}; length s_inf = {s_inf:.4f}, "
-      f"total turning xi_inf = {xi_inf:.4f} rad, R from {data['R'][0]:.3f} to {data['R'][-1]:.3f}")
+body = vs.Body(theta12=2.0, theta3=1.0)
+medium = vs.Medium(B12=0.4, B3=0.1)
+n0, ndot0, Omega0 = [1.0, 0.0, 0.0], [0.0, 2.0, 0.0], 6.0  # axis, its velocity (v0 = 2.0), spin
+s_inf, xi_inf, zeta_inf = vs.limits(body, medium, Omega0, 2.0)
+print(f"regime: {vs.regime(body, medium)}; length s_inf = {s_inf:.4f}, total turning xi_inf = {xi_inf:.4f} rad")
+print("    t     curvature k (4.5)   radius R (5.2)")
+for t in (0.0, 5.0, 10.0, 20.0, 40.0, 80.0):
+    k, R = vs.curvature(body, medium, Omega0, 2.0, t), vs.spiral_radius(body, medium, Omega0, 2.0, t)
+    print(f"{t:5.0f}  {k:18.4f}  {R:15.4f}")
 
-fig = figs.fig2_contracting_spiral(data)
+# the path from t = 0 to t = inf, rebuilt from v(t) and k(t), on times uniform in the compactified time
+# u = 1 - exp(-gamma t) of the reconstruction (dense where the path turns fast)
+gamma = min(vs.decay_rates(body, medium))
+u = np.linspace(0.0, 1.0 - np.exp(-gamma * 200.0), 4000)
+t = np.append(-np.log1p(-u) / gamma, np.inf)
+n = vs.axis_path(body, medium, n0, ndot0, Omega0, t)
+print("the limit point n(inf) =", np.round(n[:, -1], 5))
+
+fig = figs.fig2_contracting_spiral(n)  # seen from its limit point
 plt.show()
+

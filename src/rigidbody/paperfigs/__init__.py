@@ -17,7 +17,9 @@ API, draws it with :mod:`rigidbody.plotting` and returns the Matplotlib figure; 
                      {"fig1_case1_theta5": fig1_case1_theta5, "averaged_vs_full": averaged_vs_full})
 
 The command saves each as ``<set>/<name>.png``; the gallery script ``examples/<set>/<name>.py`` calls the
-same function, so a figure is drawn by one piece of code. The names of the paper's figures start with
+same function, so a figure is drawn by one piece of code. A figure function takes its data as arguments
+(computed by the function when they are left out): the gallery script computes them in view, with the public
+calls of the analysis, and passes them in. The names of the paper's figures start with
 ``fig<N>_``. Older builders that write their own files register with the :func:`register` decorator.
 
 The functions live in the package (not in ``examples/``) so that the command works after a plain

@@ -231,20 +231,24 @@ def slow_variables_figure(case: int, sols: dict[float, Solution] | None = None) 
     return fig
 
 
-def eps_dependence() -> Any:
+def eps_dependence(sols: dict[int, dict[float, Solution]] | None = None) -> Any:
     """δ(τ), the projection on Ox1x2 and the side view along x3 for ε = 0, 0.01, 0.1, 0.3, both cases.
 
     ε = 0.1 and 0.3 are above the theory's range at the start (spin ratio < 1) and are integrated with
     the check switched off: only there δ drifts and the spiral bends as the paper describes.
+
+    ``sols``: ``{case: {eps: Solution}}`` for the cases 1, 2 (default: :func:`figure_data` for each eps of
+    :data:`EPS_SCAN`).
     """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import euler_poinsot as epp
 
+    if sols is None:
+        sols = {case: {eps: figure_data(_drag(case), eps) for eps in EPS_SCAN} for case in CASES}
     fig, axs = plt.subplots(2, 3, figsize=(15, 8))
     for row, case in enumerate(CASES):
-        for eps in EPS_SCAN:
-            s = figure_data(_drag(case), eps)
+        for eps, s in sols[case].items():
             valid = eps == 0 or ep.spin_ratio(BODY, eps, SETUP["G0"], SETUP["k2_0"]) > 1
             lab = f"ε = {eps:g}" + ("" if valid else " (outside the theory)")
             if s.status == 1:

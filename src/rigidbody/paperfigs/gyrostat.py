@@ -99,11 +99,20 @@ def _label(r: tuple[float, float, float]) -> str:
     return " > ".join(n for _, n in names)
 
 
-def stability_maps(l_over_R: float) -> Any:
+def stability_maps(l_over_R: float, maps: dict[tuple[float, float, float], Any] | None = None) -> Any:
     """Verdicts of (2.3) in the plane (theta0, k2 / (omega0 Abar)) for the six orderings of the moments.
 
     Exact boundaries s2 = 0, s3 = 0, s1 = 0 in black, the restricted problem's in blue
     (:func:`rigidbody.plotting.normalized_map_plot`).
+
+    Parameters
+    ----------
+    l_over_R : float
+        ``sqrt(Abar / M) / R0``.
+    maps : dict, optional
+        ``{ratios: (StabilityMap, boundaries)}`` for the six :func:`orderings`, each the result of
+        :func:`rigidbody.gyrostat.normalized_stability_map` for ``body(l_over_R, ratios)`` with ``R0 = 1`` on
+        :data:`THETA` x :data:`U` (default: computed here).
     """
     import matplotlib.pyplot as plt
 
@@ -111,7 +120,8 @@ def stability_maps(l_over_R: float) -> Any:
 
     fig, axes = plt.subplots(2, 3, figsize=(13, 8), sharex=True, sharey=True)
     for ax, r in zip(axes.ravel(), orderings()):
-        pg.normalized_map_plot(body(l_over_R, r), 1.0, THETA, U, ax, legend=(ax is axes[0, 0]))
+        data = None if maps is None else maps[r]
+        pg.normalized_map_plot(body(l_over_R, r), 1.0, THETA, U, ax, legend=(ax is axes[0, 0]), data=data)
         ax.set_title(_label(r), fontsize=10)
     for ax in axes.ravel():
         ax.label_outer()
@@ -120,22 +130,25 @@ def stability_maps(l_over_R: float) -> Any:
     return fig
 
 
-def stability_maps_lr01() -> Any:
+def stability_maps_lr01(maps: dict[tuple[float, float, float], Any] | None = None) -> Any:
     """Beyond the paper: :func:`stability_maps` for l/R = 0.1."""
-    return stability_maps(L_OVER_R_MAPS[0])
+    return stability_maps(L_OVER_R_MAPS[0], maps)
 
 
-def stability_maps_lr02() -> Any:
+def stability_maps_lr02(maps: dict[tuple[float, float, float], Any] | None = None) -> Any:
     """Beyond the paper: :func:`stability_maps` for l/R = 0.2."""
-    return stability_maps(L_OVER_R_MAPS[1])
+    return stability_maps(L_OVER_R_MAPS[1], maps)
 
 
-def kappa0() -> Any:
+def kappa0(data: dict[float, np.ndarray] | None = None) -> Any:
     """Beyond the paper: the latitude kappa0(theta0) of the orbit (2.4) for several l/R, and scaled by
-    (l/R)^2 (the curves collapse, extremal near theta0 = +-pi/4)."""
+    (l/R)^2 (the curves collapse, extremal near theta0 = +-pi/4).
+
+    ``data``: ``{l/R: kappa0 on THETA}`` (default :func:`kappa_data`).
+    """
     import matplotlib.pyplot as plt
 
-    kd = kappa_data()
+    kd = kappa_data() if data is None else data
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2))
     for lR, kap in kd.items():
         ax1.plot(THETA, np.degrees(kap), label=f"l/R = {lR}")
@@ -155,14 +168,17 @@ def kappa0() -> Any:
     return fig
 
 
-def symmetric_map() -> Any:
+def symmetric_map(sm: gyrostat.SymmetricStabilityMap | None = None) -> Any:
     """Beyond the paper: verdicts of the symmetric family (3.2) by the full second variation over
-    (theta0, A3/A1), with the paper's boundary A3 = A1 of (3.4) and the line 3 A3 = 4 A1."""
+    (theta0, A3/A1), with the paper's boundary A3 = A1 of (3.4) and the line 3 A3 = 4 A1.
+
+    ``sm``: the map over SYM_THETA x SYM_RATIO (default :func:`symmetric_map_data`).
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import gyrostat as pg
 
-    sm = symmetric_map_data()
+    sm = symmetric_map_data() if sm is None else sm
     fig, ax = plt.subplots(figsize=(7.5, 4.8))
     pg.stability_map_plot(SYM_THETA, SYM_RATIO, sm.code, ax,
                           boundaries={"A3 = A1 ((3.4) changes sign)": (SYM_THETA, np.ones_like(SYM_THETA)),
@@ -174,19 +190,26 @@ def symmetric_map() -> Any:
     return fig
 
 
-def fig1_dumbbell() -> Any:
+def fig1_dumbbell(sat: gyrostat.Satellite | None = None, motion: gyrostat.SymmetricMotion | None = None) -> Any:
     """The paper's figure: the spinning dumbbell whose circular orbit plane misses the attracting centre,
-    drawn to scale (:func:`rigidbody.plotting.dumbbell_side_view`), with kappa0 and the stability verdict."""
+    drawn to scale (:func:`rigidbody.plotting.dumbbell_side_view`), with kappa0 and the stability verdict.
+
+    ``sat`` and ``motion``: a dumbbell (two equal balls on a light rod, ``A1 = A2 = M arm^2``) and its
+    stationary motion (3.2)-(3.3), both or neither (default :func:`dumbbell_data`).
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import gyrostat as pg
 
-    sat, ms = dumbbell_data()
+    if (sat is None) != (motion is None):
+        raise ValueError("give both sat and motion (the dumbbell and its stationary motion), or neither")
+    sat, ms = dumbbell_data() if sat is None or motion is None else (sat, motion)
     st = gyrostat.stability(sat, ms)
+    arm = math.sqrt(sat.A1 / sat.M)  # two equal balls at +-arm from G: A1 = M arm^2
     fig, ax = plt.subplots(figsize=(8, 5.5))
-    pg.dumbbell_side_view(ms.R0, ms.kappa0, ms.theta0, ARM, ax, elevation_deg=8.0)
-    ax.set_title(f"Spinning dumbbell, arm = {ARM} R0, θ0 = π/4: κ0 = {math.degrees(ms.kappa0):.2f}°, "
-                 f"verdict: {st.verdict}", fontsize=10)
+    pg.dumbbell_side_view(ms.R0, ms.kappa0, ms.theta0, arm, ax, elevation_deg=8.0)
+    ax.set_title(f"Spinning dumbbell, arm = {arm / ms.R0:.3g} R0, θ0 = {math.degrees(ms.theta0):.4g}°: "
+                 f"κ0 = {math.degrees(ms.kappa0):.2f}°, verdict: {st.verdict}", fontsize=10)
     fig.tight_layout()
     return fig
 

@@ -40,6 +40,8 @@ MEDIA = {"contracting": CONTRACTING, "unwinding": UNWINDING}
 NDOT0 = {"contracting": np.array([0.0, 2.0, 0.0]), "unwinding": np.array([0.0, 0.6, 0.0])}
 #: the structure of fig. 1 as drawn: N balls on a circle of radius a, rod half-length b, ball radius
 SKETCH_N, SKETCH_A, SKETCH_B, SKETCH_BALL = 4, 1.0, 1.5, 0.3
+#: the times of the histories figure
+T_HISTORIES = np.linspace(0.0, 80.0, 801)
 
 
 def figure_data(name: str, t_max: float = 200.0, num: int = 4000) -> dict[str, np.ndarray]:
@@ -61,28 +63,35 @@ def figure_data(name: str, t_max: float = 200.0, num: int = 4000) -> dict[str, n
     }
 
 
-def fig1_ball_and_rod() -> Any:
+def fig1_ball_and_rod(N: int = SKETCH_N, a: float = SKETCH_A, b: float = SKETCH_B, ball_radius: float = SKETCH_BALL,
+                      beta: float = 0.1, mass: float = 1.0) -> Any:
     """Fig. 1: the ball-and-rod structure whose drag torque is exactly (1.1), with the body and medium
-    :func:`rigidbody.viscous.ball_and_rod` gives for it (one ball: mass 1, drag coefficient 0.1)."""
+    :func:`rigidbody.viscous.ball_and_rod` gives for it (one ball: mass 1, drag coefficient 0.1).
+
+    The parameters are those of :func:`rigidbody.viscous.ball_and_rod`; the defaults are the structure as
+    drawn: 4 balls on a circle of radius 1, a rod of half-length 1.5, balls of radius 0.3.
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import viscous as pv
 
-    body, medium = vs.ball_and_rod(SKETCH_N, SKETCH_A, SKETCH_B, beta=0.1, mass=1.0, ball_radius=SKETCH_BALL)
+    body, medium = vs.ball_and_rod(N, a, b, beta=beta, mass=mass, ball_radius=ball_radius)
     fig = plt.figure(figsize=(6.0, 6.0))
     ax = fig.add_subplot(111, projection="3d")
-    pv.ball_and_rod_sketch(SKETCH_N, SKETCH_A, SKETCH_B, SKETCH_BALL, ax)
-    fig.suptitle(f"Fig. 1: N = {SKETCH_N} balls on a circle of radius a = {SKETCH_A:g}, rod AB of length "
-                 f"2b = {2 * SKETCH_B:g}\nθ12 = {body.theta12:.4g}, θ3 = {body.theta3:.4g}, B12 = {medium.B12:.4g}, "
+    pv.ball_and_rod_sketch(N, a, b, ball_radius, ax)
+    fig.suptitle(f"Fig. 1: N = {N} balls on a circle of radius a = {a:g}, rod AB of length "
+                 f"2b = {2 * b:g}\nθ12 = {body.theta12:.4g}, θ3 = {body.theta3:.4g}, B12 = {medium.B12:.4g}, "
                  f"B3 = {medium.B3:.4g}: {vs.regime(body, medium)} spiral", fontsize=9)
     return fig
 
 
-def spiral_figure(name: str, data: dict[str, np.ndarray] | None = None) -> Any:
+def spiral_figure(name: str, n: np.ndarray | None = None, view: np.ndarray | None = None) -> Any:
     """Fig. 2 (``'contracting'``) or 3 (``'unwinding'``): the path of the symmetry axis on the unit sphere.
 
     The contracting spiral is seen from its limit point, the unwinding one from the pole of the great
-    circle it tends to; the far side of the sphere is dashed. ``data`` defaults to :func:`figure_data`.
+    circle it tends to; the far side of the sphere is dashed. ``n`` (shape (3, m)) is the path from
+    ``t = 0`` to its end point at ``t = inf`` (:func:`rigidbody.viscous.axis_path`) and ``view`` the
+    direction it is seen from (default: its end point); without them both come from :func:`figure_data`.
     """
     import matplotlib.pyplot as plt
 
@@ -90,24 +99,31 @@ def spiral_figure(name: str, data: dict[str, np.ndarray] | None = None) -> Any:
 
     fig_no = {"contracting": 2, "unwinding": 3}[name]
     medium = MEDIA[name]
-    d = figure_data(name) if data is None else data
+    if n is None:
+        d = figure_data(name)
+        n = np.column_stack([d["n"], d["n_inf"]])
+        view = d["n_inf"] if name == "contracting" else d["g_inf"]
+    n = np.asarray(n, dtype=float)
     fig = plt.figure(figsize=(5.5, 5.5))
     ax = fig.add_subplot(111, projection="3d")
-    view = d["n_inf"] if name == "contracting" else d["g_inf"]
-    pv.sphere_path(d["n"], ax, view=view, label=f"{name} spiral", lw=1.0)
+    pv.sphere_path(n, ax, view=n[:, -1] if view is None else view, label=f"{name} spiral", lw=1.0)
     ax.set_title(f"Fig. {fig_no}: {name} spiral (B12={medium.B12}, B3={medium.B3}, θ12=2, θ3=1)", fontsize=9)
     return fig
 
 
-def turn_figure(name: str) -> Any:
+def turn_figure(name: str, tr: vs.Turn | None = None) -> Any:
     """Fig. 4 (``'contracting'``) or 5 (``'unwinding'``): one turn of the spiral from ``t1 = 0`` and the solid
-    angle χ it bounds (:func:`rigidbody.viscous.turn`), seen from the turn's centre."""
+    angle χ it bounds (:func:`rigidbody.viscous.turn`), seen from the turn's centre.
+
+    ``tr``: the turn to draw (default: the one from ``t1 = 0`` of the spiral of figure 2 or 3).
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import viscous as pv
 
     fig_no = {"contracting": 4, "unwinding": 5}[name]
-    tr = vs.turn(BODY, MEDIA[name], N0, NDOT0[name], OMEGA0, 0.0)
+    if tr is None:
+        tr = vs.turn(BODY, MEDIA[name], N0, NDOT0[name], OMEGA0, 0.0)
     fig = plt.figure(figsize=(5.5, 5.5))
     ax = fig.add_subplot(111, projection="3d")
     pv.turn_solid_angle(tr, ax)
@@ -115,45 +131,54 @@ def turn_figure(name: str) -> Any:
     return fig
 
 
+def _histories(name: str, t: np.ndarray) -> dict[str, np.ndarray]:
+    medium, v0 = MEDIA[name], float(np.linalg.norm(NDOT0[name]))
+    s, xi, zeta = vs.quasi_coordinates(BODY, medium, OMEGA0, v0, t)
+    return {"t": t, "k": vs.curvature(BODY, medium, OMEGA0, v0, t),
+            "R": vs.spiral_radius(BODY, medium, OMEGA0, v0, t), "s": s, "xi": xi, "zeta": zeta}
+
+
 def histories(data: dict[str, dict[str, np.ndarray]] | None = None) -> Any:
     """Beyond the paper: curvature (4.5), spiral radius (5.2) and quasi-coordinates (5.1) against t for both
-    spirals, to t = 80."""
+    spirals, to t = 80.
+
+    ``data``: ``{'contracting': d, 'unwinding': d}``, each ``d`` with the arrays ``t, k, R, s, xi, zeta``
+    (default: the closed forms on :data:`T_HISTORIES` for the spirals of figures 2 and 3).
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import viscous as pv
 
-    datas = {name: figure_data(name) for name in MEDIA} if data is None else data
+    datas = {name: _histories(name, T_HISTORIES) for name in MEDIA} if data is None else data
     fig, axes = plt.subplots(5, 2, figsize=(9.0, 9.0), sharex=True)
     for j, name in enumerate(("contracting", "unwinding")):
         d = datas[name]
-        mask = d["t"] <= 80.0
         pv.quasi_coordinate_histories(
-            d["t"][mask], {"k": d["k"][mask], "R": d["R"][mask], "s": d["s"][mask], "ξ": d["xi"][mask],
-                           "ζ": d["zeta"][mask]}, axes=axes[:, j])
+            d["t"], {"k": d["k"], "R": d["R"], "s": d["s"], "ξ": d["xi"], "ζ": d["zeta"]}, axes=axes[:, j])
         axes[0, j].set_title(name)
     fig.suptitle("Curvature (4.5), spiral radius (5.2) and quasi-coordinates (5.1)")
     fig.tight_layout()
     return fig
 
 
-def fig2_contracting_spiral(data: dict[str, np.ndarray] | None = None) -> Any:
+def fig2_contracting_spiral(n: np.ndarray | None = None, view: np.ndarray | None = None) -> Any:
     """Fig. 2: the contracting spiral (:func:`spiral_figure`)."""
-    return spiral_figure("contracting", data)
+    return spiral_figure("contracting", n, view)
 
 
-def fig3_unwinding_spiral(data: dict[str, np.ndarray] | None = None) -> Any:
+def fig3_unwinding_spiral(n: np.ndarray | None = None, view: np.ndarray | None = None) -> Any:
     """Fig. 3: the unwinding spiral (:func:`spiral_figure`)."""
-    return spiral_figure("unwinding", data)
+    return spiral_figure("unwinding", n, view)
 
 
-def fig4_turn_contracting() -> Any:
+def fig4_turn_contracting(tr: vs.Turn | None = None) -> Any:
     """Fig. 4: one turn of the contracting spiral and its solid angle (:func:`turn_figure`)."""
-    return turn_figure("contracting")
+    return turn_figure("contracting", tr)
 
 
-def fig5_turn_unwinding() -> Any:
+def fig5_turn_unwinding(tr: vs.Turn | None = None) -> Any:
     """Fig. 5: one turn of the unwinding spiral and its solid angle (:func:`turn_figure`)."""
-    return turn_figure("unwinding")
+    return turn_figure("unwinding", tr)
 
 
 register_figures(

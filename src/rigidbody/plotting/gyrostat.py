@@ -75,12 +75,26 @@ def stability_map_plot(
     return ax
 
 
-def normalized_map_plot(sat: Any, R0: float, theta0: Any, u: Any, ax: Any = None, *, legend: bool = True) -> tuple:
+def normalized_map_plot(
+    sat: Any, R0: float, theta0: Any, u: Any, ax: Any = None, *, legend: bool = True, data: Any = None
+) -> tuple:
     """Compute and draw the map in the plane (theta0, u = k2 / (omega0 Abar)) with all boundaries.
 
     Exact boundaries s2 = 0, s3 = 0 (explicit curves, :func:`rigidbody.gyrostat.exact_boundaries`) and
     s1 = 0 (sign changes on the theta0 grid) in black; the restricted ones r2 = 0, r3 = 0, r1 = 0 (closed
     form) in blue.
+
+    Parameters
+    ----------
+    sat, R0, theta0, u
+        The satellite, the orbit radius and the grid, as for
+        :func:`rigidbody.gyrostat.normalized_stability_map`.
+    ax : Axes, optional
+    legend : bool
+        Draw the legend of the verdicts and the curves.
+    data : (StabilityMap, dict), optional
+        The result of ``normalized_stability_map(sat, R0, theta0, u)`` computed already: drawn as it is
+        (``sat`` and ``R0`` are then not used).
 
     Returns
     -------
@@ -89,7 +103,7 @@ def normalized_map_plot(sat: Any, R0: float, theta0: Any, u: Any, ax: Any = None
     from rigidbody import gyrostat
 
     th = np.asarray(theta0, dtype=float)
-    mp, b = gyrostat.normalized_stability_map(sat, R0, th, u)
+    mp, b = gyrostat.normalized_stability_map(sat, R0, th, u) if data is None else data
     s1 = b["s1"]
     s1_zero = th[:-1][np.sign(s1[:-1]) != np.sign(s1[1:])]
     r1_zero = b["theta_r1"][(b["theta_r1"] >= th.min()) & (b["theta_r1"] <= th.max())]
