@@ -12,9 +12,10 @@ k2_0 itself is an equilibrium (derived from (8)). The paper's drag cases 1 and 2
 the chi = -3 line are decided slowly (the rate of (8) at k^2 = 0 vanishes there), so a finite run may call a
 slow approach to 0 an interior equilibrium. The right panel shows the interior equilibrium reached.
 
-The quick grid runs in a second in this process (:func:`rigidbody.studies.evaluate`; the base install
-suffices); ``SIZE = "full"`` is for a cluster: set ``SWEEP`` to sweep it with :func:`rigidbody.sweep.sweep`
-(the ``sweep`` extra) on a Dask scheduler's address.
+The full grid (120 x 120 drag tensors, one batch) runs in a few seconds in this process
+(:func:`rigidbody.studies.evaluate`; the base install suffices), fine enough that the boundaries between the
+regimes are lines; ``SIZE = "quick"`` (13 x 13) is for a first look. Set ``SWEEP`` to sweep it with
+:func:`rigidbody.sweep.sweep` (the ``sweep`` extra), e.g. on a Dask scheduler's address.
 
 Computed above with :func:`rigidbody.studies.evaluate` (or :func:`rigidbody.sweep.sweep`); drawn by
 :func:`rigidbody.paperfigs.studies.spin_end`.
@@ -27,7 +28,7 @@ from rigidbody import studies
 from rigidbody.paperfigs import studies as figs
 from rigidbody.sweep import sweep
 
-SIZE = "quick"  # or "full"
+SIZE = "full"  # or "quick"
 SWEEP: dict = {}  # in this process; or e.g. {"executor": "tcp://scheduler:8786"} (rigidbody.sweep)
 
 if __name__ == "__main__":  # a sweep's local worker processes are spawned and import this script

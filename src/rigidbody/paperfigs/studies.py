@@ -151,7 +151,8 @@ def spin_end(ds: Any = None) -> Any:
     ----------
     ds : rigidbody.studies.StudyMap or xarray.Dataset, optional
         A map of :func:`rigidbody.studies.spin_end` over ``r1`` and ``r3`` (:func:`study_data`; default: the
-        quick grid, from ``k2_0 = K2_0``).
+        full grid, 120 x 120 drag tensors in one batch, a few seconds in this process, from ``k2_0 = K2_0``:
+        fine enough that the regime boundaries are lines, not staircases).
 
     Returns
     -------
@@ -163,7 +164,7 @@ def spin_end(ds: Any = None) -> Any:
     from rigidbody.studies import chi_minus_3_line, grid_values
 
     if ds is None:
-        ds = study_data("spin_end")
+        ds = study_data("spin_end", "full")
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 5.2))
     sp.spin_end_map(ds, k2_0=K2_0, ax=a1, cases=paper_cases())
     a1.set_title(f"final regime of k2 from k2_0 = {K2_0:g} (averaged (8)/(9), eps = 0)")
