@@ -13,14 +13,14 @@ trapezoid rule on a uniform grid of the phase ``s`` over ``2K`` (spectrally conv
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 
 from ..core import averaging as _avg
 from ..core import elliptic as _ell
-from ._top import Top, _check_top, from_roots, roots, vieta
+from . import _kernel as _k
+from ._top import Top, check_top, from_roots, roots, vieta
 from ._torques import LinearDrag, Torque, check_torque
 
 #: width u2 - u1 (relative to max(u3 - u1, 1)) below which a pair of roots of the cubic counts as double
@@ -120,7 +120,7 @@ def averaged_slow_rates(
         near_double = False
     if near_double:
         s1, s2, _ = vieta(top, Gz, H, r)
-        c_lo = (s1 - math.sqrt(max(s1 * s1 - 3.0 * s2, 0.0))) / 3.0
+        c_lo = _k.double_root(s1, _k.cubic_spread(_k.SCALAR, s1, s2))
         u = np.array([c_lo])  # not clipped to [-1, 1]: keeps the field smooth across a pole (rounding only)
     elif u2 - u1 <= 0.0:
         # regular precession: the nutation is frozen at u = u1 = u2, the mean is the value there
@@ -151,7 +151,7 @@ def V_matrix(top: Top, u1: Any, u2: Any, u3: Any, Gz: Any, r: Any) -> np.ndarray
     ValueError
         Unless ``u1 < u2 < u3`` (the determinant of (2.10) vanishes otherwise).
     """
-    top = _check_top(top)
+    top = check_top(top)
     _check_roots(u1, u2, u3)
     A, C, mgl = top.A, top.C, top.mgl
     us = [np.asarray(x, dtype=float) for x in (u1, u2, u3)]
@@ -210,7 +210,7 @@ def averaged_rhs(
     -------
     U1, U2, U3 : float
     """
-    top = _check_top(top)
+    top = check_top(top)
     torque = check_torque(torque)
     _check_roots(u1, u2, u3)
     if closed_form is None:
