@@ -70,7 +70,8 @@ def averaged(
     ----------
     top : Top
     torque : Torque
-        :class:`LinearDrag` (closed form (3.4) by default) or any admissible torque (general engine).
+        Any admissible torque: one with a closed-form average (``closed_means``, e.g. :class:`LinearDrag`,
+        (3.4)) uses it by default, the others the general engine.
     initial : (Gz, H, r) or array_like of shape ``batch_shape + (3,)``
         Initial slow variables (1.2), one triple per member for a batch.
     tau_span : (tau0, tau1)
@@ -91,7 +92,8 @@ def averaged(
         ``'auto'``: ``u`` chart with switching (default); ``'u'``: ``u`` chart only (a near-branch-point
         state ends the run, event ``'branch_point'``); ``'GHr'``: averaged (2.7) in (Gz, H, r) throughout.
     closed_form : bool, optional
-        Use (3.4) for :class:`LinearDrag` (default) or force the general engine (``False``).
+        Use the torque's closed-form average (its ``closed_means``; :class:`LinearDrag`: (3.4)) where it has one
+        (default), or force the general engine (``False``); ``True`` for a torque without one is a TypeError.
     degenerate_tol, switch_tol : float
         Thresholds described above.
     max_segments : int

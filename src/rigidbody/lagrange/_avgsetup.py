@@ -14,7 +14,7 @@ from ..core.validate import positive, span
 from . import _kernel as _k
 from ._averaging import averaged_slow_rates
 from ._top import Top, deltas, roots, vieta
-from ._torques import LinearDrag, Torque
+from ._torques import LinearDrag, Torque, closed_form_choice
 
 __all__ = [
     "CHARTS", "FLIP_NOISE", "KAPPA_FLOOR", "MSG_BRANCH", "MSG_DEG", "MSG_END", "MSG_SEP", "MSG_TRIPLE", "PSI_FLOOR",
@@ -73,13 +73,11 @@ class ChartSetup:
         self.top = top
         self.torque = torque
         self.A, self.C, self.mgl = top.A, top.C, top.mgl
-        if closed_form is None:
-            closed_form = isinstance(torque, LinearDrag)
-        if closed_form and not isinstance(torque, LinearDrag):
-            raise TypeError("closed_form=True is available for LinearDrag only (3.4)")
-        self.drag = torque if (closed_form and isinstance(torque, LinearDrag)) else None
-        self.kd = None if self.drag is None else _k.drag_constants(self.A, self.C, self.mgl, self.drag.a,
-                                                                    self.drag.b)
+        #: the torque whose closed-form means are used (None: the averaging engine)
+        self.closed = torque if closed_form_choice(torque, closed_form) else None
+        # linear drag's closed form has also a fused pass through the u chart (decoding, means and chart rates)
+        self.kd = (_k.drag_constants(self.A, self.C, self.mgl, torque.a, torque.b)
+                   if self.closed is not None and type(torque) is LinearDrag else None)
         self.rtol, self.atol, self.n, self.chart = rtol, atol, n, chart
         self.deg, self.sw = degenerate_tol, switch_tol
 
@@ -113,16 +111,16 @@ class ChartSetup:
 
     # ---- right-hand sides --------------------------------------------------------------------------
     def means_u(self, xp: Any, s: _k.UState) -> tuple[Any, Any, Any]:
-        if self.drag is not None:
-            return _k.drag_means(xp, self.A, self.C, self.mgl, self.drag.a, self.drag.b, s)
+        if self.closed is not None:
+            return self.closed.closed_means(xp, self.top, s)  # type: ignore[return-value]  # it has one
         if xp.array:
             return per_member(lambda Gz, H, r, u1, u2, u3: averaged_slow_rates(
                 self.top, self.torque, Gz, H, r, (u1, u2, u3), n=self.n), s.Gz, s.H, s.r, s.u1, s.u2, s.u3)
         return averaged_slow_rates(self.top, self.torque, s.Gz, s.H, s.r, (s.u1, s.u2, s.u3), n=self.n)
 
     def means_g(self, xp: Any, g: _k.GState) -> tuple[Any, Any, Any]:
-        if self.drag is not None:
-            return _k.drag_means_g(xp, self.A, self.C, self.mgl, self.drag.a, self.drag.b, g)
+        if self.closed is not None:
+            return self.closed.closed_means(xp, self.top, g)  # type: ignore[return-value]  # it has one
         if xp.array:
             return per_member(self.engine_ghr, g.Gz, g.H, g.r)
         F = self.engine_ghr(g.Gz, g.H, g.r)
