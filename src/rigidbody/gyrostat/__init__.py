@@ -42,15 +42,13 @@ from ._dynamics import initial_state, simulate
 from ._maps import StabilityMap, exact_boundaries, normalized_stability_map, stability_map
 from ._model import GyrostatWarning, Satellite
 from ._potential import amended_potential, amended_potential_W, chi, gradient_W1
+from ._secondvar import CONSTRAINED_COORDS, COORDS, restricted_conditions
 from ._stability import (
-    CONSTRAINED_COORDS,
-    COORDS,
     Stability,
     constrained_second_variation,
     constraint_gradient,
     hessian_W1,
     hessian_W1_numerical,
-    restricted_conditions,
     stability_triaxial,
 )
 from ._stationary import StationaryMotion, stationary_motion

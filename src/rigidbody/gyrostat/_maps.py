@@ -11,7 +11,7 @@ import numpy as np
 
 from ..core.validate import positive
 from ._model import Satellite
-from ._stability import (
+from ._secondvar import (
     VERDICTS,
     a_matrix,
     entry_constants,

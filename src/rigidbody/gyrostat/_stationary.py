@@ -278,7 +278,7 @@ def _scalar_constants(fn: Any, *body: float) -> dict[str, Any]:
 
 
 def constants(fn: Any, M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any) -> dict[str, Any]:
-    """``fn(M, A1, A2, A3, mu, R0)`` (:func:`family_constants` or ``_stability.entry_constants``), remembered as
+    """``fn(M, A1, A2, A3, mu, R0)`` (:func:`family_constants` or ``_secondvar.entry_constants``), remembered as
     numpy scalars for a body of Python floats (the scalar API evaluates one body point after point)."""
     body = (M, A1, A2, A3, mu, R0)
     if all(type(v) is float for v in body):
@@ -295,7 +295,7 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
     relation (2.4), omega0^2 cos^2 kappa0), ``exists`` (n2 > 0), ``kappa0``, ``omega0``, the sines and cosines
     ``sin_t, cos_t, cos_2t`` of theta0 and 2 theta0 (:func:`sin_cos`), ``sin_k, cos_k`` of kappa0 and
     ``sin_tk, cos_tk`` of theta0 + kappa0, ``S0`` and ``rest`` (the terms of the first relation
-    (2.4) free of k2, k3); and the products the second variation needs (see ``gyrostat._stability._entries``).
+    (2.4) free of k2, k3); and the products the second variation needs (see ``gyrostat._secondvar._entries``).
 
     ``tan kappa0 = 3/2 (A2 - A3) mu R0^-3 sin 2 theta0 / (M R0^2 n2)`` (third relation divided by the second,
     kappa0 in (-pi/2, pi/2)), so ``cos kappa0 = 1 / sqrt(1 + tan^2)``, ``sin kappa0 = tan kappa0 cos kappa0``
@@ -355,7 +355,7 @@ def family_side(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any, theta0: Any
     return {"n0": c["n0"], "n2": n2, "exists": exists, "theta0": th, "kappa0": kap, "omega0": om, "sin_t": st,
             "cos_t": ct, "cos_2t": c2t, "sin_k": sk, "cos_k": ck, "sin_tk": sp, "cos_tk": cp, "S0": S0,
             "rest": rest,
-            # the same under the short names of the bundle that gyrostat._stability._entries reads
+            # the same under the short names of the bundle that gyrostat._secondvar._entries reads
             "st": st, "ct": ct, "c2t": c2t, "sk": sk, "ck": ck, "tk": tk, "sp": sp, "cp": cp, "om": om, "om2": om2,
             "S": S0, "st2": st2, "stct": stct, "ct2": ct2, "icp": icp, "ck2": ck2, "cp2": cp2}
 

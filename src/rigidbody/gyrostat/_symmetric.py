@@ -13,7 +13,7 @@ import numpy as np
 from ..core.quadform import inertia, leading_minors
 from ..core.validate import positive, real
 from ._model import GyrostatWarning, Satellite
-from ._stability import VERDICTS, _verdict_codes
+from ._secondvar import VERDICTS, verdict_codes
 from ._stationary import SINGULAR_TOL, _wrap, broadcast_shape, check_fits, check_omega_sign, float_arrays
 
 __all__ = [
@@ -441,7 +441,7 @@ def stability_symmetric(sat: Satellite, m: SymmetricMotion, *, rtol: float = 1e-
     H[3, :3] = 0.0
     H[:3, 3] = 0.0
     _, n_neg, n_zero = inertia(H, rtol=rtol)
-    code = int(_verdict_codes(np.asarray(n_neg), np.asarray(n_zero)))
+    code = int(verdict_codes(np.asarray(n_neg), np.asarray(n_zero)))
     minors = leading_minors(H)
     Delta = float(leading_minors(H[:3, :3])[-1])
     jac = float(minors[-1])
@@ -521,7 +521,7 @@ def symmetric_stability_map(
     if np.any(valid):
         _, nn, nz = inertia(H[valid], rtol=rtol)
         n_neg[valid] = nn
-        code[valid] = _verdict_codes(nn, nz)
+        code[valid] = verdict_codes(nn, nz)
         minors[valid] = leading_minors(H[valid])
     W_pp = np.where(valid, H[..., 3, 3], np.nan)
     return SymmetricStabilityMap(params=P, kappa0=f["kappa0"], omega0=f["omega0"], c=f["c"], W_psipsi=W_pp,

@@ -9,7 +9,8 @@ Unperturbed motion (Sec. 1)
     :func:`nutation_frequency`.
 Torques (Sec. 2-3)
     :class:`Torque` (protocol), :class:`ProportionalTorque` (2.4), :class:`VerticalPlaneTorque` (2.5),
-    :class:`StarTorque` (2.2), :class:`LinearDrag` (3.1).
+    :class:`StarTorque` (2.2), :class:`LinearDrag` (3.1); :func:`has_closed_form` (a torque's closed-form
+    average, its ``closed_means``).
 Averaging (Sec. 2-3)
     :func:`averaged_rhs` (2.15)-(2.16), :func:`V_matrix` (2.13), :func:`averaged_slow_rates` (averaged
     (2.7)), :func:`drag_rhs` (closed form (3.4)), :func:`nutation_mean`, :func:`modulus`.
@@ -42,7 +43,7 @@ from ._paper import (
     paper_solution,
 )
 from ._top import Top, cubic_coefficients, deltas, from_roots, integrals, root_radical, roots, vieta
-from ._torques import LinearDrag, ProportionalTorque, StarTorque, Torque, VerticalPlaneTorque
+from ._torques import LinearDrag, ProportionalTorque, StarTorque, Torque, VerticalPlaneTorque, has_closed_form
 
 __all__ = [
     "PAPER_CASES",
@@ -65,6 +66,7 @@ __all__ = [
     "deltas",
     "drag_rhs",
     "from_roots",
+    "has_closed_form",
     "integrals",
     "lagrange_motion",
     "modulus",

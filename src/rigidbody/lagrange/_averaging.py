@@ -13,15 +13,15 @@ trapezoid rule on a uniform grid of the phase ``s`` over ``2K`` (spectrally conv
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
 
 from ..core import averaging as _avg
 from ..core import elliptic as _ell
-from ._top import Top, _check_top, from_roots, roots, vieta
-from ._torques import LinearDrag, Torque, check_torque
+from . import _kernel as _k
+from ._top import Top, check_top, from_roots, roots, vieta
+from ._torques import LinearDrag, Torque, check_torque, closed_form_choice
 
 #: width u2 - u1 (relative to max(u3 - u1, 1)) below which a pair of roots of the cubic counts as double
 _NEAR_DOUBLE = 1e-6
@@ -120,7 +120,7 @@ def averaged_slow_rates(
         near_double = False
     if near_double:
         s1, s2, _ = vieta(top, Gz, H, r)
-        c_lo = (s1 - math.sqrt(max(s1 * s1 - 3.0 * s2, 0.0))) / 3.0
+        c_lo = _k.double_root(s1, _k.cubic_spread(_k.SCALAR, s1, s2))
         u = np.array([c_lo])  # not clipped to [-1, 1]: keeps the field smooth across a pole (rounding only)
     elif u2 - u1 <= 0.0:
         # regular precession: the nutation is frozen at u = u1 = u2, the mean is the value there
@@ -151,7 +151,7 @@ def V_matrix(top: Top, u1: Any, u2: Any, u3: Any, Gz: Any, r: Any) -> np.ndarray
     ValueError
         Unless ``u1 < u2 < u3`` (the determinant of (2.10) vanishes otherwise).
     """
-    top = _check_top(top)
+    top = check_top(top)
     _check_roots(u1, u2, u3)
     A, C, mgl = top.A, top.C, top.mgl
     us = [np.asarray(x, dtype=float) for x in (u1, u2, u3)]
@@ -195,8 +195,8 @@ def averaged_rhs(
     ----------
     top : Top
     torque : Torque
-        Any admissible torque (see :mod:`rigidbody.lagrange`); :class:`LinearDrag` uses the closed form
-        (3.4) unless ``closed_form=False``.
+        Any admissible torque (see :mod:`rigidbody.lagrange`); one with a closed-form average (``closed_means``:
+        :class:`LinearDrag`, the printed (3.4)) uses it unless ``closed_form=False``.
     u1, u2, u3 : float
         Slow variables, ``-1 <= u1 < u2 <= 1 <= u3``, ``u2 < u3``.
     delta1, delta2 : {-1, +1}
@@ -210,18 +210,19 @@ def averaged_rhs(
     -------
     U1, U2, U3 : float
     """
-    top = _check_top(top)
+    top = check_top(top)
     torque = check_torque(torque)
     _check_roots(u1, u2, u3)
-    if closed_form is None:
-        closed_form = isinstance(torque, LinearDrag)
-    if closed_form:
-        if not isinstance(torque, LinearDrag):
-            raise TypeError("closed_form=True is available for LinearDrag only (3.4)")
+    closed = closed_form_choice(torque, closed_form)
+    if closed and type(torque) is LinearDrag:  # the printed (3.4)
         out = drag_rhs(top, torque, u1, u2, u3, delta1, delta2)
         return float(out[0]), float(out[1]), float(out[2])
     Gz, H, r = from_roots(top, u1, u2, u3, delta1, delta2)
-    Fm = averaged_slow_rates(top, torque, Gz, H, r, (u1, u2, u3), n=n)
+    if closed:  # the torque's own closed form, at the state decoded as the GHr chart does
+        g = _k.decode_g(_k.SCALAR, top.A, top.C, top.mgl, *_k.slow_to_polar(_k.SCALAR, top.C, Gz, H, r, top.mgl))
+        Fm = torque.closed_means(_k.SCALAR, top, g)
+    else:
+        Fm = averaged_slow_rates(top, torque, Gz, H, r, (u1, u2, u3), n=n)
     V = V_matrix(top, u1, u2, u3, Gz, r)
     U = V @ np.array(Fm)
     return float(U[0]), float(U[1]), float(U[2])

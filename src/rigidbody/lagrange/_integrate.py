@@ -11,7 +11,7 @@ from ..core.batch import integrate_batch
 from ..core.ode import Solution, integrate
 from ..core.validate import positive, span
 from ._avgrun import averaged
-from ._top import Top, _check_top
+from ._top import Top, check_top
 from ._torques import Torque, check_torque
 
 __all__ = ["averaged", "simulate"]
@@ -112,7 +112,7 @@ def simulate(
         ``H`` (first integrals (1.2) along the motion: the slow variables), ``quat`` (4, n); for a batch each
         with the leading ``batch_shape`` and per-member ``status``, ``message``.
     """
-    top = _check_top(top)
+    top = check_top(top)
     torque = check_torque(torque)
     t0, t1 = span(t_span, "t_span")
     rtol, atol = positive(rtol, "rtol"), positive(atol, "atol")

@@ -34,7 +34,7 @@ from typing import Any
 
 from ..core.kernel import ARRAY, SCALAR, sn2_excess
 
-__all__ = ["ARRAY", "SCALAR", "sn2_excess"]
+__all__ = ["ARRAY", "SCALAR", "cubic_spread", "double_root", "sn2_excess"]
 
 _SQRT2 = math.sqrt(2.0)
 
@@ -42,6 +42,18 @@ _SQRT2 = math.sqrt(2.0)
 # ---------------------------------------------------------------------------------------------------
 # elementary pieces
 # ---------------------------------------------------------------------------------------------------
+def cubic_spread(xp: Any, s1: Any, s2: Any) -> Any:
+    r"""The spread ``sqrt(s1^2 - 3 s2) = sqrt(((u1-u2)^2 + (u1-u3)^2 + (u2-u3)^2)/2)`` of the roots of (1.5) from
+    their symmetric functions (1.6) (0 where the radicand is negative: one real root)."""
+    return xp.sqrt(xp.maximum(s1 * s1 - 3.0 * s2, 0.0))
+
+
+def double_root(s1: Any, spread: Any) -> Any:
+    r"""The local maximum ``(s1 - sqrt(s1^2 - 3 s2))/3`` of the monic cubic (1.5), ``spread`` from
+    :func:`cubic_spread`: the double root ``u1 = u2`` of a regular precession (Vieta's formulas (1.6))."""
+    return (s1 - spread) / 3.0
+
+
 def sincospi(xp: Any, x: Any) -> tuple[Any, Any]:
     """``(sin(pi x), cos(pi x))``, exact zeros at the multiples of 1/2 (``r = 0`` stays exactly 0)."""
     n = xp.rint(2.0 * x)
@@ -281,7 +293,7 @@ def decode_g(xp: Any, A: float, C: float, mgl: float, sigma: Any, psi: Any, kap:
     g.s1, g.s2, g.s3 = s1, s2, s3
     disc = s1 * s1 - 3.0 * s2
     g.ok = disc >= 0.0
-    sqd = xp.sqrt(xp.maximum(disc, 0.0))
+    sqd = cubic_spread(xp, s1, s2)
     g.spread = sqd
     # depressed cubic t^3 + p t + q, u = t + s1/3; its largest root 2 sqrt(-p/3) cos(acos(...)/3)
     p = -disc / 3.0
@@ -296,7 +308,7 @@ def decode_g(xp: Any, A: float, C: float, mgl: float, sigma: Any, psi: Any, kap:
     u3 = xp.maximum(u3, 1.0)
     msum = 0.5 * (s1 - u3)  # (u1 + u2)/2
     h2 = msum * msum - s3 / u3  # ((u2 - u1)/2)^2
-    c_lo = (s1 - sqd) / 3.0  # local maximum of the cubic: the double root of a regular precession
+    c_lo = double_root(s1, sqd)  # local maximum of the cubic: the double root of a regular precession
     inside = h2 > 0.0
     half = xp.sqrt(xp.maximum(h2, 0.0))
     g.msum = xp.where(inside, msum, c_lo)

@@ -10,7 +10,7 @@ import numpy as np
 from ..core import elliptic as _ell
 from ..core.ode import Solution, integrate
 from ._averaging import modulus
-from ._top import Top, _check_top, integrals, roots
+from ._top import Top, check_top, integrals, roots
 
 __all__ = ["lagrange_motion", "nutation_frequency"]
 
@@ -73,7 +73,7 @@ def lagrange_motion(
         ``t``, ``u``, ``theta``, ``phi``, ``psi``, and the constants as attributes of ``fields``:
         ``u1, u2, u3, k2, alpha, beta`` (scalars, stored as 0-d arrays).
     """
-    top = _check_top(top)
+    top = check_top(top)
     p0, q0, r0, phi0, th0, psi0 = (float(x) for x in state0)
     if not 0.0 < th0 < math.pi:
         raise ValueError(f"theta0 must lie in (0, pi) for the Euler-angle quadratures (1.7), got {th0!r}")

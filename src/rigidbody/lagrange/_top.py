@@ -78,7 +78,7 @@ class Top:
             )
 
 
-def _check_top(top: Any) -> Top:
+def check_top(top: Any) -> Top:
     if not isinstance(top, Top):
         raise TypeError(f"top must be a lagrange.Top, got {type(top).__name__}")
     return top
@@ -105,7 +105,7 @@ def integrals(top: Top, p: Any, q: Any, r: Any, phi: Any, theta: Any) -> tuple[A
         Vertical component of the angular momentum, total energy, axial spin (broadcast arrays,
         or floats for scalar input).
     """
-    top = _check_top(top)
+    top = check_top(top)
     names = ("p", "q", "r", "phi", "theta")
     p, q, r, phi, theta = (finite_array(x, name) for x, name in zip((p, q, r, phi, theta), names))
     try:
@@ -291,7 +291,7 @@ def roots(top: Top, Gz: Any, H: Any, r: Any) -> tuple[Any, Any, Any]:
     ValueError
         If (Gz, H, r) is not attainable by a real motion (Q(u) < 0 on all of [-1, 1]).
     """
-    top = _check_top(top)
+    top = check_top(top)
     Gz, H, r = np.broadcast_arrays(*(finite_array(x, name) for x, name in zip((Gz, H, r), ("Gz", "H", "r"))))
     if Gz.ndim == 0:
         return _roots_scalar(top, float(Gz), float(H), float(r))
@@ -355,7 +355,7 @@ def from_roots(
     -------
     Gz, H, r
     """
-    top = _check_top(top)
+    top = check_top(top)
     if all(isinstance(x, (float, int)) for x in (u1, u2, u3, delta1, delta2)):
         return _from_roots_scalar(top, float(u1), float(u2), float(u3), float(delta1), float(delta2))
     u1, u2, u3 = (finite_array(x, name) for x, name in zip((u1, u2, u3), ("u1", "u2", "u3")))

@@ -29,6 +29,15 @@ Every torque object accepted by :func:`rigidbody.lagrange.averaged` and
 ``body_moments_batch(top, p, q, r, g1, g2, g3) -> (M1, M2, M3)`` (optional)
     the same for arrays of batch members (a batch :func:`simulate` calls ``body_moments`` member by member
     for a torque without it); the ready-made classes have it, their user functions then receive arrays.
+``closed_means(xp, top, s) -> (<F1>, <F2>, <F3>)`` (optional)
+    the nutation means of (2.7) in closed form, the capability of a torque that has one (:class:`LinearDrag`:
+    (3.4)); the base class returns None and the averaging engine (a trapezoid rule over the nutation period on
+    ``slow_rates``) is used. ``s`` is the state of the chart being integrated, with attributes ``Gz, H, r``,
+    ``Cr`` (``C r``), the roots ``u1 <= u2 <= u3``, ``k2`` and ``mc = 1 - k2``; ``xp`` is
+    :data:`rigidbody.core.kernel.SCALAR` (``s`` holds floats, one run) or :data:`~rigidbody.core.kernel.ARRAY`
+    (``s`` holds arrays of batch members; the means must be computed elementwise). A subclass that defines it
+    gets the closed form by default in :func:`averaged` and :func:`averaged_rhs` (``closed_form=False``
+    forces the engine); :func:`has_closed_form` tells whether a torque has one.
 
 Ready-made classes: :class:`ProportionalTorque` (class (2.4): ``M1 = p f, M2 = q f, M3 = M3*``),
 :class:`VerticalPlaneTorque` (class (2.5): ``M1 = F sin phi, M2 = F cos phi, M3 = M3*``),
@@ -46,6 +55,7 @@ from typing import Any
 
 import numpy as np
 
+from . import _kernel as _k
 from ._top import Top
 
 __all__ = [
@@ -54,6 +64,8 @@ __all__ = [
     "StarTorque",
     "Torque",
     "VerticalPlaneTorque",
+    "check_torque",
+    "has_closed_form",
 ]
 
 SlowFunction = Callable[[Any, Any, Any, Any], Any]
@@ -91,6 +103,11 @@ class Torque:
             f"{type(self).__name__} defines only the averaged combinations (2.2); "
             "the full equations (1.1) need body moments: use ProportionalTorque or VerticalPlaneTorque"
         )
+
+    def closed_means(self, xp: Any, top: Top, s: Any) -> tuple[Any, Any, Any] | None:
+        """The nutation means ``<F1>, <F2>, <F3>`` of (2.7) in closed form at the chart state ``s`` (see the
+        module docstring), or None: this torque has none and the averaging engine is used."""
+        return None
 
 
 def _check_callable(f: Any, name: str) -> None:
@@ -275,6 +292,13 @@ class LinearDrag(Torque):
         F3 = -b * r / top.C
         return np.broadcast_arrays(F1, F2, F3 * np.ones_like(u))
 
+    def closed_means(self, xp: Any, top: Top, s: Any) -> tuple[Any, Any, Any]:
+        """(3.4): ``<F> = F(<u>)`` (``F`` is linear in ``u``), evaluated without cancellation from the u chart's
+        gaps (:func:`rigidbody.lagrange._kernel.drag_means`) or the GHr chart's root pair (``drag_means_g``)."""
+        if isinstance(s, _k.UState):
+            return _k.drag_means(xp, top.A, top.C, top.mgl, self.a, self.b, s)
+        return _k.drag_means_g(xp, top.A, top.C, top.mgl, self.a, self.b, s)
+
     def body_moments(
         self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float
     ) -> tuple[float, float, float]:
@@ -295,3 +319,21 @@ def check_torque(torque: Any, name: str = "torque") -> Torque:
             f"got {type(torque).__name__}"
         )
     return torque
+
+
+def has_closed_form(torque: Any) -> bool:
+    """Whether ``torque`` declares a closed-form average (a ``closed_means`` of its own, see :class:`Torque`)."""
+    hook = getattr(type(torque), "closed_means", None)
+    return callable(hook) and hook is not Torque.closed_means
+
+
+def closed_form_choice(torque: Any, closed_form: bool | None) -> bool:
+    """The rule of the ``closed_form`` option: default the torque's capability, ``True`` only for a torque that
+    has a closed form (TypeError naming the torque otherwise), ``False`` the engine."""
+    has = has_closed_form(torque)
+    if closed_form is None:
+        return has
+    if closed_form and not has:
+        raise TypeError(f"closed_form=True needs a torque with a closed-form average (a closed_means method, see "
+                        f"rigidbody.lagrange.Torque); {type(torque).__name__} has none")
+    return bool(closed_form)
