@@ -32,24 +32,17 @@ import numpy as np
 from ..core import euler
 from ..core.ode import Event, Solution, integrate
 from ..core.validate import RESULT_ERRORS, real, span
-from ._averaged import _check_tau_eval, _check_tol, _finish
-from ._model import (
-    K2_SPIN_CAP,
-    Body,
-    Orbit,
-    _as_orbit,
-    _check_body,
-    _frame_y,
-    _nut_freq,
-)
+from ._algebra import K2_SPIN_CAP, nutation_frequency
+from ._checks import check_tau_eval, check_tol
+from ._model import Body, Orbit, as_orbit, check_body, frame_y
 from ._motion import EulerPoinsot
+from ._output import finish_output
 from ._protocol import Misfire, evaluate
-from ._separatrix import _initial_kind
-from ._start import StartRules, check_start
+from ._start import StartRules, check_start, initial_kind
 from ._stops import stop_message
 from ._torques import probe, resolve
 
-__all__ = ["initial_state", "simulate"]
+__all__ = ["initial_state", "run_full"]
 
 
 def initial_state(
@@ -72,7 +65,7 @@ def initial_state(
     m = EulerPoinsot(body, G0, k2_0, kind, sigma)
     g = m.g(0.0, u0)
     _, theta, phi = m.angles(0.0, u0)
-    Ry = _frame_y(delta0, lam0)
+    Ry = frame_y(delta0, lam0)
     Rb = Ry @ euler.dcm(psi0, theta, phi)
     return {"g": g, "R": Rb, "q": euler.quat_from_dcm(Rb), "psi": psi0, "theta": theta, "phi": phi,
             "T": m.T}
@@ -91,110 +84,20 @@ def _osculating(A: tuple[float, float, float], D: float) -> tuple[tuple[float, f
     return Alab, min(max(_k2_osc(Alab, D), 0.0), 1.0)
 
 
-def simulate(
-    body: Body,
-    torque: Any,
-    eps: Any,
-    G0: Any = 1.0,
-    k2_0: Any = None,
-    delta0: Any = math.pi / 4,
-    lam0: Any = math.pi / 4,
-    tau_span: tuple[float, float] = (0.0, 3.0),
-    tau_eval: Any = None,
-    nu0: Any = 0.0,
-    *,
-    kind: str | None = None,
-    T0: Any = None,
-    orbit: Orbit | None = None,
-    u0: Any = 0.0,
-    psi0: Any = 0.0,
-    sigma: int = 1,
-    formulation: str = "body",
-    rtol: float = 1e-10,
-    atol: float = 1e-12,
-    method: str = "DOP853",
-    k2_max: float | None = 1.0 - 1e-6,
-    min_spin_ratio: float = 1.0,
-) -> Solution:
-    r"""Integrate the full, unaveraged motion (1), (3), (4) in the slow time :math:`\tau`.
-
-    Same arguments and output fields as :func:`averaged` (the slow variables are the instantaneous,
-    osculating ones: :math:`k^2` from (5) with the current :math:`G, T`), plus the body's initial phase.
-    The body-frame equations are regular on the separatrix :math:`G^2 = 2TA_2`: the run goes through it,
-    the osculating kind of motion (and with it the formula for :math:`k^2`) switches there, and each passage
-    is recorded in ``t_events['separatrix']``.
-
-    Parameters
-    ----------
-    body : Body
-    torque : array_like, Drag, torque object or callable
-        A drag tensor :math:`\tilde I` (3x3, its diagonal, or a :class:`Drag`): Rachinskaya's drag *plus*
-        the gravity-gradient torque (3), as in :func:`averaged`. A torque object
-        (:class:`LinearDrag`, :class:`GravityGradient`, their sums, ...) or a plain callable
-        ``torque(omega, C, nu) -> M`` is the whole perturbation (body components, the section-3 scaling
-        divided by :math:`\varepsilon^2`; see :class:`Torque`): :math:`d\mathbf g/d\tau =
-        \varepsilon^{-2}\mathbf g\times\boldsymbol\omega + \mathbf M`.
-    eps, G0, delta0, lam0, tau_span, tau_eval, nu0, orbit, rtol, atol, method
-        As in :func:`averaged` (``eps``, ``G0``, ``delta0``, ``lam0``, ``nu0`` floats or arrays of a batch);
-        ``eps`` must be positive (the cost grows like :math:`\varepsilon^{-2}`: :math:`\tau` spans
-        :math:`\tau/\varepsilon^2` units of :math:`\tilde t`).
-    k2_0, kind : float or array_like, {'max', 'min'}
-        Initial modulus squared (in [0, 1); default 0.99) and kind of motion (default ``'max'``, the paper's).
-    T0 : float or array_like, optional
-        The initial kinetic energy instead of ``k2_0`` and ``kind``: any :math:`T_0` in
-        :math:`[G_0^2/(2A_1), G_0^2/(2A_3)]` off the separatrix (the kind follows from :func:`kind_of`).
-    u0, psi0, sigma
-        Initial elliptic phase, precession angle about :math:`\mathbf G` (floats or arrays of a batch) and sense
-        of rotation of the Euler--Poinsot motion (see :func:`initial_state`).
-    formulation : {'body', 'angles'}
-        Euler's equations with a quaternion (default, regular everywhere) or the paper's (1), (3), (4).
-    k2_max : float or None
-        The run ends (event ``'separatrix'``) as soon as the osculating :math:`k^2` of the initial kind reaches
-        it (default :math:`1 - 10^{-6}`, as :func:`averaged`). ``None``: no stop; the motion goes on through the
-        separatrix (the body-frame equations are regular there) and the crossings are recorded, not terminal.
-    min_spin_ratio : float
-        The run ends (event ``'slow_rotation'``) when :func:`spin_ratio` of the osculating motion falls to this
-        value, as in :func:`averaged`. In a run through the separatrix (``k2_max=None``) the ratio is taken at
-        :math:`\min(k^2, 0.99)`: within 0.01 of the separatrix the period grows like :math:`\ln(1/(1-k^2))`
-        while the body still turns fast (about the intermediate axis), and the momentary infinite period of a
-        passage must not end the run.
-
-    Returns
-    -------
-    Solution
-        ``tau, G, T, k2, delta, lam, nu, n`` as :func:`averaged`, and ``kind`` (``'max'``/``'min'`` at each
-        output time: the osculating kind of motion; ``k2`` is that kind's modulus) and ``sigma`` (+1/-1: the
-        sign of :math:`g_1` for ``'max'``, of :math:`g_3` for ``'min'``); ``t_events['separatrix']`` holds the
-        times of the passages through the separatrix. ``'body'`` adds ``g`` (body components of G, shape
-        (3, n)) and ``q``; ``'angles'`` adds ``theta, phi, psi`` and ``T`` is the integrated energy of (4).
-        For a batch every field has the leading ``batch_shape`` (and ``tau_eval``, default 101 times, as its
-        last axis), NaN after a member's end; ``status``, ``message``, ``event`` are per member.
-
-    Notes
-    -----
-    *Batches.* Arrays for ``eps``, ``G0``, ``k2_0`` (or ``T0``), ``delta0``, ``lam0``, ``nu0``, ``u0``, ``psi0``
-    broadcast to one batch shape (a batch over initial phases is an ensemble of the same slow state). The
-    ``'body'`` formulation integrates the members together (:func:`rigidbody.core.batch.integrate_batch`, the
-    torque evaluated on all members at once: a torque object through its vectorised protocol), with
-    ``lam`` continuous from the located passages of :math:`\mathbf n` through the branch cut of the azimuth;
-    the ``'angles'`` formulation (and a ``method`` other than DOP853) runs member by member. A member whose
-    start the single call refuses gets ``status = -1`` and that call's message.
-    """
-    from . import _batch
-
-    if _batch.is_batch(eps, G0, k2_0, delta0, lam0, nu0, T0, u0, psi0):
-        opts = dict(kind=kind, T0=T0, orbit=orbit, sigma=sigma, formulation=formulation, rtol=rtol, atol=atol,
-                    method=method, k2_max=k2_max, min_spin_ratio=min_spin_ratio)
-        return _batch.simulate_batch(body, torque, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, u0, psi0,
-                                     opts, simulate)
-    _check_body(body)
-    k2_0, kind = _initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
+def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,
+             tau_eval: Any, nu0: Any, *, kind: str | None, T0: Any, orbit: Orbit | None, u0: Any, psi0: Any,
+             sigma: int, formulation: str, rtol: float, atol: float, method: str, k2_max: float | None,
+             min_spin_ratio: float) -> Solution:
+    """One run of the full equations (the single call of :func:`rigidbody.euler_poinsot.simulate`; a batch runs
+    its ``'angles'`` members through it)."""
+    check_body(body)
+    k2_0, kind = initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
     span(tau_span, "tau_span")
-    _check_tau_eval(tau_eval, tau_span)
-    _check_tol(rtol, atol)
+    check_tau_eval(tau_eval, tau_span)
+    check_tol(rtol, atol)
     if formulation not in ("body", "angles"):
         raise ValueError(f"formulation must be 'body' or 'angles', got {formulation!r}")
-    orb = _as_orbit(orbit)
+    orb = as_orbit(orbit)
     what, tq = resolve(torque)
     generic = what == "torque"
     if generic:
@@ -337,7 +240,7 @@ def simulate(
                 return math.nan, math.nan, math.nan
             alpha = euler.dcm(y[5], y[3], y[4])  # alpha_ij = y_i . z_j (body -> Oy)
             omega = G * alpha[2] / body.A
-            M = evaluate(tq, omega, _frame_y(de, la) @ alpha, nu, (3,))
+            M = evaluate(tq, omega, frame_y(de, la) @ alpha, nu, (3,))
             L = alpha @ M
             return float(L[0]), float(L[1]), float(L[2])
 
@@ -405,7 +308,7 @@ def simulate(
     def ev_spin(tau: float, y: np.ndarray) -> float:
         G, D = G_D(y)
         Ak, k2 = _osculating(Aall, D)
-        return _nut_freq(Ak, G, min(k2, spin_cap)) / eps - min_spin_ratio
+        return nutation_frequency(Ak, G, min(k2, spin_cap)) / eps - min_spin_ratio
 
     if k2_max is None:
         # every passage of D = G^2/2T through A2 is recorded; the run goes on
@@ -446,6 +349,6 @@ def simulate(
             out["theta"], out["phi"], out["psi"] = y[3], y[4], y[5]
         return out
 
-    return _finish(res, tau_eval, make_fields, lam0, nvec)
+    return finish_output(res, tau_eval, make_fields, lam0, nvec)
 
 

@@ -27,7 +27,8 @@ from ..core.euler import dcm_from_unit_quat
 from ..core.ode import Event, Solution
 from ..core.validate import result_message
 from . import _kernel as _k
-from ._batch import Members
+from ._full import initial_state
+from ._members import Members
 from ._model import Body, Orbit
 from ._protocol import ROLE, evaluate
 from ._stops import stop_message
@@ -77,7 +78,7 @@ def _k2_initial_kind(A1: Any, A2: float, A3: Any, D: np.ndarray) -> np.ndarray:
 def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau_span: tuple[float, float],
                te: np.ndarray) -> Solution:
     """The batch branch of :func:`rigidbody.euler_poinsot.simulate` (flat per-member arrays in ``mem``)."""
-    from ._full import initial_state  # the single run's attitude from the slow variables
+
 
     body, orb = run.body, run.orbit
     A = (body.A1, body.A2, body.A3)
