@@ -49,16 +49,6 @@ from ._run import run_averaged
 __all__ = ["averaged", "averaged_branches"]
 
 
-
-
-
-
-
-
-
-
-
-
 def averaged(
     body: Body,
     torque: Any,
@@ -236,26 +226,6 @@ def averaged(
     if is_batch(eps, G0, k2_0, delta0, lam0, nu0, opts["T0"]) or drag_batch(torque) is not None:
         return averaged_batch(body, torque, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, opts)
     return run_averaged(body, torque, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, **opts)
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
-
 
 
 def averaged_branches(*args: Any, **kwargs: Any) -> dict[tuple[str, int], Solution]:

@@ -6,7 +6,8 @@ from typing import Any
 
 import numpy as np
 
-from ._separatrix import REGIONS, Region, SeparatrixCrossing, check_region
+from ._regions import REGIONS, Region, check_region
+from ._separatrix import SeparatrixCrossing
 from ._stops import stop_message
 
 __all__ = ["BRANCHES", "check_branch", "choose_region"]

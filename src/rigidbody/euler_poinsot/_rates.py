@@ -10,8 +10,9 @@ import numpy as np
 from ..core.validate import positive, real
 from ._algebra import dk2_labelled, drag_rates_labelled, nstar_labelled
 from ._checks import check_averaging, check_sigma
-from ._engine import Averager, Mean, State, TorqueAverage, error_of, mean_of
+from ._engine import Averager, TorqueAverage, error_of, mean_of
 from ._model import Body, Orbit, as_orbit, check_body, check_kind, frame_y, labelled
+from ._state import Mean, State
 from ._torques import drag_as_torque, resolve
 
 __all__ = ["average_torque", "averaged_rates", "precession_rate"]

@@ -16,12 +16,13 @@ from . import _kernel as _k
 from ._algebra import K2_SPIN_CAP, dk2_labelled
 from ._branches import check_branch, choose_region
 from ._checks import check_averaging, check_sigma, check_tau_eval, check_tol
-from ._engine import Averager, State
+from ._engine import Averager
 from ._model import Orbit, as_orbit, check_body, labelled
 from ._output import PiecewiseDense, unit_of_angles
 from ._segment import RunOptions, Setup, finish_kind, integrate_kind
 from ._separatrix import K2_SWITCH, SeparatrixCrossing, separatrix_crossing
 from ._start import StartRules, check_start, initial_kind
+from ._state import State
 from ._stops import MAX_CROSSINGS, stop_message
 from ._torques import drag_as_torque, resolve
 

@@ -20,11 +20,12 @@ from ..core.ode import Event, Solution, integrate
 from ..core.validate import RESULT_ERRORS
 from . import _kernel as _k
 from ._algebra import K2_SPIN_CAP, nutation_frequency
-from ._engine import Averager, Mean, State
+from ._engine import Averager
 from ._model import Body, Orbit, labelled
 from ._output import PiecewiseDense, finish_output, lam_unwrapped
 from ._protocol import Misfire
 from ._resonance import resonance_crossings
+from ._state import Mean, State
 from ._stops import stop_message
 
 __all__ = ["RunOptions", "Setup", "finish_kind", "integrate_kind", "rotation_number"]

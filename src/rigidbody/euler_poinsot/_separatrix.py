@@ -71,59 +71,26 @@ import numpy as np
 
 from ..core import euler
 from ..core.validate import real
-from ._engine import frame, nu_nodes
-from ._model import KINDS, Body, Orbit, as_orbit, check_body
+from ._engine import nu_nodes
+from ._model import Body, Orbit, as_orbit, check_body
 from ._protocol import evaluate
+from ._regions import ARCS, REGIONS, Arc, Region, check_arc, check_region, next_arc, region_arcs
+from ._state import frame
 from ._torques import drag_as_torque, resolve
 
 __all__ = ["ARCS", "REGIONS", "Separatrix", "SeparatrixCrossing", "SeparatrixLimits", "separatrix_crossing",
            "separatrix_limits"]
 
-#: The four arcs (s1, s3) of the separatrix: signs of g1 and g3 on them.
-ARCS: tuple[tuple[int, int], ...] = ((1, 1), (1, -1), (-1, 1), (-1, -1))
-#: The four regions (kind, sigma) the separatrix cuts the sphere into.
-REGIONS: tuple[tuple[str, int], ...] = (("max", 1), ("max", -1), ("min", 1), ("min", -1))
 
-Region = tuple[str, int]
-Arc = tuple[int, int]
 TorqueFn = Callable[[np.ndarray, np.ndarray, np.ndarray], Any]
 
 
-def _check_arc(arc: Any) -> Arc:
-    try:
-        s1, s3 = arc
-    except (TypeError, ValueError):
-        raise ValueError(f"arc must be a pair (s1, s3) of signs +1/-1, got {arc!r}") from None
-    if s1 not in (1, -1) or s3 not in (1, -1):
-        raise ValueError(f"arc must be a pair (s1, s3) of signs +1/-1, got {arc!r}")
-    return int(s1), int(s3)
 
 
-def check_region(region: Any, name: str = "region") -> Region:
-    try:
-        kind, sigma = region
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a pair (kind, sigma), e.g. ('min', 1), got {region!r}") from None
-    if not isinstance(kind, str) or kind not in KINDS:
-        raise ValueError(f"{name}: kind must be 'max' (rotation about the axis of A1) or 'min' (about A3), "
-                         f"got {kind!r}")
-    if sigma not in (1, -1):
-        raise ValueError(f"{name}: sigma must be +1 or -1, got {sigma!r}")
-    return str(kind), int(sigma)
 
 
-def region_arcs(region: Region) -> tuple[Arc, Arc]:
-    """The two arcs bounding a region, in the order the motion runs along them (from ``+e2`` first)."""
-    kind, sigma = check_region(region)
-    if kind == "max":
-        return ((sigma, sigma), (sigma, -sigma))
-    return ((sigma, sigma), (-sigma, sigma))
 
 
-def _next(arc: Arc, h: float) -> Arc:
-    """The arc followed after ``arc`` by a motion with energy offset ``h`` at the saddle where ``arc`` ends."""
-    s1, s3 = arc
-    return (s1, -s3) if h < 0.0 else (-s1, s3)
 
 
 @dataclass(frozen=True)
@@ -199,7 +166,7 @@ class Separatrix:
         arc : (int, int)
             Signs ``(s1, s3)`` of :math:`g_1, g_3` on the arc.
         """
-        a = _check_arc(arc)
+        a = check_arc(arc)
         u = self.rate * np.asarray(t, dtype=float)
         return self._g_x(np.arctan(np.sinh(u)), a)  # gd(u): sin x = tanh u, cos x = sech u
 
@@ -333,7 +300,7 @@ def _propagate(drifts: dict[Arc, float], source: Region, first: int = 0, max_ste
                     continue
                 h_side = -1.0 if phi_ <= 0.0 else 1.0
                 region: Region = ("max", arc[0]) if h_side < 0 else ("min", arc[1])
-                nxt = _next(arc, h_side)
+                nxt = next_arc(arc, h_side)
                 q1, q2 = drifts[nxt], loops[region]
                 if _captures(region[0], q2, scale) and (
                     (region[0] == "max" and phi_ + max(q1, q2) < 0.0)
@@ -601,11 +568,5 @@ def separatrix_limits(
 #: new kind of motion starts at the same k^2 with G and n continuous (T jumps by O(1e-9) relative: the two
 #: sides at 1 - k^2 = 1e-9 are that close in energy), and the time skipped is below 1e-7.
 K2_SWITCH = 1.0 - 1e-9
-
-
-
-
-
-
 
 

@@ -51,9 +51,10 @@ from scipy import special
 
 from ..core.validate import RESULT_ERRORS, returned
 from ._algebra import dk2_labelled, drag_rates_labelled, nstar_labelled
-from ._engine import Mean, State, amplitudes, nu_nodes
+from ._engine import nu_nodes
 from ._model import Body, Orbit, as_drag, as_orbit, check_body, elliptic_ratios
 from ._protocol import FunctionTorque, Torque, TorqueSum, evaluate
+from ._state import Mean, State, amplitudes
 
 __all__ = [
     "ConstantTorque",
