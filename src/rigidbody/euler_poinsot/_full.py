@@ -25,6 +25,7 @@ Two independent formulations integrate the same motion:
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -84,6 +85,225 @@ def _osculating(A: tuple[float, float, float], D: float) -> tuple[tuple[float, f
     return Alab, min(max(_k2_osc(Alab, D), 0.0), 1.0)
 
 
+@dataclass
+class _Common:
+    """What both formulations of a single run share."""
+
+    body: Body
+    orbit: Orbit
+    torque: Any
+    generic: bool
+    Im: np.ndarray
+    eps: float
+    st: dict[str, Any]
+    nu0: float
+    G0: float
+    delta0: float
+    lam0: float
+    misfire: Misfire
+    nu_of: Any
+
+
+
+def _body_form(c: _Common) -> tuple[Any, ...]:
+    """Euler's equations for g with the attitude quaternion: right-hand side, initial state, the slow variables and
+    directions from the state, extra events (none)."""
+    body, orb, tq, generic, st, nu0, misfire = c.body, c.orbit, c.torque, c.generic, c.st, c.nu0, c.misfire
+    nu_of = c.nu_of
+    A1, A2, A3 = body.A1, body.A2, body.A3
+    ie2, ie, circular = 1.0 / (c.eps * c.eps), 1.0 / c.eps, orb.e == 0.0
+    (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in c.Im)
+
+    def body_torque_drag(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
+                         nu: float) -> tuple[float, float, float]:
+        cn, sn = math.cos(nu), math.sin(nu)
+        # r_b = R^T e_r, R rows 0 and 1 from the quaternion
+        r1 = (1 - 2 * (yq * yq + z * z)) * cn + 2 * (x * yq + w * z) * sn
+        r2 = 2 * (x * yq - w * z) * cn + (1 - 2 * (x * x + z * z)) * sn
+        r3 = 2 * (x * z + w * yq) * cn + 2 * (yq * z - w * x) * sn
+        f3 = 3.0 * orb.factor(nu)
+        L1 = f3 * (A3 - A2) * r2 * r3 - (I11 * o1 + I12 * o2 + I13 * o3)
+        L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
+        L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
+        return L1, L2, L3
+
+    def body_torque_object(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
+                           nu: float) -> tuple[float, float, float]:
+        # the whole perturbation from the torque object: M = torque(omega, C, nu) in body axes
+        C = np.array([  # body -> Ox_i, the convention of core.euler.dcm_from_quat
+            [1 - 2 * (yq * yq + z * z), 2 * (x * yq - w * z), 2 * (x * z + w * yq)],
+            [2 * (x * yq + w * z), 1 - 2 * (x * x + z * z), 2 * (yq * z - w * x)],
+            [2 * (x * z - w * yq), 2 * (yq * z + w * x), 1 - 2 * (x * x + yq * yq)],
+        ])
+        M = evaluate(tq, np.array([o1, o2, o3]), C, nu, (3,))
+        return float(M[0]), float(M[1]), float(M[2])
+
+    body_torque = body_torque_object if generic else body_torque_drag
+
+    def rhs(tau: float, y: np.ndarray) -> list[float]:
+        g1, g2, g3, w, x, yq, z = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
+        nrm = math.sqrt(w * w + x * x + yq * yq + z * z)
+        w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
+        o1, o2, o3 = g1 / A1, g2 / A2, g3 / A3
+        nu = nu_of(tau, y, 7)
+        try:
+            L1, L2, L3 = body_torque(o1, o2, o3, w, x, yq, z, nu)
+        except RESULT_ERRORS as exc:
+            misfire.note(tau, exc)
+            L1 = L2 = L3 = math.nan
+        dg1 = (g2 * o3 - g3 * o2) * ie2 + L1
+        dg2 = (g3 * o1 - g1 * o3) * ie2 + L2
+        dg3 = (g1 * o2 - g2 * o1) * ie2 + L3
+        h = 0.5 * ie2
+        dw = h * (-x * o1 - yq * o2 - z * o3)
+        dx = h * (w * o1 + yq * o3 - z * o2)
+        dy = h * (w * o2 - x * o3 + z * o1)
+        dz = h * (w * o3 + x * o2 - yq * o1)
+        out = [dg1, dg2, dg3, dw, dx, dy, dz]
+        if not circular:
+            out.append(ie * orb.nu_rate(nu))
+        return out
+
+    if generic:
+        probe(tq, st["g"] / body.A, st["R"], nu0)
+    y0 = [*st["g"], *st["q"]]
+
+    def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        g = y[0:3]
+        return np.sqrt((g * g).sum(0)), 0.5 * (g[0] ** 2 / A1 + g[1] ** 2 / A2 + g[2] ** 2 / A3)
+
+    def nvec(y: np.ndarray) -> np.ndarray:
+        g = y[0:3]
+        R = euler.dcm_from_quat(y[3:7].T)
+        n = np.einsum("nij,jn->in", R, g)
+        return n / np.linalg.norm(n, axis=0)
+
+    def G_D(y: np.ndarray) -> tuple[float, float]:
+        G2 = y[0] ** 2 + y[1] ** 2 + y[2] ** 2
+        return math.sqrt(G2), G2 / (y[0] ** 2 / A1 + y[1] ** 2 / A2 + y[2] ** 2 / A3)
+
+    def body_dir(y: np.ndarray) -> np.ndarray:
+        return y[0:3] / np.sqrt((y[0:3] ** 2).sum(0))
+
+    extra_events: list[Event] = []
+    return rhs, y0, GT, nvec, G_D, body_dir, extra_events
+
+
+def _angles_form(c: _Common) -> tuple[Any, ...]:
+    """The paper's equations (1), (3), (4) in (G, delta, lambda, theta, phi, psi, T): right-hand side, initial state,
+    the slow variables and directions from the state, the events of their singular states."""
+    body, orb, tq, generic, st, nu0, misfire = c.body, c.orbit, c.torque, c.generic, c.st, c.nu0, c.misfire
+    nu_of = c.nu_of
+    A1, A2, A3 = body.A1, body.A2, body.A3
+    ie2, ie, circular = 1.0 / (c.eps * c.eps), 1.0 / c.eps, orb.e == 0.0
+    (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in c.Im)
+    G0, delta0, lam0 = c.G0, c.delta0, c.lam0
+
+    def torques_drag(y: np.ndarray, nu: float) -> tuple[float, ...]:
+        G, de, la, th, ph, ps = y[0], y[1], y[2], y[3], y[4], y[5]
+        c1, s1 = math.cos(ps), math.sin(ps)
+        c2, s2 = math.cos(th), math.sin(th)
+        c3, s3 = math.cos(ph), math.sin(ph)
+        # alpha_ij = y_i . z_j = dcm(psi, theta, phi)
+        a11, a12, a13 = c1 * c3 - s1 * c2 * s3, -c1 * s3 - s1 * c2 * c3, s1 * s2
+        a21, a22, a23 = s1 * c3 + c1 * c2 * s3, -s1 * s3 + c1 * c2 * c3, -c1 * s2
+        a31, a32, a33 = s2 * s3, s2 * c3, c2
+        o1, o2, o3 = G * a31 / A1, G * a32 / A2, G * a33 / A3
+        cnl, snl = math.cos(nu - la), math.sin(nu - la)
+        b1, b2, b3 = cnl * math.cos(de), snl, cnl * math.sin(de)
+        # body components of e_r, then J e_r, then back to Oy: (S beta)_m
+        e1 = a11 * b1 + a21 * b2 + a31 * b3
+        e2 = a12 * b1 + a22 * b2 + a32 * b3
+        e3 = a13 * b1 + a23 * b2 + a33 * b3
+        j1, j2, j3 = A1 * e1, A2 * e2, A3 * e3
+        s_1 = a11 * j1 + a12 * j2 + a13 * j3
+        s_2 = a21 * j1 + a22 * j2 + a23 * j3
+        s_3 = a31 * j1 + a32 * j2 + a33 * j3
+        f3 = 3.0 * orb.factor(nu)
+        Lg1 = f3 * (b2 * s_3 - b3 * s_2)
+        Lg2 = f3 * (b3 * s_1 - b1 * s_3)
+        Lg3 = f3 * (b1 * s_2 - b2 * s_1)
+        d1 = I11 * o1 + I12 * o2 + I13 * o3
+        d2 = I21 * o1 + I22 * o2 + I23 * o3
+        d3 = I31 * o1 + I32 * o2 + I33 * o3
+        L1 = Lg1 - (a11 * d1 + a12 * d2 + a13 * d3)
+        L2 = Lg2 - (a21 * d1 + a22 * d2 + a23 * d3)
+        L3 = Lg3 - (a31 * d1 + a32 * d2 + a33 * d3)
+        return L1, L2, L3
+
+    def torques_generic(y: np.ndarray, nu: float) -> tuple[float, ...]:
+        # the torque object in body axes, projected on Oy: L = alpha M, C = Y alpha
+        G, de, la = y[0], y[1], y[2]
+        if not math.isfinite(y[3] + y[4] + y[5]):  # a stage after a misfire (NaN rates): NaN again
+            return math.nan, math.nan, math.nan
+        alpha = euler.dcm(y[5], y[3], y[4])  # alpha_ij = y_i . z_j (body -> Oy)
+        omega = G * alpha[2] / body.A
+        M = evaluate(tq, omega, frame_y(de, la) @ alpha, nu, (3,))
+        L = alpha @ M
+        return float(L[0]), float(L[1]), float(L[2])
+
+    torques = torques_generic if generic else torques_drag
+
+    def rhs(tau: float, y: np.ndarray) -> list[float]:
+        G, de, th, ph, ps, T = y[0], y[1], y[3], y[4], y[5], y[6]
+        nu = nu_of(tau, y, 7)
+        try:
+            L1, L2, L3 = torques(y, nu)
+        except RESULT_ERRORS as exc:
+            misfire.note(tau, exc)
+            L1 = L2 = L3 = math.nan
+        s2, c2 = math.sin(th), math.cos(th)
+        sp, cp = math.sin(ph), math.cos(ph)
+        sps, cps = math.sin(ps), math.cos(ps)
+        sd = math.sin(de)
+        dG = L3
+        dde = L1 / G
+        dla = L2 / (G * sd)
+        P = L2 * cps - L1 * sps
+        Q = L1 * cps + L2 * sps
+        dth = G * s2 * sp * cp * (1 / A1 - 1 / A2) * ie2 + P / G
+        dph = G * c2 * (1 / A3 - sp * sp / A1 - cp * cp / A2) * ie2 + Q / (G * s2)
+        dps = G * (sp * sp / A1 + cp * cp / A2) * ie2 - Q / G * c2 / s2 - L2 / G * math.cos(de) / sd
+        dT = 2 * T / G * L3 + G * s2 * (
+            c2 * (sp * sp / A1 + cp * cp / A2 - 1 / A3) * P + sp * cp * (1 / A1 - 1 / A2) * Q
+        )
+        out = [dG, dde, dla, dth, dph, dps, dT]
+        if not circular:
+            out.append(ie * orb.nu_rate(nu))
+        return out
+
+    y0 = [G0, delta0, lam0, st["theta"], st["phi"], st["psi"], st["T"]]
+    if generic:
+        probe(tq, st["g"] / body.A, st["R"], nu0)
+    if abs(math.sin(delta0)) <= 1e-6 or abs(math.sin(st["theta"])) <= 1e-6:
+        raise ValueError(
+            "formulation='angles' is singular at sin(delta) = 0 or sin(theta) = 0 (the initial state is "
+            "there): use formulation='body'"
+        )
+
+    def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return y[0], y[6]
+
+    def nvec(y: np.ndarray) -> np.ndarray:
+        de, la = y[1], y[2]
+        return np.array([np.sin(de) * np.cos(la), np.sin(de) * np.sin(la), np.cos(de)])
+
+    def G_D(y: np.ndarray) -> tuple[float, float]:
+        return y[0], y[0] ** 2 / (2 * y[6])
+
+    def body_dir(y: np.ndarray) -> np.ndarray:
+        st_ = np.sin(y[3])
+        return np.array([st_ * np.sin(y[4]), st_ * np.cos(y[4]), np.cos(y[3])])
+
+    extra_events = [
+        Event(lambda t, y: abs(math.sin(y[3])) - 1e-6, "sin_theta", True, -1.0,
+              "sin(theta) -> 0: the Euler angles of (1) are singular; use formulation='body'"),
+        Event(lambda t, y: abs(math.sin(y[1])) - 1e-6, "sin_delta", True, -1.0,
+              "sin(delta) -> 0: lambda is undefined and (1) singular; use formulation='body'"),
+    ]
+    return rhs, y0, GT, nvec, G_D, body_dir, extra_events
+
+
 def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,
              tau_eval: Any, nu0: Any, *, kind: str | None, T0: Any, orbit: Orbit | None, u0: Any, psi0: Any,
              sigma: int, formulation: str, rtol: float, atol: float, method: str, k2_max: float | None,
@@ -112,10 +332,8 @@ def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, 
     A1, A2, A3 = body.A1, body.A2, body.A3
     Aall = (A1, A2, A3)
     Alab = (A1, A2, A3) if kind == "max" else (A3, A2, A1)
-    ie2 = 1.0 / (eps * eps)
     ie = 1.0 / eps
     circular = orb.e == 0.0
-    (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in Im)
     spin_cap = K2_SPIN_CAP if k2_max is None else 1.0  # see K2_SPIN_CAP: only a run through the separatrix
     st = initial_state(body, G0, k2_0, delta0, lam0, kind=kind, u0=u0, psi0=psi0, sigma=sigma)
 
@@ -124,186 +342,9 @@ def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, 
 
     misfire = Misfire()  # a torque that misbehaves part-way: NaN rates there, the run ends with a status
 
-    if formulation == "body":
-
-        def body_torque_drag(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
-                             nu: float) -> tuple[float, float, float]:
-            cn, sn = math.cos(nu), math.sin(nu)
-            # r_b = R^T e_r, R rows 0 and 1 from the quaternion
-            r1 = (1 - 2 * (yq * yq + z * z)) * cn + 2 * (x * yq + w * z) * sn
-            r2 = 2 * (x * yq - w * z) * cn + (1 - 2 * (x * x + z * z)) * sn
-            r3 = 2 * (x * z + w * yq) * cn + 2 * (yq * z - w * x) * sn
-            f3 = 3.0 * orb.factor(nu)
-            L1 = f3 * (A3 - A2) * r2 * r3 - (I11 * o1 + I12 * o2 + I13 * o3)
-            L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
-            L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
-            return L1, L2, L3
-
-        def body_torque_object(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
-                               nu: float) -> tuple[float, float, float]:
-            # the whole perturbation from the torque object: M = torque(omega, C, nu) in body axes
-            C = np.array([  # body -> Ox_i, the convention of core.euler.dcm_from_quat
-                [1 - 2 * (yq * yq + z * z), 2 * (x * yq - w * z), 2 * (x * z + w * yq)],
-                [2 * (x * yq + w * z), 1 - 2 * (x * x + z * z), 2 * (yq * z - w * x)],
-                [2 * (x * z - w * yq), 2 * (yq * z + w * x), 1 - 2 * (x * x + yq * yq)],
-            ])
-            M = evaluate(tq, np.array([o1, o2, o3]), C, nu, (3,))
-            return float(M[0]), float(M[1]), float(M[2])
-
-        body_torque = body_torque_object if generic else body_torque_drag
-
-        def rhs(tau: float, y: np.ndarray) -> list[float]:
-            g1, g2, g3, w, x, yq, z = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
-            nrm = math.sqrt(w * w + x * x + yq * yq + z * z)
-            w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
-            o1, o2, o3 = g1 / A1, g2 / A2, g3 / A3
-            nu = nu_of(tau, y, 7)
-            try:
-                L1, L2, L3 = body_torque(o1, o2, o3, w, x, yq, z, nu)
-            except RESULT_ERRORS as exc:
-                misfire.note(tau, exc)
-                L1 = L2 = L3 = math.nan
-            dg1 = (g2 * o3 - g3 * o2) * ie2 + L1
-            dg2 = (g3 * o1 - g1 * o3) * ie2 + L2
-            dg3 = (g1 * o2 - g2 * o1) * ie2 + L3
-            h = 0.5 * ie2
-            dw = h * (-x * o1 - yq * o2 - z * o3)
-            dx = h * (w * o1 + yq * o3 - z * o2)
-            dy = h * (w * o2 - x * o3 + z * o1)
-            dz = h * (w * o3 + x * o2 - yq * o1)
-            out = [dg1, dg2, dg3, dw, dx, dy, dz]
-            if not circular:
-                out.append(ie * orb.nu_rate(nu))
-            return out
-
-        if generic:
-            probe(tq, st["g"] / body.A, st["R"], nu0)
-        y0 = [*st["g"], *st["q"]]
-
-        def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            g = y[0:3]
-            return np.sqrt((g * g).sum(0)), 0.5 * (g[0] ** 2 / A1 + g[1] ** 2 / A2 + g[2] ** 2 / A3)
-
-        def nvec(y: np.ndarray) -> np.ndarray:
-            g = y[0:3]
-            R = euler.dcm_from_quat(y[3:7].T)
-            n = np.einsum("nij,jn->in", R, g)
-            return n / np.linalg.norm(n, axis=0)
-
-        def G_D(y: np.ndarray) -> tuple[float, float]:
-            G2 = y[0] ** 2 + y[1] ** 2 + y[2] ** 2
-            return math.sqrt(G2), G2 / (y[0] ** 2 / A1 + y[1] ** 2 / A2 + y[2] ** 2 / A3)
-
-        def body_dir(y: np.ndarray) -> np.ndarray:
-            return y[0:3] / np.sqrt((y[0:3] ** 2).sum(0))
-
-        extra_events: list[Event] = []
-        inu = 7
-    else:
-
-        def torques_drag(y: np.ndarray, nu: float) -> tuple[float, ...]:
-            G, de, la, th, ph, ps = y[0], y[1], y[2], y[3], y[4], y[5]
-            c1, s1 = math.cos(ps), math.sin(ps)
-            c2, s2 = math.cos(th), math.sin(th)
-            c3, s3 = math.cos(ph), math.sin(ph)
-            # alpha_ij = y_i . z_j = dcm(psi, theta, phi)
-            a11, a12, a13 = c1 * c3 - s1 * c2 * s3, -c1 * s3 - s1 * c2 * c3, s1 * s2
-            a21, a22, a23 = s1 * c3 + c1 * c2 * s3, -s1 * s3 + c1 * c2 * c3, -c1 * s2
-            a31, a32, a33 = s2 * s3, s2 * c3, c2
-            o1, o2, o3 = G * a31 / A1, G * a32 / A2, G * a33 / A3
-            cnl, snl = math.cos(nu - la), math.sin(nu - la)
-            b1, b2, b3 = cnl * math.cos(de), snl, cnl * math.sin(de)
-            # body components of e_r, then J e_r, then back to Oy: (S beta)_m
-            e1 = a11 * b1 + a21 * b2 + a31 * b3
-            e2 = a12 * b1 + a22 * b2 + a32 * b3
-            e3 = a13 * b1 + a23 * b2 + a33 * b3
-            j1, j2, j3 = A1 * e1, A2 * e2, A3 * e3
-            s_1 = a11 * j1 + a12 * j2 + a13 * j3
-            s_2 = a21 * j1 + a22 * j2 + a23 * j3
-            s_3 = a31 * j1 + a32 * j2 + a33 * j3
-            f3 = 3.0 * orb.factor(nu)
-            Lg1 = f3 * (b2 * s_3 - b3 * s_2)
-            Lg2 = f3 * (b3 * s_1 - b1 * s_3)
-            Lg3 = f3 * (b1 * s_2 - b2 * s_1)
-            d1 = I11 * o1 + I12 * o2 + I13 * o3
-            d2 = I21 * o1 + I22 * o2 + I23 * o3
-            d3 = I31 * o1 + I32 * o2 + I33 * o3
-            L1 = Lg1 - (a11 * d1 + a12 * d2 + a13 * d3)
-            L2 = Lg2 - (a21 * d1 + a22 * d2 + a23 * d3)
-            L3 = Lg3 - (a31 * d1 + a32 * d2 + a33 * d3)
-            return L1, L2, L3
-
-        def torques_generic(y: np.ndarray, nu: float) -> tuple[float, ...]:
-            # the torque object in body axes, projected on Oy: L = alpha M, C = Y alpha
-            G, de, la = y[0], y[1], y[2]
-            if not math.isfinite(y[3] + y[4] + y[5]):  # a stage after a misfire (NaN rates): NaN again
-                return math.nan, math.nan, math.nan
-            alpha = euler.dcm(y[5], y[3], y[4])  # alpha_ij = y_i . z_j (body -> Oy)
-            omega = G * alpha[2] / body.A
-            M = evaluate(tq, omega, frame_y(de, la) @ alpha, nu, (3,))
-            L = alpha @ M
-            return float(L[0]), float(L[1]), float(L[2])
-
-        torques = torques_generic if generic else torques_drag
-
-        def rhs(tau: float, y: np.ndarray) -> list[float]:
-            G, de, th, ph, ps, T = y[0], y[1], y[3], y[4], y[5], y[6]
-            nu = nu_of(tau, y, 7)
-            try:
-                L1, L2, L3 = torques(y, nu)
-            except RESULT_ERRORS as exc:
-                misfire.note(tau, exc)
-                L1 = L2 = L3 = math.nan
-            s2, c2 = math.sin(th), math.cos(th)
-            sp, cp = math.sin(ph), math.cos(ph)
-            sps, cps = math.sin(ps), math.cos(ps)
-            sd = math.sin(de)
-            dG = L3
-            dde = L1 / G
-            dla = L2 / (G * sd)
-            P = L2 * cps - L1 * sps
-            Q = L1 * cps + L2 * sps
-            dth = G * s2 * sp * cp * (1 / A1 - 1 / A2) * ie2 + P / G
-            dph = G * c2 * (1 / A3 - sp * sp / A1 - cp * cp / A2) * ie2 + Q / (G * s2)
-            dps = G * (sp * sp / A1 + cp * cp / A2) * ie2 - Q / G * c2 / s2 - L2 / G * math.cos(de) / sd
-            dT = 2 * T / G * L3 + G * s2 * (
-                c2 * (sp * sp / A1 + cp * cp / A2 - 1 / A3) * P + sp * cp * (1 / A1 - 1 / A2) * Q
-            )
-            out = [dG, dde, dla, dth, dph, dps, dT]
-            if not circular:
-                out.append(ie * orb.nu_rate(nu))
-            return out
-
-        y0 = [G0, delta0, lam0, st["theta"], st["phi"], st["psi"], st["T"]]
-        if generic:
-            probe(tq, st["g"] / body.A, st["R"], nu0)
-        if abs(math.sin(delta0)) <= 1e-6 or abs(math.sin(st["theta"])) <= 1e-6:
-            raise ValueError(
-                "formulation='angles' is singular at sin(delta) = 0 or sin(theta) = 0 (the initial state is "
-                "there): use formulation='body'"
-            )
-
-        def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            return y[0], y[6]
-
-        def nvec(y: np.ndarray) -> np.ndarray:
-            de, la = y[1], y[2]
-            return np.array([np.sin(de) * np.cos(la), np.sin(de) * np.sin(la), np.cos(de)])
-
-        def G_D(y: np.ndarray) -> tuple[float, float]:
-            return y[0], y[0] ** 2 / (2 * y[6])
-
-        def body_dir(y: np.ndarray) -> np.ndarray:
-            st_ = np.sin(y[3])
-            return np.array([st_ * np.sin(y[4]), st_ * np.cos(y[4]), np.cos(y[3])])
-
-        extra_events = [
-            Event(lambda t, y: abs(math.sin(y[3])) - 1e-6, "sin_theta", True, -1.0,
-                  "sin(theta) -> 0: the Euler angles of (1) are singular; use formulation='body'"),
-            Event(lambda t, y: abs(math.sin(y[1])) - 1e-6, "sin_delta", True, -1.0,
-                  "sin(delta) -> 0: lambda is undefined and (1) singular; use formulation='body'"),
-        ]
-        inu = 7
+    c = _Common(body, orb, tq, generic, Im, eps, st, nu0, G0, delta0, lam0, misfire, nu_of)
+    rhs, y0, GT, nvec, G_D, body_dir, extra_events = (_body_form if formulation == "body" else _angles_form)(c)
+    inu = 7
 
     def ev_spin(tau: float, y: np.ndarray) -> float:
         G, D = G_D(y)

@@ -288,26 +288,7 @@ def integrate_kind(setup: Setup, kind: str, sigma: int, tau_span: Any, G0: float
         return (State(body, kind, sigma, G, k2, np.array([n1, n2, n3]), nu, orb),
                 Mean(np.array([L1, L2, L3]), dT, dk2))
 
-    def rhs_angles(tau: float, y: Any) -> list[float]:
-        G, k2, _, _, _, _, L1, L2, L3, _, dk2 = mean_at(tau, y, "angles")
-        d, la = y[2], y[3]
-        sd, cd, sl, cl = sin(d), cos(d), sin(la), cos(la)
-        iG = 1.0 / G
-        out = [(sd * (cl * L1 + sl * L2) + cd * L3) * iG, dk2 / (k2 + c) if z else 0.0,
-               (cd * (cl * L1 + sl * L2) - sd * L3) * iG, (cl * L2 - sl * L1) * iG / sd]
-        if ecc:
-            out.append(orb.nu_rate(float(y[inu])) * ie)
-        return out
-
-    def rhs_vector(tau: float, y: Any) -> list[float]:
-        G, k2, n1, n2, n3, _, L1, L2, L3, _, dk2 = mean_at(tau, y, "vector")
-        dG = n1 * L1 + n2 * L2 + n3 * L3
-        iG = 1.0 / G
-        out = [dG * iG, dk2 / (k2 + c) if z else 0.0, (L1 - dG * n1) * iG, (L2 - dG * n2) * iG,
-               (L3 - dG * n3) * iG]
-        if ecc:
-            out.append(orb.nu_rate(float(y[inu + 1])) * ie)
-        return out
+    rhs_angles, rhs_vector = _rhs_pair(mean_at, z, c, orb, ie if ecc else None, inu)
 
     y0: list[float] = [math.log(G0), math.log(k2_0 + c) if z else 0.0, *(float(v) for v in nn)]
     if ecc:
@@ -320,24 +301,9 @@ def integrate_kind(setup: Setup, kind: str, sigma: int, tau_span: Any, G0: float
     chart = "angles" if angles and math.hypot(nn[0], nn[1]) >= _SIN_ON else "vector"
     if chart == "angles":
         y0[2:] = [math.acos(max(-1.0, min(1.0, float(nn[2])))), lam0]
-    if eps > 0.0 and setup.drift_tol is not None and (d0 := _slow_drift(setup, st0, av.mean(st0))) > setup.drift_tol:
-        raise ValueError(
-            f"the torque is too strong for eps = {eps:g} at this state: the slow variables change by {d0:.3g} of "
-            f"themselves in one Euler-Poinsot period (> drift_tol = {setup.drift_tol:g}); the averaging needs a "
-            "separation of time scales. Lower eps or the torque, or pass drift_tol=None to integrate anyway"
-        )
+    _check_drift(setup, st0, av)
 
-    lnk_stop = math.log(setup.k2_max + c)
-    common_events = [
-        Event((lambda t, y: y[1] - lnk_stop) if z else (lambda t, y: -1.0), "separatrix", True, 1.0,
-              stop_message("separatrix", k2_max=setup.k2_max)),
-    ]
-    if eps > 0.0:
-        cap, ratio = setup.spin_cap, setup.min_spin_ratio
-        common_events.append(Event(lambda t, y: nutation_frequency(a, exp(y[0]),
-                                                                   min(max(z * exp(y[1]) - c, 0.0), cap)) * ie
-                                   - ratio,
-                                   "slow_rotation", True, -1.0, stop_message("slow_rotation", min_spin_ratio=ratio)))
+    common_events = _common_events(setup, a, z, c, ie)
 
     def chart_events(chart: str) -> list[Event]:
         evs = list(common_events)
@@ -371,23 +337,86 @@ def integrate_kind(setup: Setup, kind: str, sigma: int, tau_span: Any, G0: float
         pieces.append(piece)
         if raw.event != "chart" or len(pieces) >= _MAX_CHARTS:
             break
-        # switch charts at the event: the same G, k2, direction (and nu), lambda continuous
-        t_s = float(raw.t_events["chart"][-1])
-        lam_s = piece.lam_end()
-        yc = piece.common(raw.y[:, -1])
-        n = yc[2:5]
-        chart = "vector" if chart == "angles" else "angles"
-        y0 = [float(raw.y[0, -1]), float(raw.y[1, -1])]
-        if chart == "angles":
-            lam_n = math.atan2(n[1], n[0])
-            lam_n += 2.0 * math.pi * round((lam_s - lam_n) / (2.0 * math.pi))  # the branch of the continuous lambda
-            y0 += [math.acos(max(-1.0, min(1.0, float(n[2])))), lam_n]
-        else:
-            y0 += [float(v) for v in n]
-        if ecc:
-            y0.append(float(yc[5]))
+        chart, y0, t_s, lam_s = _switch(piece, ecc)
         step = raw.last_step if py else None
     return _Segment(_join_charts(pieces), setup, kind, sigma, tau0, nu0, pieces)
+
+
+def _rhs_pair(mean_at: Any, z: float, c: float, orb: Orbit, ie: float | None, inu: int) -> tuple[Any, Any]:
+    """The right-hand sides in the angle chart ``(ln G, s, delta, lambda[, nu])`` and the vector chart
+    ``(ln G, s, n[, nu])`` from ``mean_at``; ``ie`` = 1/eps on an eccentric orbit (nu a state), else None."""
+    sin, cos = math.sin, math.cos
+
+    def rhs_angles(tau: float, y: Any) -> list[float]:
+        G, k2, _, _, _, _, L1, L2, L3, _, dk2 = mean_at(tau, y, "angles")
+        d, la = y[2], y[3]
+        sd, cd, sl, cl = sin(d), cos(d), sin(la), cos(la)
+        iG = 1.0 / G
+        out = [(sd * (cl * L1 + sl * L2) + cd * L3) * iG, dk2 / (k2 + c) if z else 0.0,
+               (cd * (cl * L1 + sl * L2) - sd * L3) * iG, (cl * L2 - sl * L1) * iG / sd]
+        if ie is not None:
+            out.append(orb.nu_rate(float(y[inu])) * ie)
+        return out
+
+    def rhs_vector(tau: float, y: Any) -> list[float]:
+        G, k2, n1, n2, n3, _, L1, L2, L3, _, dk2 = mean_at(tau, y, "vector")
+        dG = n1 * L1 + n2 * L2 + n3 * L3
+        iG = 1.0 / G
+        out = [dG * iG, dk2 / (k2 + c) if z else 0.0, (L1 - dG * n1) * iG, (L2 - dG * n2) * iG,
+               (L3 - dG * n3) * iG]
+        if ie is not None:
+            out.append(orb.nu_rate(float(y[inu + 1])) * ie)
+        return out
+
+    return rhs_angles, rhs_vector
+
+
+def _check_drift(setup: Setup, st0: State, av: Averager) -> None:
+    """Refuse a start where the slow variables change by more than ``drift_tol`` in one Euler--Poinsot period."""
+    eps = setup.eps
+    if eps > 0.0 and setup.drift_tol is not None and (d0 := _slow_drift(setup, st0, av.mean(st0))) > setup.drift_tol:
+        raise ValueError(
+            f"the torque is too strong for eps = {eps:g} at this state: the slow variables change by {d0:.3g} of "
+            f"themselves in one Euler-Poinsot period (> drift_tol = {setup.drift_tol:g}); the averaging needs a "
+            "separation of time scales. Lower eps or the torque, or pass drift_tol=None to integrate anyway"
+        )
+
+
+def _common_events(setup: Setup, a: tuple[float, float, float], z: float, c: float, ie: float) -> list[Event]:
+    """The stops of every chart: the separatrix (k2_max) and, with eps > 0, the rotation speed."""
+    exp = math.exp
+    lnk_stop = math.log(setup.k2_max + c)
+    events = [
+        Event((lambda t, y: y[1] - lnk_stop) if z else (lambda t, y: -1.0), "separatrix", True, 1.0,
+              stop_message("separatrix", k2_max=setup.k2_max)),
+    ]
+    if setup.eps > 0.0:
+        cap, ratio = setup.spin_cap, setup.min_spin_ratio
+        events.append(Event(lambda t, y: nutation_frequency(a, exp(y[0]), min(max(z * exp(y[1]) - c, 0.0), cap)) * ie
+                            - ratio, "slow_rotation", True, -1.0,
+                            stop_message("slow_rotation", min_spin_ratio=ratio)))
+    return events
+
+
+def _switch(piece: _Chart, ecc: bool) -> tuple[str, list[float], float, float]:
+    """The other chart at a chart event: its name, its state (the same G, k2, direction and nu), the time, and the
+    continuous lambda there."""
+    raw = piece.raw
+    t_s = float(raw.t_events["chart"][-1])
+    lam_s = piece.lam_end()
+    yc = piece.common(raw.y[:, -1])
+    n = yc[2:5]
+    chart = "vector" if piece.chart == "angles" else "angles"
+    y0 = [float(raw.y[0, -1]), float(raw.y[1, -1])]
+    if chart == "angles":
+        lam_n = math.atan2(n[1], n[0])
+        lam_n += 2.0 * math.pi * round((lam_s - lam_n) / (2.0 * math.pi))  # the branch of the continuous lambda
+        y0 += [math.acos(max(-1.0, min(1.0, float(n[2])))), lam_n]
+    else:
+        y0 += [float(v) for v in n]
+    if ecc:
+        y0.append(float(yc[5]))
+    return chart, y0, t_s, lam_s
 
 
 def _join_charts(pieces: list[_Chart]) -> Solution:
