@@ -1,4 +1,7 @@
-r"""The averaged system (6)-(9) of Rachinskaya and its integrator.
+r"""The averaged system (6)-(9) of Rachinskaya: :func:`averaged`, the public entry of its integration.
+
+The entry collects the options (:mod:`._options`) and hands a single run to :func:`._run.run_averaged`, a batch
+(an array among the per-member inputs) to :func:`._batch.averaged_batch`; the integrator itself is described here.
 
 Nondimensional form (section 3): :math:`\tilde G = G/G_0`, :math:`\tilde A_i = A_i\Omega_0/G_0`,
 :math:`\varepsilon^2\tilde I = I/G_0`, the orbital rate is :math:`\varepsilon` in units of :math:`\Omega_0`,
@@ -23,7 +26,7 @@ Any torque
 ----------
 With a torque object (``rigidbody.euler_poinsot.LinearDrag``, ..., or a plain function) the integrator evolves
 :math:`(\ln G, \ln(k^2 + c), \mathbf n[, \nu])` (the direction of :math:`\mathbf G` as the angles
-:math:`(\delta, \lambda)` or the unit vector :math:`\mathbf n`, see ``integrate_kind``) with
+:math:`(\delta, \lambda)` or the unit vector :math:`\mathbf n`, see :func:`._segment.integrate_kind`) with
 :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle` and the :math:`k^2` rate of :mod:`._engine` (DOP853 on
 Python floats, as for a drag tensor: ``rtol`` is the relative accuracy of :math:`G` and :math:`k^2`, the direction
 is held to ``rtol/10`` per step), the means from the closed forms of the torque's parts where they exist and from the

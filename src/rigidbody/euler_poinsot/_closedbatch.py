@@ -17,7 +17,7 @@ from . import _kernel as _k
 from ._algebra import K2_SPIN_CAP, dk2_labelled
 from ._branches import choose_region
 from ._members import FIELDS, Members
-from ._model import Body, Drag, Orbit, labelled
+from ._model import Body, Drag, Orbit, labelled, relabel
 from ._separatrix import K2_SWITCH, separatrix_crossing
 from ._start import StartRules, check_start
 from ._stops import MAX_CROSSINGS, stop_message
@@ -63,7 +63,7 @@ class ClosedRun:
         """Labelled moments and the members' labelled drag diagonal for ``kind``."""
         A = labelled(self.body, kind)
         d = (self.I[0][idx], self.I[1][idx], self.I[2][idx])
-        return A, (d if kind == "max" else (d[2], d[1], d[0]))
+        return A, relabel(kind, d)
 
 
 def drag_members(mem: Members, tensors: np.ndarray) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:

@@ -66,6 +66,7 @@ import numpy as np
 
 from ..core import averaging as avg
 from ._grid import Grid, nu_nodes
+from ._model import relabel
 from ._protocol import TorqueSum, evaluate
 from ._state import Mean, State, amplitudes, frame
 
@@ -109,10 +110,7 @@ def motion_nodes(st: State, n_u: int) -> tuple[np.ndarray, np.ndarray]:
     k = math.sqrt(k2)
     omega = np.empty((n_u, 3))
     w_dn, w_sn, w_cn = s * c_dn * dn, -s * k * c_sn * sn, k * c_cn * cn
-    if st.kind == "max":
-        omega[:, 0], omega[:, 1], omega[:, 2] = w_dn, w_sn, w_cn
-    else:
-        omega[:, 0], omega[:, 1], omega[:, 2] = w_cn, w_sn, w_dn
+    omega[:, 0], omega[:, 1], omega[:, 2] = relabel(st.kind, (w_dn, w_sn, w_cn))
     g = omega * b.A
     # alpha_0 = dcm(0, theta, phi): rows (cos phi, -sin phi, 0), (cos th sin phi, cos th cos phi, -sin th), g/G
     h = np.hypot(g[:, 0], g[:, 1])

@@ -35,7 +35,7 @@ from ..core.ode import Event, Solution, integrate
 from ..core.validate import RESULT_ERRORS, real, span
 from ._algebra import K2_SPIN_CAP, nutation_frequency
 from ._checks import check_tau_eval, check_tol
-from ._model import Body, Orbit, as_orbit, check_body, frame_y
+from ._model import Body, Orbit, as_orbit, check_body, frame_y, relabel
 from ._motion import EulerPoinsot
 from ._output import finish_output
 from ._protocol import Misfire, evaluate
@@ -331,7 +331,7 @@ def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, 
     eps, G0, k2_0, delta0, lam0, nu0 = check_start(rules, kind, eps, G0, k2_0, delta0, lam0, nu0, u0, psi0)
     A1, A2, A3 = body.A1, body.A2, body.A3
     Aall = (A1, A2, A3)
-    Alab = (A1, A2, A3) if kind == "max" else (A3, A2, A1)
+    Alab = relabel(kind, (A1, A2, A3))
     ie = 1.0 / eps
     circular = orb.e == 0.0
     spin_cap = K2_SPIN_CAP if k2_max is None else 1.0  # see K2_SPIN_CAP: only a run through the separatrix

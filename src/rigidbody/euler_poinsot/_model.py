@@ -33,8 +33,8 @@ from scipy import special
 
 from ..core.validate import real
 
-__all__ = ["KINDS", "Body", "Drag", "Orbit", "as_drag", "as_orbit", "check_body", "check_kind", "elliptic_ratios",
-           "frame_y", "labelled"]
+__all__ = ["AXES", "KINDS", "Body", "Drag", "Orbit", "as_drag", "as_orbit", "check_body", "check_kind",
+           "elliptic_ratios", "frame_y", "labelled", "relabel"]
 
 KINDS = ("max", "min")
 
@@ -249,10 +249,19 @@ def frame_y(delta: float, lam: float) -> np.ndarray:
     return np.array([[cd * cl, -sl, sd * cl], [cd * sl, cl, sd * sl], [-sd, 0.0, cd]])
 
 
+#: The body axes in the labelled order of each kind, in which the 'max'-kind formulas apply to both: the kind
+#: 'min' exchanges the labels 1 and 3 (moments, drag coefficients, components of omega).
+AXES: dict[str, tuple[int, int, int]] = {"max": (0, 1, 2), "min": (2, 1, 0)}
+
+
+def relabel(kind: str, v: Any) -> tuple[Any, Any, Any]:
+    """Three values in body order (``v[0], v[1], v[2]``) in the labelled order of ``kind``, and back (an
+    involution)."""
+    i, j, k = AXES[kind]
+    return v[i], v[j], v[k]
+
+
 def labelled(body: Body, kind: str, I: tuple[float, float, float] | None = None) -> Any:
     """Moments (and diagonal drag) in the order in which the 'max'-kind formulas apply."""
-    if kind == "max":
-        A = (body.A1, body.A2, body.A3)
-        return A if I is None else (A, I)
-    A = (body.A3, body.A2, body.A1)
-    return A if I is None else (A, (I[2], I[1], I[0]))
+    A = relabel(kind, (body.A1, body.A2, body.A3))
+    return A if I is None else (A, relabel(kind, I))

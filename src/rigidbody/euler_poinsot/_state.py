@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._model import Body, Orbit, labelled
+from ._model import AXES, Body, Orbit, labelled
 
 __all__ = ["Mean", "State", "amplitudes", "frame"]
 
@@ -30,7 +30,7 @@ class State:
     def __post_init__(self) -> None:
         if self.mc < 0.0:
             self.mc = 1.0 - self.k2
-        self.lab = (0, 1, 2) if self.kind == "max" else (2, 1, 0)
+        self.lab = AXES[self.kind]
         self.a: tuple[float, float, float] = labelled(self.body, self.kind)
 
     @property
