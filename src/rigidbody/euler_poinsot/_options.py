@@ -9,7 +9,7 @@ given twice, alone and in its group) in a ``TypeError``.
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass, fields
+from dataclasses import dataclass, fields
 from typing import Any
 
 __all__ = ["Solver", "Stops", "averaged_options", "collect", "simulate_options"]
@@ -59,6 +59,10 @@ class Stops:
 
 #: the option groups: keyword of the group -> its class
 GROUPS: dict[str, type] = {"solver": Solver, "stops": Stops}
+_DEFAULTS = {name: cls() for name, cls in GROUPS.items()}
+#: the fields each entry uses: averaged all of both groups, simulate the stops of the full equations only
+_AVERAGED = {"solver": tuple(f.name for f in fields(Solver)), "stops": tuple(f.name for f in fields(Stops))}
+_SIMULATE = {"solver": _AVERAGED["solver"], "stops": ("k2_max", "min_spin_ratio")}
 
 
 def collect(func: str, options: dict[str, Any], groups: dict[str, tuple[str, ...]], other: dict[str, Any]
@@ -76,13 +80,12 @@ def collect(func: str, options: dict[str, Any], groups: dict[str, tuple[str, ...
             continue
         value = options.pop(name, None)
         if value is None:
-            value = cls()
+            value = _DEFAULTS[name]
         elif not isinstance(value, cls):
             raise TypeError(f"{func}() {name} must be a {cls.__name__}, got {value!r}")
         else:
             given.update({f: name for f in groups[name]})
-        values = asdict(value)
-        out.update({f: values[f] for f in groups[name]})
+        out.update({f: getattr(value, f) for f in groups[name]})
     for key, value in options.items():
         if key in given:
             raise TypeError(f"{func}() got {key!r} both alone and in {given[key]}=: pass it once")
@@ -93,19 +96,14 @@ def collect(func: str, options: dict[str, Any], groups: dict[str, tuple[str, ...
     return out
 
 
-def _group_fields(cls: type) -> tuple[str, ...]:
-    return tuple(f.name for f in fields(cls))
-
-
 def averaged_options(**options: Any) -> dict[str, Any]:
     """The flat keyword options of :func:`averaged` (its defaults where not given)."""
     other = {"kind": None, "T0": None, "orbit": None, "sigma": 1, "averaging": "auto", "quad_tol": 1e-12,
              "branch": "likely", "seed": None}
-    return collect("averaged", options, {"solver": _group_fields(Solver), "stops": _group_fields(Stops)}, other)
+    return collect("averaged", options, _AVERAGED, other)
 
 
 def simulate_options(**options: Any) -> dict[str, Any]:
     """The flat keyword options of :func:`simulate` (its defaults where not given)."""
     other = {"kind": None, "T0": None, "orbit": None, "u0": 0.0, "psi0": 0.0, "sigma": 1, "formulation": "body"}
-    return collect("simulate", options, {"solver": _group_fields(Solver), "stops": ("k2_max", "min_spin_ratio")},
-                   other)
+    return collect("simulate", options, _SIMULATE, other)
