@@ -53,3 +53,18 @@ def test_simulate_takes_no_option_of_the_averaged_system():
     # drift_tol is a stop of the averaged system with a torque object; the full equations have none
     with pytest.raises(TypeError, match="'drift_tol'"):
         ep.simulate(BODY, DRAG, 0.1, drift_tol=0.1)
+
+
+def test_simulate_refuses_a_stop_it_does_not_have_given_in_the_group():
+    # the full equations have no drift or resonance stop: a Stops carrying one must not be dropped silently
+    with pytest.raises(TypeError, match=r"stops\.drift_tol"):
+        ep.simulate(BODY, DRAG, 0.1, stops=ep.Stops(drift_tol=0.1))
+    # the stops it has are taken from the group: at eps = 0.1 this start turns 0.53 times per orbit, below the default
+    # min_spin_ratio = 1 (refused); the group's min_spin_ratio = 0 must reach the start's check as the keyword does
+    with pytest.raises(ValueError, match="min_spin_ratio"):
+        ep.simulate(BODY, DRAG, 0.1, tau_span=(0, 0.01), stops=ep.Stops())
+    kw = dict(tau_span=(0, 0.01), tau_eval=[0, 0.01])
+    one = ep.simulate(BODY, DRAG, 0.1, min_spin_ratio=0, **kw)
+    grouped = ep.simulate(BODY, DRAG, 0.1, stops=ep.Stops(min_spin_ratio=0), **kw)
+    assert one.status == grouped.status == 0
+    assert one.nfev == grouped.nfev  # the same run on the same floats

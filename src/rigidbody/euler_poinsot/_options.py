@@ -45,10 +45,10 @@ class Stops:
         The rotation must stay fast: the run ends where :func:`spin_ratio` falls to this value (0: no check).
     drift_tol : float or None
         :func:`averaged` with a torque object: the largest change of the slow variables in one Euler--Poinsot
-        period (``None``: no check). Not used by :func:`simulate`.
+        period (``None``: no check). :func:`simulate` has no such stop and refuses a value other than the default.
     resonance_tol : float or None
         :func:`averaged` with a torque object: the largest predicted jump at a resonance crossing (``None``: no
-        check). Not used by :func:`simulate`.
+        check). :func:`simulate` refuses a value other than the default.
     """
 
     k2_max: float | None = 1.0 - 1e-6
@@ -85,6 +85,11 @@ def collect(func: str, options: dict[str, Any], groups: dict[str, tuple[str, ...
             raise TypeError(f"{func}() {name} must be a {cls.__name__}, got {value!r}")
         else:
             given.update({f: name for f in groups[name]})
+            unused = [f.name for f in fields(cls) if f.name not in groups[name]
+                      and getattr(value, f.name) != getattr(_DEFAULTS[name], f.name)]
+            if unused:
+                raise TypeError(f"{func}() does not use {name}.{unused[0]} (it has no such stop); leave it at its "
+                                "default")
         out.update({f: getattr(value, f) for f in groups[name]})
     for key, value in options.items():
         if key in given:

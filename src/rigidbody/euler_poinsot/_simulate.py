@@ -70,8 +70,8 @@ def simulate(
     solver : Solver, or rtol, atol, method
         The integrator as one value (:class:`Solver`) or field by field, as in :func:`averaged`.
     stops : Stops, or k2_max, min_spin_ratio
-        The stops as one value (:class:`Stops`; its ``drift_tol`` and ``resonance_tol`` are not used here) or field
-        by field, as below.
+        The stops as one value (:class:`Stops`; its ``drift_tol`` and ``resonance_tol``, stops of the averaged
+        system, must keep their defaults) or field by field, as below.
     formulation : {'body', 'angles'}
         Euler's equations with a quaternion (default, regular everywhere) or the paper's (1), (3), (4).
     k2_max : float or None
