@@ -302,10 +302,10 @@ def test_engine_nodes_are_a_motion_that_solves_eulers_equations(kind, sigma, k2)
     # engine's nodes: their derivative by FFT over the period equals A^-1 ((A omega) x omega), Euler's
     # equations, and the attitude's third row is g/G. Spectral derivative of an analytic periodic function on
     # 512 nodes: rounding times the largest wavenumber, ~1e-12 relative.
-    from rigidbody.euler_poinsot._engine import _State, motion_nodes
+    from rigidbody.euler_poinsot._engine import State, motion_nodes
 
     n_u = 512
-    st = _State(BODY, kind, sigma, 1.2, k2, np.array([0.6, 0.0, 0.8]), 0.3, ep.Orbit(0.0))
+    st = State(BODY, kind, sigma, 1.2, k2, np.array([0.6, 0.0, 0.8]), 0.3, ep.Orbit(0.0))
     omega, al = motion_nodes(st, n_u)
     period = ep.EulerPoinsot(BODY, 1.2, k2, kind, sigma).period
     wave = np.fft.fftfreq(n_u, d=period / n_u) * 2 * np.pi

@@ -17,7 +17,7 @@ from scipy.integrate import quad
 
 from rigidbody import euler_poinsot as ep
 from rigidbody.core import euler
-from rigidbody.euler_poinsot._engine import _SAFETY, Averager, _State
+from rigidbody.euler_poinsot._engine import _SAFETY, Averager, State
 from rigidbody.euler_poinsot._protocol import as_torque
 
 BODY = ep.Body(3.2, 2.6, 1.67)
@@ -194,9 +194,9 @@ def test_the_right_hand_side_grid_reports_a_bound_on_its_own_error(jump, seed, t
     torque, st, spec = attitude_case(seed, jump)
     av = Averager(as_torque(torque), "numerical", tol)
     n = frame(st["delta"], st["lam"])[:, 2]
-    av.calibrate(_State(BODY, st["kind"], st["sigma"], 1.0, st["k2"], n, st["nu"], ep.Orbit(0.0)))
+    av.calibrate(State(BODY, st["kind"], st["sigma"], 1.0, st["k2"], n, st["nu"], ep.Orbit(0.0)))
     later = dict(st, k2=0.9 * st["k2"])
-    mean, bound = av.report(_State(BODY, st["kind"], st["sigma"], 1.0, later["k2"], n, st["nu"], ep.Orbit(0.0)))
+    mean, bound = av.report(State(BODY, st["kind"], st["sigma"], 1.0, later["k2"], n, st["nu"], ep.Orbit(0.0)))
     ref = reference(later, *spec)
     assert abs(mean.dT - ref["dT"]) <= bound.dT
     assert abs(mean.dk2 - ref["dk2"]) <= bound.dk2
@@ -213,7 +213,7 @@ def test_a_runs_quad_error_covers_the_rates_of_T_and_k2():
     torque, st, spec = attitude_case(32, False)
     tol = 1e-6
     n = frame(st["delta"], st["lam"])[:, 2]
-    s0 = _State(BODY, st["kind"], st["sigma"], 1.0, st["k2"], n, st["nu"], ep.Orbit(0.0))
+    s0 = State(BODY, st["kind"], st["sigma"], 1.0, st["k2"], n, st["nu"], ep.Orbit(0.0))
     av = Averager(as_torque(torque), "numerical", tol)
     av.calibrate(s0)
     mean, bound = av.report(s0)  # the mean on the run's grid at the first state, and its error bound

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from rigidbody import euler_poinsot as ep
-from rigidbody.euler_poinsot._engine import Averager, Grid, _State, adaptive, lean_mean
+from rigidbody.euler_poinsot._engine import Averager, Grid, State, adaptive, lean_mean
 from rigidbody.euler_poinsot._lean import LeanMean
 from rigidbody.euler_poinsot._protocol import as_torque
 
@@ -43,7 +43,7 @@ def test_lean_mean_equals_the_engines_grid_evaluation(name, kind, sigma, k2, nu)
     orbit = ep.Orbit(0.2)
     for compact in (False, True):
         for grid in (Grid(4, 1.0, 4), Grid(8, 2.0, 16)):
-            st = _State(BODY, kind, sigma, 1.3, k2, N_DIR, nu, orbit)
+            st = State(BODY, kind, sigma, 1.3, k2, N_DIR, nu, orbit)
             plain = lean_mean(torque, st, grid, compact)
             fast = np.array(LeanMean(torque, BODY, kind, sigma, grid, compact, orbit, nu is not None)(
                 1.3, k2, *N_DIR, nu))
@@ -56,7 +56,7 @@ def test_the_averager_uses_the_fast_path_only_where_it_applies():
     # the integrators' fast path covers the calibrated kind, sense and nu mode; elsewhere the plain evaluation
     tq = ep.LinearDrag(I_OFF) + ep.GravityGradient(BODY)
     av = Averager(tq, "numerical", 1e-12)
-    st = _State(BODY, "max", 1, 1.0, 0.5, N_DIR, 0.4, ep.Orbit(0.0))
+    st = State(BODY, "max", 1, 1.0, 0.5, N_DIR, 0.4, ep.Orbit(0.0))
     av.calibrate(st)
     assert av.fast("max", 1, True) is not None
     assert av.fast("min", 1, True) is None and av.fast("max", -1, True) is None and av.fast("max", 1, False) is None
@@ -66,7 +66,7 @@ def test_the_averager_uses_the_fast_path_only_where_it_applies():
     assert mixed.fast("max", 1, True) is None
     # both give the same mean where both apply
     L1, L2, L3, dT, dk2 = av.fast("max", 1, True)(1.0, 0.5, *N_DIR, 0.4)
-    m = av.mean(_State(BODY, "max", -1, 1.0, 0.5, N_DIR, 0.4, ep.Orbit(0.0)))  # the other sense: plain path
+    m = av.mean(State(BODY, "max", -1, 1.0, 0.5, N_DIR, 0.4, ep.Orbit(0.0)))  # the other sense: plain path
     ref = av.mean(st)
     # the same fast path behind both (mean() uses it for the calibrated region): equal up to the rounding of
     # mean_of's few operations (~1e-16 relative), bounded generously
@@ -81,7 +81,7 @@ def test_the_report_at_the_calibration_state_is_the_calibrations_estimate():
     # report() at the state the grid was chosen at reuses that estimate; elsewhere it re-estimates
     tq = ep.LinearDrag(I_OFF) + ep.GravityGradient(BODY)
     av = Averager(tq, "numerical", 1e-12)
-    st = _State(BODY, "max", 1, 1.0, 0.9, N_DIR, None, ep.Orbit(0.0))
+    st = State(BODY, "max", 1, 1.0, 0.9, N_DIR, None, ep.Orbit(0.0))
     av.calibrate(st)
     q = adaptive(tq, st, 1e-12, grid=av.first.grid, refine=False, compact=av.first.compact)
     _, err = av.report(st)
@@ -89,7 +89,7 @@ def test_the_report_at_the_calibration_state_is_the_calibrations_estimate():
     # the report's lean mean comes from the fast path: equal to the plain one to rounding (the test above)
     np.testing.assert_allclose(err.L, expected, rtol=0, atol=1e-15 * np.abs(q.mean[:3]).max())
     # elsewhere the report re-estimates: at another state it is not the calibration's estimate
-    st2 = _State(BODY, "max", 1, 0.8, 0.5, N_DIR, None, ep.Orbit(0.0))
+    st2 = State(BODY, "max", 1, 0.8, 0.5, N_DIR, None, ep.Orbit(0.0))
     q2 = adaptive(tq, st2, 1e-12, grid=av.first.grid, refine=False, compact=av.first.compact)
     _, err2 = av.report(st2)
     expected2 = np.abs(lean_mean(tq, st2, av.grid, av.first.compact) - q2.mean)[:3] + q2.error[:3]
@@ -110,7 +110,7 @@ def test_torques_that_declare_broadcasting_broadcast(i, nu):
 
     tq = _declared()[i]
     assert tq._broadcasts
-    st = _State(BODY, "max", 1, 1.3, 0.6, N_DIR, nu, ep.Orbit(0.2))
+    st = State(BODY, "max", 1, 1.3, 0.6, N_DIR, nu, ep.Orbit(0.2))
     grid = Grid(8, 1.0, 8)
     full = torque_grid(tq, st, grid)[0]
     compact = torque_grid(tq, st, grid, compact=True)[0]

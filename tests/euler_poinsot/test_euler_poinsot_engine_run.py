@@ -12,7 +12,7 @@ from scipy.spatial.transform import Rotation
 from scipy.special import ellipk
 
 from rigidbody import euler_poinsot as ep
-from rigidbody.euler_poinsot._averaged import _rho
+from rigidbody.euler_poinsot._segment import rotation_number
 
 BODY = ep.Body(3.2, 2.6, 1.67)
 CASE1 = np.diag([2.322, 1.31, 1.425])
@@ -25,14 +25,14 @@ def _rel(a, b):
 
 @pytest.mark.parametrize("kind", ["max", "min"])
 def test_rotation_number_in_closed_form_equals_the_spectral_mean(kind):
-    # rho = <dpsi/dt> P / 2 pi from the complete elliptic integral of the third kind (derived in _rho's docstring)
+    # rho = <dpsi/dt> P / 2 pi from the complete elliptic integral of the third kind (derived in its docstring)
     # against the spectral mean of dpsi/dt over the closed-form motion (EulerPoinsot.psi_rate_mean, trapezoid rule
     # converged to ~1e-13): they agree to rounding over the whole range, vectorised and one by one
     k2 = np.array([0.0, 1e-8, 0.1, 0.5, 0.9, 0.99, 1.0 - 1e-6])
     spectral = np.array([ep.EulerPoinsot(BODY, 1.7, float(x), kind).psi_rate_mean()
                          * ep.EulerPoinsot(BODY, 1.7, float(x), kind).period / (2.0 * math.pi) for x in k2])
-    assert _rho(BODY, kind, k2) == pytest.approx(spectral, rel=1e-13, abs=0)
-    assert _rho(BODY, kind, 0.3) == pytest.approx(
+    assert rotation_number(BODY, kind, k2) == pytest.approx(spectral, rel=1e-13, abs=0)
+    assert rotation_number(BODY, kind, 0.3) == pytest.approx(
         ep.EulerPoinsot(BODY, 1.0, 0.3, kind).psi_rate_mean() * ep.EulerPoinsot(BODY, 1.0, 0.3, kind).period
         / (2.0 * math.pi), rel=1e-13, abs=0)
 

@@ -21,7 +21,7 @@ from scipy.optimize import brentq
 
 from rigidbody import euler_poinsot as ep
 from rigidbody.core.averaging import n_nodes
-from rigidbody.euler_poinsot._engine import Averager, _axis_error, _State
+from rigidbody.euler_poinsot._engine import Averager, State, _axis_error
 from rigidbody.euler_poinsot._protocol import as_torque
 
 BODY = ep.Body(3.2, 2.6, 1.67)
@@ -290,8 +290,8 @@ def test_the_integrators_report_bounds_the_true_error_of_switched_torques(seed, 
     torque, st, spec = switched_case(seed, jump, thr)
     n = _frame(st["delta"], st["lam"])[:, 2]
     av = Averager(as_torque(torque), "numerical", tol)
-    av.calibrate(_State(BODY, st["kind"], st["sigma"], 1.0, 0.6, n, 0.3, ep.Orbit(0.0)))
-    mean, bound = av.report(_State(BODY, st["kind"], st["sigma"], 1.0, k2_report, n, 0.3, ep.Orbit(0.0)))
+    av.calibrate(State(BODY, st["kind"], st["sigma"], 1.0, 0.6, n, 0.3, ep.Orbit(0.0)))
+    mean, bound = av.report(State(BODY, st["kind"], st["sigma"], 1.0, k2_report, n, 0.3, ep.Orbit(0.0)))
     ref = switched_truth(k2_report, st, *spec)
     assert abs(mean.dT - ref["dT"]) <= bound.dT
     assert abs(mean.dk2 - ref["dk2"]) <= bound.dk2

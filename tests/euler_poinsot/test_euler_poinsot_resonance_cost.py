@@ -12,8 +12,8 @@ from scipy.optimize import brentq
 
 from rigidbody import euler_poinsot as ep
 from rigidbody.euler_poinsot import _resonance
-from rigidbody.euler_poinsot._averaged import _rho
-from rigidbody.euler_poinsot._engine import _State, harmonic
+from rigidbody.euler_poinsot._engine import State, harmonic
+from rigidbody.euler_poinsot._segment import rotation_number
 
 BODY = ep.Body(3.2, 2.6, 1.67)
 CASE2 = np.diag([0.919, 5.228, 1.666])
@@ -27,7 +27,7 @@ def reference(sol, body, torque, eps, kind="max", sigma=1, nu0=0.0, n_grid=300, 
     brentq, the rate of rho from averaged_rates, the period of the motion from EulerPoinsot and the coefficient
     from one harmonic at the crossing. ``upto``: only the crossings with these indices (in time order)."""
     t = np.linspace(sol.tau[0], sol.tau[-1], n_grid)
-    rho = _rho(body, kind, np.clip(sol.sol(t)[1], 0.0, 0.99))  # the search stops at K2_SPIN_CAP = 0.99
+    rho = rotation_number(body, kind, np.clip(sol.sol(t)[1], 0.0, 0.99))  # the search stops at K2_SPIN_CAP = 0.99
 
     def k2_at(x):
         return min(max(float(sol.sol(x)[1]), 0.0), 1.0 - 1e-12)
@@ -37,7 +37,8 @@ def reference(sol, body, torque, eps, kind="max", sigma=1, nu0=0.0, n_grid=300, 
         for i in range(n_grid - 1):
             lo, hi = sorted((j * rho[i], j * rho[i + 1]))
             for N in range(math.floor(lo) + 1, math.floor(hi) + 1):
-                ts = brentq(lambda x, j=j, N=N: j * _rho(body, kind, k2_at(x)) - N, t[i], t[i + 1], xtol=1e-13)
+                ts = brentq(lambda x, j=j, N=N: j * rotation_number(body, kind, k2_at(x)) - N, t[i], t[i + 1],
+                            xtol=1e-13)
                 found.append((ts, j, N))
     found.sort()
     out = []
@@ -50,9 +51,9 @@ def reference(sol, body, torque, eps, kind="max", sigma=1, nu0=0.0, n_grid=300, 
         dk2 = ep.averaged_rates(body, torque, G, k2, math.acos(n[2]), math.atan2(n[1], n[0]), nu, kind=kind,
                                 sigma=sigma)["dk2"]
         h = 1e-6 * k2
-        rate = abs(j * (_rho(body, kind, k2 + h) - _rho(body, kind, k2 - h)) / (2 * h) * dk2)
+        rate = abs(j * (rotation_number(body, kind, k2 + h) - rotation_number(body, kind, k2 - h)) / (2 * h) * dk2)
         P = ep.EulerPoinsot(body, G, k2, kind, sigma).period
-        st = _State(body, kind, sigma, G, k2, n, nu, ep.Orbit(0.0))
+        st = State(body, kind, sigma, G, k2, n, nu, ep.Orbit(0.0))
         c = harmonic(torque, st, j, -N)
         amp = 2 * eps * math.sqrt(P / rate)
         par = complex(n @ c[0:3])
@@ -140,7 +141,7 @@ def test_parseval_bound_equals_the_sum_over_all_orders():
     tq = ep.ViscousCavity(B2, [0.03, 0.19, 0.12]) + ep.GravityGradient(B2) + ep.ConstantTorque([0.1, -0.05, 0.2])
     for kind, sigma in (("max", 1), ("min", -1)):
         n = np.array([0.3, -0.5, 0.8]) / np.linalg.norm([0.3, -0.5, 0.8])
-        st = _State(B2, kind, sigma, 1.3, 0.7, n, 0.4, ep.Orbit(0.0))
+        st = State(B2, kind, sigma, 1.3, 0.7, n, 0.4, ep.Orbit(0.0))
         bound = _resonance.harmonic_bound(tq, st)
         for j in (1, 2):
             c = np.array([harmonic(tq, st, j, m) for m in range(-45, 46)])

@@ -2,7 +2,7 @@
 known in closed form by construction, a straightforward SciPy integration of d(G n)/dtau = <C M> with the rates of
 ``ep.averaged_rates`` at each state, quadratures in T through the separatrix, and the drag tensor's own code path.
 
-The checks aim at the integrator of a torque object (``_averaged._integrate_kind``): its two charts of the
+The checks aim at the integrator of a torque object (``_averaged.integrate_kind``): its two charts of the
 direction of G (polar angles, unit vector) and the switches between them, lambda continuous across them, the
 coordinate ln(k2 + c) as k2 -> 0, the true anomaly of a run that starts after tau = 0, the passage through the
 separatrix, batches, and the engine's fast mean (``_lean.LeanMean``) as the modulus changes along a run.
@@ -18,7 +18,7 @@ from scipy.integrate import quad, solve_ivp
 from scipy.optimize import brentq
 
 from rigidbody import euler_poinsot as ep
-from rigidbody.euler_poinsot._engine import Grid, _State, lean_mean
+from rigidbody.euler_poinsot._engine import Grid, State, lean_mean
 from rigidbody.euler_poinsot._lean import LeanMean
 
 BODY = ep.Body(3.2, 2.6, 1.67)
@@ -338,7 +338,7 @@ def test_one_lean_mean_along_changing_moduli_equals_the_engines_grid(kind, held)
             n /= np.linalg.norm(n)
             G, nu = float(rng.uniform(0.5, 2.0)), (float(rng.uniform(0.0, 6.0)) if held else None)
             fast = np.array(lm(G, k2, *n, nu))
-            plain = lean_mean(_skewed, _State(BODY, kind, -1, G, k2, n, nu, orbit), grid, compact)
+            plain = lean_mean(_skewed, State(BODY, kind, -1, G, k2, n, nu, orbit), grid, compact)
             # the same sums in another order: rounding (measured 2.4e-15 of the largest mean)
             assert np.abs(fast - plain).max() <= 1e-13 * np.abs(plain).max()
         assert len(lm.tables) >= 4

@@ -74,26 +74,14 @@ All quantities are nondimensional in the paper's section-3 scaling (G0 = 1, A~ =
 I~ = I/(G0 eps^2), orbital rate eps, tau = eps^2 t~); see docs/euler_poinsot.md.
 """
 
-from ._averaged import average_torque, averaged, averaged_branches, averaged_rates, precession_rate
+from ._algebra import N_star, N_time, T_from, chi, dk2_dtau, drag_rates, k2_equilibria, k2_from, kind_of, spin_ratio
+from ._averaged import averaged, averaged_branches
 from ._engine import TorqueAverage
-from ._full import initial_state, simulate
-from ._model import (
-    KINDS,
-    Body,
-    Drag,
-    N_star,
-    N_time,
-    Orbit,
-    T_from,
-    chi,
-    dk2_dtau,
-    drag_rates,
-    k2_equilibria,
-    k2_from,
-    kind_of,
-    spin_ratio,
-)
+from ._full import initial_state
+from ._model import KINDS, Body, Drag, Orbit
 from ._motion import EulerPoinsot
+from ._options import Solver, Stops
+from ._rates import average_torque, averaged_rates, precession_rate
 from ._separatrix import (
     ARCS,
     REGIONS,
@@ -103,6 +91,7 @@ from ._separatrix import (
     separatrix_crossing,
     separatrix_limits,
 )
+from ._simulate import simulate
 from ._torques import (
     ConstantTorque,
     FunctionTorque,
@@ -132,6 +121,8 @@ __all__ = [
     "Separatrix",
     "SeparatrixCrossing",
     "SeparatrixLimits",
+    "Solver",
+    "Stops",
     "T_from",
     "Torque",
     "TorqueAverage",

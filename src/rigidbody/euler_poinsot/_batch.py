@@ -16,490 +16,50 @@ single run refuses (a ``ValueError`` there) gets ``status = -1`` and that messag
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..core.batch import integrate_batch, member_records
-from ..core.kernel import ARRAY, SCALAR
-from ..core.ode import Event, Solution
-from ..core.validate import RESULT_ERRORS
-from . import _kernel as _k
-from ._model import K2_SPIN_CAP, Body, Drag, Orbit, _dk2, _labels
-from ._separatrix import K2_SWITCH, _choose, _initial_kind, separatrix_crossing
-from ._start import StartRules, check_start
-from ._stops import stop_message
+from ..core.ode import Solution
+from ..core.validate import positive, real
+from ._algebra import K2_SPIN_CAP
+from ._branches import check_branch
+from ._checks import check_averaging, check_sigma
+from ._closedbatch import ClosedRun, check_members, closed_batch, drag_equivalent, drag_members
+from ._full import initial_state, run_full
+from ._fullbatch import FullRun, full_batch
+from ._members import FIELDS, common_checks, drag_batch, member_inputs, one_by_one
+from ._model import as_orbit
+from ._run import run_averaged
+from ._torques import probe, resolve
 
-__all__ = ["averaged_batch", "closed_batch", "member_inputs", "simulate_batch"]
-
-_AX = ARRAY
-_SC = SCALAR
-
-#: the output fields of an averaged run
-FIELDS = ("G", "T", "k2", "delta", "lam", "nu", "n", "kind", "sigma")
-#: a member that crosses the separatrix more often than this ends with a status (as the single run does)
-_MAX_CROSSINGS = 50
+__all__ = ["averaged_batch", "simulate_batch"]
 
 
-# --------------------------------------------------------------------------------------------------
-# members
-# --------------------------------------------------------------------------------------------------
-@dataclass
-class Members:
-    """Broadcast per-member inputs (flat arrays of the batch), their initial kind, and the members refused at
-    the start (index -> the single call's message)."""
-
-    batch_shape: tuple[int, ...]
-    eps: np.ndarray
-    G0: np.ndarray
-    k2_0: np.ndarray
-    delta0: np.ndarray
-    lam0: np.ndarray
-    nu0: np.ndarray
-    kind: np.ndarray
-    refused: dict[int, str] = field(default_factory=dict)
 
 
-def _as_real_array(v: Any, name: str) -> np.ndarray:
-    if isinstance(v, (bool, np.bool_, str, bytes)) or v is None:
-        raise TypeError(f"{name} must be a real number or an array of them, got {v!r}")
-    try:
-        return np.asarray(v, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be a real number or an array of them, got {v!r}") from None
 
 
-def member_inputs(body: Body, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, nu0: Any, T0: Any = None,
-                  kind: Any = None, shape: tuple[int, ...] = (), shape_of: str = "drag tensors") -> Members:
-    """Broadcast the per-member inputs (and ``shape``, that of ``shape_of``: a batch of drag tensors, the phases
-    of a full batch) to one batch shape
-    (``TypeError``/``ValueError`` naming what does not broadcast or is not real); the initial kind and ``k2_0``
-    of each member from ``T0`` as the single run finds them (a member whose ``T0`` it refuses is refused)."""
-    if T0 is not None and (k2_0 is not None or kind is not None):
-        raise ValueError("give the initial state either by T0 or by k2_0 and kind, not both")
-    named = {"eps": eps, "G0": G0, "k2_0": 0.99 if k2_0 is None else k2_0, "delta0": delta0, "lam0": lam0,
-             "nu0": nu0}
-    if T0 is not None:
-        named["T0"] = T0
-    arrays = {k: _as_real_array(v, k) for k, v in named.items()}
-    try:
-        bshape = np.broadcast_shapes(shape, *(a.shape for a in arrays.values()))
-    except ValueError:
-        shapes = ", ".join(f"{k} {a.shape}" for k, a in arrays.items() if a.ndim)
-        raise ValueError(f"the per-member inputs do not broadcast to one batch shape: {shapes}"
-                         + (f", {shape_of} {shape}" if shape else "")) from None
-    if not bshape:
-        raise ValueError("a batch needs at least one array input")
-    if 0 in bshape:
-        raise ValueError(f"the batch is empty (shape {bshape})")
-    flat = {k: np.broadcast_to(a, bshape).reshape(-1).copy() for k, a in arrays.items()}
-    B = flat["eps"].size
-    kinds = np.empty(B, dtype=object)
-    mem = Members(tuple(int(v) for v in bshape), flat["eps"], flat["G0"], flat["k2_0"], flat["delta0"],
-                  flat["lam0"], flat["nu0"], kinds)
-    if T0 is None:
-        from ._model import _check_kind
-
-        kd = "max" if kind is None else kind
-        _check_kind(kd)
-        kinds[:] = kd
-        return mem
-    for i in range(B):
-        try:
-            G = float(flat["G0"][i])
-            if not (math.isfinite(G) and G > 0):  # T0's range needs G0: its own check comes later
-                kinds[i] = "max"
-                continue
-            mem.k2_0[i], kinds[i] = _initial_kind(body, G, None, None, float(flat["T0"][i]))
-        except ValueError as exc:
-            kinds[i] = "max"
-            mem.refused[i] = str(exc)
-    return mem
 
 
-@dataclass
-class ClosedRun:
-    """What the members of a closed-form batch share: body, orbit, options; the drag diagonal (unlabelled, one
-    entry per member) and the drag tensors (for the capture probabilities at a crossing)."""
-
-    body: Body
-    I: tuple[np.ndarray, np.ndarray, np.ndarray]
-    tensors: np.ndarray
-    orbit: Orbit
-    rtol: float
-    k2_max: float | None
-    min_spin_ratio: float
-    sigma: int = 1
-    branch: Any = "likely"
-    rng: Any = None
-
-    @property
-    def through(self) -> bool:
-        return self.k2_max is None
-
-    @property
-    def k2_stop(self) -> float:
-        return K2_SWITCH if self.k2_max is None else self.k2_max
-
-    @property
-    def spin_cap(self) -> float:
-        return K2_SPIN_CAP if self.k2_max is None else 1.0
-
-    def labelled(self, kind: str, idx: np.ndarray) -> tuple[tuple[float, float, float], tuple[Any, Any, Any]]:
-        """Labelled moments and the members' labelled drag diagonal for ``kind``."""
-        A = _labels(self.body, kind)
-        d = (self.I[0][idx], self.I[1][idx], self.I[2][idx])
-        return A, (d if kind == "max" else (d[2], d[1], d[0]))
 
 
-def drag_members(mem: Members, tensors: np.ndarray) -> tuple[tuple[np.ndarray, np.ndarray, np.ndarray], np.ndarray]:
-    """The members' drag tensors (validated like :class:`Drag`; an invalid one refuses its member): their
-    diagonals and the tensors, flat over the batch."""
-    T = np.broadcast_to(tensors, (*mem.batch_shape, 3, 3)).reshape(-1, 3, 3)
-    diag = np.full((T.shape[0], 3), np.nan)
-    one = None
-    for i in range(T.shape[0]):
-        if one is not None and tensors.ndim == 2:
-            diag[i] = one
-            continue
-        try:
-            diag[i] = Drag(T[i]).diag
-            one = diag[i]
-        except ValueError as exc:
-            mem.refused.setdefault(i, str(exc))
-    return (diag[:, 0], diag[:, 1], diag[:, 2]), T
 
-
-def check_members(mem: Members, run: ClosedRun, full: bool = False, u0: Any = None, psi0: Any = None) -> None:
-    """The single run's start checks (:func:`._start.check_start`), member by member: a refused member gets the
-    single call's message (``full``: those of :func:`simulate`, with the members' phases ``u0``, ``psi0``)."""
-    rules = StartRules(run.body, run.k2_max, run.min_spin_ratio, full)
-    for i in range(mem.eps.size):
-        if i in mem.refused:
-            continue
-        phase = (float(u0[i]), float(psi0[i])) if full else (0.0, 0.0)
-        try:
-            check_start(rules, mem.kind[i], float(mem.eps[i]), float(mem.G0[i]), float(mem.k2_0[i]),
-                        float(mem.delta0[i]), float(mem.lam0[i]), float(mem.nu0[i]), *phase)
-        except ValueError as exc:
-            mem.refused[i] = str(exc)
-
-
-# --------------------------------------------------------------------------------------------------
-# the closed-form batch, round by round
-# --------------------------------------------------------------------------------------------------
-def closed_batch(run: ClosedRun, mem: Members, tau_span: tuple[float, float], te: np.ndarray) -> Solution:
-    """The batch of closed-form runs (``te`` the common output grid); ``mem.refused`` members end at once."""
-    from ._torques import drag_as_torque
-
-    B = mem.eps.size
-    nt = te.size
-    t0, t1 = float(tau_span[0]), float(tau_span[1])
-    e = run.orbit.e
-    out = {k: np.full((B, 3, nt) if k == "n" else (B, nt), np.nan) for k in FIELDS if k != "kind"}
-    out["kind"] = np.full((B, nt), "", dtype="<U3")
-    status, message, event, nfev, t_final = member_records(B, t0)
-    y_final = np.full((B, 5), np.nan)  # rows G, k2, n at each member's end
-    none = np.empty(0)
-    none.setflags(write=False)
-    tev: dict[str, np.ndarray] = {}
-    for name in ("separatrix", "slow_rotation"):
-        tev[name] = np.empty(B, dtype=object)
-        tev[name].fill(none)
-    crossings = np.empty(B, dtype=object)
-    for i in range(B):
-        crossings[i] = []
-    for i, msg in mem.refused.items():
-        message[i] = msg
-    # the members' current piece: kind, sense, start time and state (G, k2, delta, lambda, nu at the start)
-    kind = mem.kind.copy()
-    sigma = np.full(B, float(run.sigma))
-    tau = np.full(B, t0)
-    G, k2, dl, lm, nus = mem.G0.copy(), mem.k2_0.copy(), mem.delta0.copy(), mem.lam0.copy(), mem.nu0.copy()
-    active = np.ones(B, dtype=bool)
-    active[list(mem.refused)] = False
-    hnext = np.full(B, np.nan)
-    lnk_stop = math.log(run.k2_stop)
-    r, cap = run.min_spin_ratio, run.spin_cap
-
-    def rhs_lim(A: Any) -> Any:
-        def f(t: np.ndarray, y: np.ndarray, *a: np.ndarray) -> np.ndarray:
-            return np.stack(_k.rhs_limit(_AX, A, t, y.T, *a), axis=1)
-        return f
-
-    def rhs_orb(A: Any) -> Any:
-        def f(t: np.ndarray, y: np.ndarray, *a: np.ndarray) -> np.ndarray:
-            return np.stack(_k.rhs_orbit(_AX, A, e, t, y.T, *a), axis=1)
-        return f
-
-    def sep(t: np.ndarray, y: np.ndarray, *a: np.ndarray) -> np.ndarray:
-        return np.where(a[5] > 0.0, y[:, 1] - lnk_stop, -1.0)
-
-    def slow(A: Any) -> Any:
-        def f(t: np.ndarray, y: np.ndarray, *a: np.ndarray) -> np.ndarray:
-            k2_ = np.minimum(_k.k2_of(_AX, y[:, 1], a[5]), cap)
-            return _k.nut_freq(_AX, A, np.exp(y[:, 0]), k2_) * a[6] - r
-        return f
-
-    def finish(i: int, st: int, msg: str, ev: str | None, tend: float) -> None:
-        status[i], message[i], event[i], t_final[i] = st, msg, ev, tend
-        active[i] = False
-
-    while np.any(active):
-        groups = []
-        for kd in ("max", "min"):
-            for limit in (True, False):
-                idx = np.nonzero(active & (kind == kd) & ((mem.eps == 0.0) if limit else (mem.eps > 0.0)))[0]
-                if idx.size:
-                    groups.append((kd, limit, idx))
-        for kd, limit, idx in groups:
-            A, Id = run.labelled(kd, idx)
-            co = _k.DragCoefficients(A, Id)
-            y0, z = _k.initial_state(0.0 if limit else mem.eps[idx], G[idx], k2[idx], dl[idx], lm[idx], nus[idx], e)
-            args: tuple[np.ndarray, ...] = (*co.args(), z)
-            events = [Event(sep, "separatrix", True, 1.0, stop_message("separatrix", k2_max=run.k2_stop))]
-            if limit:
-                args = (*args, 0.75 * run.orbit.mean_factor * np.cos(dl[idx]))
-                ie = np.zeros(idx.size)
-                rhs = rhs_lim(A)
-            else:
-                ie = 1.0 / mem.eps[idx]
-                args = (*args, ie, mem.nu0[idx])
-                rhs = rhs_orb(A)
-                events.append(Event(slow(A), "slow_rotation", True, -1.0,
-                                    stop_message("slow_rotation", min_spin_ratio=r)))
-            rt, at = _k.tolerances(run.rtol, y0.shape[1])
-            sol = integrate_batch(rhs, (tau[idx], t1), y0, t_eval=te, rtol=rt, atol=at, events=events, args=args,
-                                  time_name="tau", first_step=hnext[idx])
-            nfev[idx] += sol.nfev
-            hnext[idx] = sol.last_step
-            f = _k.fields(A, e, te, sol.y, z, limit, dl[idx], mem.nu0[idx], ie)
-            got = np.isfinite(sol.y[:, 0, :])  # the samples this piece covers (a crossing's sample: the later)
-            for k in FIELDS:
-                if k == "kind":
-                    out[k][idx] = np.where(got, kd, out[k][idx])
-                elif k == "sigma":
-                    out[k][idx] = np.where(got, sigma[idx, None], out[k][idx])
-                elif k == "n":
-                    out[k][idx] = np.where(got[:, None, :], f[k], out[k][idx])
-                else:
-                    out[k][idx] = np.where(got, f[k], out[k][idx])
-            tev["slow_rotation"][idx] = sol.t_events["slow_rotation"] if "slow_rotation" in sol.t_events else \
-                tev["slow_rotation"][idx]
-            ff = _k.fields(A, e, np.zeros(1), sol.y_final[:, :, None], z, limit, dl[idx], mem.nu0[idx], ie)
-            y_final[idx] = np.concatenate([ff["G"], ff["k2"], ff["n"][:, :, 0]], axis=1)
-            for j, i in enumerate(idx.tolist()):
-                st_, ev_ = int(sol.status[j]), sol.event[j]
-                if not (run.through and st_ == 1 and ev_ == "separatrix"):
-                    if not run.through and ev_ == "separatrix":
-                        tev["separatrix"][i] = sol.t_events["separatrix"][j]
-                    finish(i, st_, str(sol.message[j]), ev_, float(sol.t_final[j]))
-                    continue
-                # a crossing: the state there, the capture probabilities, the region (as the single run does)
-                tc = float(sol.t_final[j])
-                yf = sol.y_final[j]
-                fc = _k.fields(A, e, np.array([tc]), yf[:, None], z[j], limit, dl[i], mem.nu0[i], ie[j])
-                Gc, dc, lc = float(fc["G"][0]), float(fc["delta"][0]), float(fc["lam"][0])
-                nc = fc["n"][:, 0]
-                nu_c = float(fc["nu"][0]) if mem.eps[i] > 0.0 else None
-                tq = drag_as_torque(Drag(run.tensors[i]), run.body, run.orbit)
-                c = separatrix_crossing(run.body, tq, Gc, dc, lc, nu_c, (kd, int(sigma[i])), orbit=run.orbit)
-                region, why = _choose(c, run.branch, len(crossings[i]), run.rng)
-                if region is not None:
-                    An, Idn = run.labelled(region[0], np.array([i]))
-                    if _dk2(An, tuple(float(v[0]) for v in Idn), K2_SWITCH) >= 0.0:  # type: ignore[arg-type]
-                        why = stop_message("attracts", region=region)
-                        region = None
-                crossings[i].append({"tau": tc, "source": (kd, int(sigma[i])), "region": region,
-                                     "probabilities": dict(c.probabilities), "drifts": dict(c.drifts), "G": Gc,
-                                     "n": nc})
-                stop = why if region is None else ""
-                cr = crossings[i]
-                if not stop and (len(cr) > _MAX_CROSSINGS or (len(cr) > 1 and tc <= cr[-2]["tau"])):
-                    stop = stop_message("stall", n=len(cr), tau=tc)
-                tev["separatrix"][i] = np.array([x["tau"] for x in cr])
-                if stop:
-                    finish(i, 1, stop_message("crossing", tau=tc, why=stop), "separatrix", tc)
-                    continue
-                assert region is not None
-                kind[i], sigma[i] = region[0], float(region[1])
-                tau[i], G[i], k2[i], dl[i], lm[i] = tc, Gc, K2_SWITCH, dc, lc
-                if e != 0.0 and nu_c is not None:
-                    nus[i] = nu_c
-    shape = mem.batch_shape
-    data = {k: v.reshape(shape + v.shape[1:]) for k, v in out.items()}
-    Y = np.concatenate([out["G"][:, None], out["k2"][:, None], out["n"]], axis=1)  # rows G, k2, n
-    t_events = {name: arr.reshape(shape) for name, arr in tev.items()}
-    sol = Solution("tau", te, Y.reshape(shape + Y.shape[1:]), data, status.reshape(shape), message.reshape(shape),
-                   event.reshape(shape), t_events, {}, None, nfev.reshape(shape), batch_shape=shape,
-                   t_final=t_final.reshape(shape), y_final=y_final.reshape((*shape, 5)))
-    sol.crossings = crossings.reshape(shape)  # type: ignore[attr-defined]  # per member, as the single run's
-    return sol
-
-
-# --------------------------------------------------------------------------------------------------
-# the public batch entries (averaged and simulate dispatch here when an input is an array)
-# --------------------------------------------------------------------------------------------------
-def is_batch(*values: Any) -> bool:
-    """Whether any per-member input is an array (a batch call)."""
-    return any(np.ndim(v) > 0 for v in values)
-
-
-def drag_batch(torque: Any) -> np.ndarray | None:
-    """A batch of drag tensors (an array of shape ``batch_shape + (3, 3)``, ``batch_shape`` non-empty), or None."""
-    if isinstance(torque, (str, bytes)) or callable(torque) or torque is None:
-        return None
-    try:
-        a = np.asarray(torque, dtype=float)
-    except (TypeError, ValueError):
-        return None
-    return a if a.ndim >= 3 and a.shape[-2:] == (3, 3) else None
-
-
-def batch_grid(tau_eval: Any, tau_span: tuple[float, float]) -> np.ndarray:
-    """The common output grid of a batch: ``tau_eval`` (strictly increasing) or 101 points over the span."""
-    t0, t1 = float(tau_span[0]), float(tau_span[1])
-    if tau_eval is None:
-        return np.linspace(t0, t1, 101)
-    te = np.atleast_1d(np.asarray(tau_eval, dtype=float))
-    if te.ndim != 1 or (te.size > 1 and np.any(np.diff(te) <= 0.0)):
-        raise ValueError("tau_eval of a batch must be a strictly increasing 1-D array (the common output grid)")
-    return te
-
-
-def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: np.ndarray,
-             names: tuple[str, ...]) -> Solution:
-    """A batch Solution from single runs evaluated on ``te`` (a str: the message of a member refused at the
-    start, status -1). The engine path of :func:`averaged` and the ``'angles'`` formulation of :func:`simulate`
-    go member by member this way."""
-    B = len(solutions)
-    nt = te.size
-    status = np.full(B, -1, dtype=int)
-    message = np.empty(B, dtype=object)
-    event = np.empty(B, dtype=object)
-    event[:] = None
-    nfev = np.zeros(B, dtype=int)
-    t_final = np.full(B, np.nan)
-    data: dict[str, np.ndarray] = {}
-    ys: np.ndarray | None = None
-    events: dict[str, np.ndarray] = {}
-    extras: dict[str, np.ndarray] = {}
-    for i, s in enumerate(solutions):
-        if isinstance(s, str):
-            message[i] = s
-            continue
-        status[i], message[i], event[i], nfev[i] = int(s.status), str(s.message), s.event, int(s.nfev)
-        ev_t = s.t_events.get(s.event, np.empty(0)) if s.event is not None else np.empty(0)
-        t_final[i] = float(ev_t[-1]) if np.size(ev_t) else (float(s.time[-1]) if s.time.size else np.nan)
-        cols = np.searchsorted(te, s.time)
-        if ys is None:
-            ys = np.full((B, s.y.shape[0], nt), np.nan)
-        r = min(ys.shape[1], s.y.shape[0])  # raw rows: the leading ones are common (e.g. G, k2, n [, nu])
-        ys[i][:r, cols] = s.y[:r]
-        for k in names:
-            v = np.asarray(getattr(s, k))
-            if k not in data:
-                fill: Any = "" if v.dtype.kind == "U" else np.nan
-                data[k] = np.full((B, *v.shape[:-1], nt), fill, dtype=v.dtype if v.dtype.kind == "U" else float)
-            data[k][i][..., cols] = v
-        for k, v in s.t_events.items():
-            if k not in events:
-                events[k] = np.empty(B, dtype=object)
-                none = np.empty(0)
-                none.setflags(write=False)
-                events[k].fill(none)
-            events[k][i] = np.asarray(v, dtype=float)
-        for k in ("quad_error", "resonances", "crossings"):  # per-run reports of the engine path
-            if k in s.__dict__:
-                extras.setdefault(k, np.empty(B, dtype=object))[i] = s.__dict__[k]
-    if ys is None:  # no member ran: the raw rows G, k2, n
-        ys = np.full((B, 5, nt), np.nan)
-    for k in names:  # fields no member produced (all refused): NaN, as a refused member's
-        if k not in data:
-            data[k] = np.full((B, 3, nt), np.nan) if k == "n" else (
-                np.full((B, nt), "", dtype="<U3") if k == "kind" else np.full((B, nt), np.nan))
-    fields_ = {k: v.reshape(batch_shape + v.shape[1:]) for k, v in data.items()}
-    sol = Solution("tau", te, ys.reshape(batch_shape + ys.shape[1:]), fields_, status.reshape(batch_shape),
-                   message.reshape(batch_shape), event.reshape(batch_shape),
-                   {k: v.reshape(batch_shape) for k, v in events.items()}, {}, None, nfev.reshape(batch_shape),
-                   batch_shape=batch_shape, t_final=t_final.reshape(batch_shape))
-    for k, v in extras.items():
-        setattr(sol, k, v.reshape(batch_shape))
-    return sol
-
-
-def one_by_one(call: Any, mem: Members, te: np.ndarray, names: tuple[str, ...], **per_member: np.ndarray) -> Solution:
-    """Each member by its own single call ``call(eps, G0, k2_0, delta0, lam0, nu0, tau_eval=..., **extra)``; a
-    ``ValueError`` (or a torque's output refused at the member's start) refuses that member (status -1, its
-    message)."""
-    out: list[Solution | str] = []
-    for i in range(mem.eps.size):
-        if i in mem.refused:
-            out.append(mem.refused[i])
-            continue
-        extra = {k: (v[i] if v.dtype == object else float(v[i])) for k, v in per_member.items()}
-        try:
-            out.append(call(float(mem.eps[i]), float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]),
-                            float(mem.lam0[i]), float(mem.nu0[i]), te, **extra))
-        except (ValueError, *RESULT_ERRORS) as exc:
-            out.append(str(exc))
-    return assemble(out, mem.batch_shape, te, names)
-
-
-def drag_equivalent(torque: Any, body: Body, orbit: Orbit) -> np.ndarray | None:
-    """The drag tensor whose meaning (linear drag plus the gravity gradient) a torque object has, or None: a sum
-    of :class:`LinearDrag` parts and one :class:`GravityGradient` of this body and orbit in the module's scaling
-    (``omega0 = 1``). Such a batch runs the closed forms of the drag tensor vectorised over its members."""
-    from ._torques import GravityGradient, LinearDrag
-
-    parts = torque.parts()
-    gg = [p for p in parts if isinstance(p, GravityGradient)]
-    lin = [p for p in parts if isinstance(p, LinearDrag)]
-    if len(gg) != 1 or not lin or len(gg) + len(lin) != len(parts):
-        return None
-    g = gg[0]
-    if g.omega0 != 1.0 or g.body != body or g.orbit != orbit:
-        return None
-    return np.sum([np.asarray(p.I, dtype=float) for p in lin], axis=0)
-
-
-def _common_checks(body: Any, tau_span: Any, tau_eval: Any, opts: dict[str, Any]) -> tuple[float, float, np.ndarray]:
-    from ..core.validate import span
-    from ._averaged import _check_tol
-    from ._model import _check_body
-
-    _check_body(body)
-    t0, t1 = span(tau_span, "tau_span")
-    te = batch_grid(tau_eval, (t0, t1))
-    if te.size and (te[0] < t0 or te[-1] > t1):
-        raise ValueError(f"tau_eval must lie within tau_span = {tuple(tau_span)!r}, got [{te[0]}, {te[-1]}]")
-    _check_tol(opts["rtol"], opts["atol"])
-    if opts["method"] != "DOP853":
-        raise ValueError(f"a batch integrates with method='DOP853' (integrate_batch), got {opts['method']!r}")
-    return t0, t1, te
 
 
 def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any,
-                   tau_span: Any, tau_eval: Any, nu0: Any, opts: dict[str, Any], single: Any) -> Solution:
+                   tau_span: Any, tau_eval: Any, nu0: Any, opts: dict[str, Any]) -> Solution:
     """The batch branch of :func:`rigidbody.euler_poinsot.averaged`.
 
-    ``opts`` holds the keyword options of the call (validated here as the single run validates them), ``single``
-    is :func:`averaged` itself (members of the engine path run one by one through it).
+    ``opts`` holds the keyword options of the call (validated here as the single run validates them); the members
+    of the engine path run one by one through the single run.
     """
-    from ..core.validate import positive, real
-    from ._averaged import _check_method, _check_sigma
-    from ._model import _as_orbit
-    from ._separatrix import _check_branch
-    from ._torques import resolve
-
-    t0, t1, te = _common_checks(body, tau_span, tau_eval, opts)
-    orb = _as_orbit(opts["orbit"])
-    _check_method(opts["averaging"], "averaging")
-    sigma = _check_sigma(opts["sigma"])
+    t0, t1, te = common_checks(body, tau_span, tau_eval, opts)
+    orb = as_orbit(opts["orbit"])
+    check_averaging(opts["averaging"], "averaging")
+    sigma = check_sigma(opts["sigma"])
     positive(opts["quad_tol"], "quad_tol")
-    branch = _check_branch(opts["branch"])
+    branch = check_branch(opts["branch"])
     k2_max = opts["k2_max"]
     if k2_max is not None:
         k2_max = real(k2_max, "k2_max")
@@ -529,24 +89,18 @@ def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
 
     def call(eps_: float, G0_: float, k2_: float, d0: float, l0: float, n0: float, te_: np.ndarray,
              kind: str) -> Solution:
-        return single(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, kind=kind, **one)
+        return run_averaged(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, kind=kind, T0=None, **one)
 
     return one_by_one(call, mem, te, FIELDS, kind=mem.kind)
 
 
 def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,
-                   tau_eval: Any, nu0: Any, u0: Any, psi0: Any, opts: dict[str, Any], single: Any) -> Solution:
-    """The batch branch of :func:`rigidbody.euler_poinsot.simulate` (``opts``: its keyword options; ``single``:
-    :func:`simulate`, through which the ``'angles'`` formulation runs member by member)."""
-    from ..core.validate import real
-    from ._averaged import _check_sigma
-    from ._fullbatch import FullRun, full_batch
-    from ._model import _as_orbit
-    from ._torques import probe, resolve
-
-    t0, t1, te = _common_checks(body, tau_span, tau_eval, {**opts, "method": "DOP853"})
-    sigma = _check_sigma(opts["sigma"])
-    orb = _as_orbit(opts["orbit"])
+                   tau_eval: Any, nu0: Any, u0: Any, psi0: Any, opts: dict[str, Any]) -> Solution:
+    """The batch branch of :func:`rigidbody.euler_poinsot.simulate` (``opts``: its keyword options; the ``'angles'``
+    formulation runs member by member through the single run)."""
+    t0, t1, te = common_checks(body, tau_span, tau_eval, {**opts, "method": "DOP853"})
+    sigma = check_sigma(opts["sigma"])
+    orb = as_orbit(opts["orbit"])
     if opts["formulation"] not in ("body", "angles"):
         raise ValueError(f"formulation must be 'body' or 'angles', got {opts['formulation']!r}")
     k2_max = None if opts["k2_max"] is None else real(opts["k2_max"], "k2_max")
@@ -566,12 +120,12 @@ def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
     if what == "torque":
         tq._check_setup(body, orb)
     if opts["formulation"] == "angles" or opts["method"] != "DOP853":
-        one = {k: v for k, v in opts.items() if k not in ("T0", "kind")}
+        one = {k: v for k, v in opts.items() if k not in ("T0", "kind", "u0", "psi0")}
 
         def call(eps_: float, G0_: float, k2_: float, d0: float, l0: float, n0: float, te_: np.ndarray,
                  u0: float, psi0: float, kind: str) -> Solution:
-            return single(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, u0=u0, psi0=psi0, kind=kind,
-                          **one)
+            return run_full(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, u0=u0, psi0=psi0, kind=kind,
+                            T0=None, **one)
 
         names = ("G", "T", "k2", "delta", "lam", "nu", "n", "kind", "sigma")
         return one_by_one(call, mem, te, names, u0=ph, psi0=ps, kind=mem.kind)
@@ -582,8 +136,6 @@ def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
     run = FullRun(body, what, tq, orb, mem.kind, sigma, float(opts["rtol"]), float(opts["atol"]), k2_max, min_spin,
                   K2_SPIN_CAP if k2_max is None else 1.0)
     if what == "torque":  # one evaluation at a valid member's start, with the single run's message on failure
-        from ._full import initial_state
-
         good = [i for i in range(mem.eps.size) if i not in mem.refused]
         if good:
             i = good[0]

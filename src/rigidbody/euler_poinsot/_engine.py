@@ -59,14 +59,16 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..core import averaging as avg
-from ._model import Body, Orbit, _labels
+from ._grid import Grid, nu_nodes
+from ._model import relabel
 from ._protocol import TorqueSum, evaluate
+from ._state import Mean, State, amplitudes, frame
 
 __all__ = ["TorqueAverage"]
 
@@ -81,71 +83,6 @@ _ROUND = 8 * 2.2e-16
 #: convergence of torques that are not smooth along two axes; the largest ratio of true error to estimate found
 #: was 3.2)
 _SAFETY = 4.0
-
-
-@dataclass
-class _State:
-    """One slow state: the body, the kind of motion and its sense, G, k^2, n and the true anomaly."""
-
-    body: Body
-    kind: str
-    sigma: int
-    G: float
-    k2: float
-    n: np.ndarray
-    nu: float | None
-    orbit: Orbit
-    mc: float = field(default=-1.0)
-
-    def __post_init__(self) -> None:
-        if self.mc < 0.0:
-            self.mc = 1.0 - self.k2
-        self.lab = (0, 1, 2) if self.kind == "max" else (2, 1, 0)
-        self.a: tuple[float, float, float] = _labels(self.body, self.kind)
-
-    @property
-    def Q(self) -> float:
-        a1, a2, a3 = self.a
-        R = a1 * (a2 - a3) + a3 * (a1 - a2) * self.k2
-        return self.G**2 * (a1 - a3) * (a2 - a3) / R
-
-    @property
-    def T(self) -> float:
-        a1, a2, a3 = self.a
-        return 0.5 * self.G**2 * (a2 - a3 + (a1 - a2) * self.k2) / (a1 * (a2 - a3) + a3 * (a1 - a2) * self.k2)
-
-
-@dataclass
-class _Mean:
-    """Averaged effect of a torque: L = <C M> (orbital axes), dT, dk2; linear in the torque."""
-
-    L: np.ndarray
-    dT: float
-    dk2: float
-
-    def __add__(self, other: _Mean) -> _Mean:
-        return _Mean(self.L + other.L, self.dT + other.dT, self.dk2 + other.dk2)
-
-
-def frame(n: np.ndarray) -> np.ndarray:
-    """An orthonormal frame (columns y1, y2, y3 = n); y2 in the orbit plane (the paper's Oy) off the poles."""
-    n1, n2, n3 = (float(x) for x in n)
-    r = math.sqrt(n1 * n1 + n2 * n2 + n3 * n3)
-    n1, n2, n3 = n1 / r, n2 / r, n3 / r
-    h = math.hypot(n1, n2)
-    c, s = (n1 / h, n2 / h) if h > 1e-300 else (1.0, 0.0)
-    # y2 = (-sin lam, cos lam, 0), y1 = y2 x n = (cos delta cos lam, cos delta sin lam, -sin delta)
-    return np.array([[n3 * c, -s, n1], [n3 * s, c, n2], [-h, 0.0, n3]])
-
-
-def amplitudes(st: _State) -> tuple[float, float, float]:
-    r"""The amplitudes of the Euler--Poinsot motion in the labelled axes (sec. 2):
-    :math:`\omega = (\sigma c_{dn}\operatorname{dn}, -\sigma k c_{sn}\operatorname{sn}, k c_{cn}\operatorname{cn})`."""
-    a1, a2, a3 = st.a
-    R = a1 * (a2 - a3) + a3 * (a1 - a2) * st.k2
-    G = st.G
-    return (G * math.sqrt((a2 - a3) / (a1 * R)), G * math.sqrt((a1 - a3) / (a2 * R)),
-            G * math.sqrt((a1 - a2) / (a3 * R)))
 
 
 def _symmetric_phase(n: int, mc: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -163,7 +100,7 @@ def _symmetric_phase(n: int, mc: float) -> tuple[np.ndarray, np.ndarray, np.ndar
     return sn, cn, dn
 
 
-def motion_nodes(st: _State, n_u: int) -> tuple[np.ndarray, np.ndarray]:
+def motion_nodes(st: State, n_u: int) -> tuple[np.ndarray, np.ndarray]:
     r"""Body angular velocity ``(n_u, 3)`` and direction cosines :math:`\alpha_0` ``(n_u, 3, 3)`` at
     :math:`\psi = 0` on ``n_u`` uniform nodes of the period :math:`4K` (the closed form of sec. 2)."""
     b = st.body
@@ -173,10 +110,7 @@ def motion_nodes(st: _State, n_u: int) -> tuple[np.ndarray, np.ndarray]:
     k = math.sqrt(k2)
     omega = np.empty((n_u, 3))
     w_dn, w_sn, w_cn = s * c_dn * dn, -s * k * c_sn * sn, k * c_cn * cn
-    if st.kind == "max":
-        omega[:, 0], omega[:, 1], omega[:, 2] = w_dn, w_sn, w_cn
-    else:
-        omega[:, 0], omega[:, 1], omega[:, 2] = w_cn, w_sn, w_dn
+    omega[:, 0], omega[:, 1], omega[:, 2] = relabel(st.kind, (w_dn, w_sn, w_cn))
     g = omega * b.A
     # alpha_0 = dcm(0, theta, phi): rows (cos phi, -sin phi, 0), (cos th sin phi, cos th cos phi, -sin th), g/G
     h = np.hypot(g[:, 0], g[:, 1])
@@ -194,19 +128,6 @@ def motion_nodes(st: _State, n_u: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 @functools.lru_cache(maxsize=64)
-def nu_nodes(e: float, n_nu: int, dual: bool = False) -> tuple[np.ndarray, np.ndarray]:
-    """True-anomaly nodes and time weights (sum 1) for the mean over one orbit of eccentricity ``e``
-    (Kepler's law: dt is proportional to (1 + e cos nu)^-2 d nu). ``dual``: the nodes shifted by half a
-    step. Cached; read-only arrays."""
-    nu = (np.arange(n_nu) + (0.5 if dual else 0.0)) * (2.0 * math.pi / n_nu)
-    w = (1.0 + e * np.cos(nu)) ** -2.0
-    w /= w.sum()
-    nu.setflags(write=False)
-    w.setflags(write=False)
-    return nu, w
-
-
-@functools.lru_cache(maxsize=64)
 def _psi_trig(n_psi: int, dual: bool = False) -> tuple[np.ndarray, np.ndarray]:
     psi = (np.arange(n_psi) + (0.5 if dual else 0.0)) * (2.0 * math.pi / n_psi)
     c, s = np.cos(psi)[:, None], np.sin(psi)[:, None]
@@ -215,20 +136,7 @@ def _psi_trig(n_psi: int, dual: bool = False) -> tuple[np.ndarray, np.ndarray]:
     return c, s
 
 
-@dataclass
-class Grid:
-    """Node counts of the engine: precession angle, elliptic phase (a multiple of the core's count), orbit."""
-
-    n_psi: int = 8
-    m_u: float = 1.0
-    n_nu: int = 16
-
-    def n_u(self, mc: float) -> int:
-        n = round(self.m_u * avg.n_nodes(mc=mc, period="4K"))
-        return max(4, n + (-n) % 4)
-
-
-def torque_grid(torque: Any, st: _State, grid: Grid, compact: bool = False, dual: bool = False,
+def torque_grid(torque: Any, st: State, grid: Grid, compact: bool = False, dual: bool = False,
                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The torque at every node: ``M`` of shape ``(n_nu, n_psi, n_u, 3)`` (``n_nu = 1`` when nu is held),
     the orbit weights ``w``, and the body angular velocity ``(n_u, 3)`` and attitudes ``C`` ``(n_psi, n_u,
@@ -268,7 +176,7 @@ def torque_grid(torque: Any, st: _State, grid: Grid, compact: bool = False, dual
     return (M if M.shape == (*shape, 3) else np.broadcast_to(M, (*shape, 3))), w, omega, C
 
 
-def quantities(st: _State, omega: np.ndarray, C: np.ndarray, M: np.ndarray) -> np.ndarray:
+def quantities(st: State, omega: np.ndarray, C: np.ndarray, M: np.ndarray) -> np.ndarray:
     """The six averaged quantities at the (psi, u) nodes for a torque ``M`` (n_psi, n_u, 3) already averaged
     over the orbit: C M (3), omega . M, dP/dt, dQ/dt; shape ``(n_psi, n_u, 6)``. All are linear in M with
     coefficients that do not depend on nu, so averaging M over nu first is exact."""
@@ -291,7 +199,7 @@ def _nu_mean(M: np.ndarray, w: np.ndarray, step: int = 1) -> np.ndarray:
     return ((ws / ws.sum()) @ Ms.reshape(Ms.shape[0], -1)).reshape(Ms.shape[1:])
 
 
-def lean_mean(torque: Any, st: _State, grid: Grid, compact: bool = False) -> np.ndarray:
+def lean_mean(torque: Any, st: State, grid: Grid, compact: bool = False) -> np.ndarray:
     """The six means on one grid, no error estimate (the integrators' right-hand sides): only the means of
     C M and of the products omega_i M_i are formed (the rest is linear in them)."""
     M, w, omega, C = torque_grid(torque, st, grid, compact)
@@ -353,7 +261,7 @@ class Quadrature:
     compact: bool
 
 
-def adaptive(torque: Any, st: _State, tol: float, grid: Grid | None = None, refine: bool = True,
+def adaptive(torque: Any, st: State, tol: float, grid: Grid | None = None, refine: bool = True,
              compact: bool | None = None) -> Quadrature:
     """Mean of the six quantities with an error estimate; the grid is doubled along axes until ``tol``."""
     g = Grid() if grid is None else Grid(grid.n_psi, grid.m_u, grid.n_nu)
@@ -445,7 +353,7 @@ _JUMP = 0.85
 _ISOLATED = 5.0
 
 
-def _profiles(st: _State, omega: np.ndarray, C: np.ndarray, M: np.ndarray, w: np.ndarray, V: np.ndarray,
+def _profiles(st: State, omega: np.ndarray, C: np.ndarray, M: np.ndarray, w: np.ndarray, V: np.ndarray,
               ) -> dict[str, np.ndarray]:
     """The six quantities along each axis, averaged over the other axes (``(n, 6)`` per axis; along nu
     times ``n w``, so that their plain mean is the weighted one)."""
@@ -498,19 +406,19 @@ def _scale(Vabs: np.ndarray) -> np.ndarray:
     return S + 1e-300
 
 
-def mean_of(q: np.ndarray, st: _State) -> _Mean:
+def mean_of(q: np.ndarray, st: State) -> Mean:
     """The averaged effect (L, dT, dk2) from the six means."""
     a1, a2, a3 = st.a
     c = (a2 - a3) / (a1 - a2)
     dk2 = (c * q[4] - st.k2 * q[5]) / st.Q
-    return _Mean(np.array(q[0:3]), float(q[3]), float(dk2))
+    return Mean(np.array(q[0:3]), float(q[3]), float(dk2))
 
 
-def error_of(e: np.ndarray, st: _State) -> _Mean:
+def error_of(e: np.ndarray, st: State) -> Mean:
     """Error bounds on (L, dT, dk2) from those of the six means (triangle inequality)."""
     a1, a2, a3 = st.a
     c = abs((a2 - a3) / (a1 - a2))
-    return _Mean(np.array(e[0:3]), float(e[3]), float((c * e[4] + st.k2 * e[5]) / abs(st.Q)))
+    return Mean(np.array(e[0:3]), float(e[3]), float((c * e[4] + st.k2 * e[5]) / abs(st.Q)))
 
 
 @dataclass(frozen=True)
@@ -567,9 +475,9 @@ class Averager:
         self.grid: Grid | None = None
         self.first: Quadrature | None = None
         self.lean: Any = None
-        self.first_state: _State | None = None
+        self.first_state: State | None = None
 
-    def calibrate(self, st: _State) -> None:
+    def calibrate(self, st: State) -> None:
         closed: list[Any] = []
         rest: list[Any] = []
         for p in self.parts:
@@ -587,8 +495,8 @@ class Averager:
             self.lean = LeanMean(self.rest, st.body, st.kind, st.sigma, self.grid, self.first.compact, st.orbit,
                                  st.nu is not None)
 
-    def mean(self, st: _State) -> _Mean:
-        total: _Mean | None = None
+    def mean(self, st: State) -> Mean:
+        total: Mean | None = None
         for p in self.closed:
             m = p._closed(st)
             total = m if total is None else total + m
@@ -615,14 +523,14 @@ class Averager:
             return None
         return lm.rates
 
-    def report(self, st: _State) -> tuple[_Mean, _Mean]:
+    def report(self, st: State) -> tuple[Mean, Mean]:
         """(mean on the integrators' grid, a bound on its quadrature error) at a state. The bound is
         |lean - fine| + (estimated error of the fine, calibration grid): the triangle inequality. Closed
         forms count as exact."""
-        total = _Mean(np.zeros(3), 0.0, 0.0)
+        total = Mean(np.zeros(3), 0.0, 0.0)
         for p in self.closed:
             total = total + p._closed(st)
-        err = _Mean(np.zeros(3), 0.0, 0.0)
+        err = Mean(np.zeros(3), 0.0, 0.0)
         if self.rest is not None:
             assert self.first is not None and self.grid is not None
             s0 = self.first_state
@@ -640,7 +548,7 @@ class Averager:
         return total, err
 
 
-def _same_state(a: _State, b: _State, rel: float = 1e-12) -> bool:
+def _same_state(a: State, b: State, rel: float = 1e-12) -> bool:
     """Whether two slow states agree to ``rel`` (the start of a run, and the calibration state it came from)."""
     return (a.kind == b.kind and a.sigma == b.sigma and a.body is b.body and a.orbit == b.orbit
             and (a.nu is None) == (b.nu is None)
@@ -649,7 +557,7 @@ def _same_state(a: _State, b: _State, rel: float = 1e-12) -> bool:
             and float(np.abs(np.asarray(a.n) - np.asarray(b.n)).max()) <= rel)
 
 
-def harmonic(torque: Any, st: _State, j: int, m: int) -> np.ndarray:
+def harmonic(torque: Any, st: State, j: int, m: int) -> np.ndarray:
     r"""The Fourier coefficient :math:`c_{jm}` of the six quantities on the torus of the motion.
 
     In the angle variables of the Euler--Poinsot motion, :math:`\tilde\psi = \psi - \chi(t)` (:math:`\chi`

@@ -25,6 +25,7 @@ Two independent formulations integrate the same motion:
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -32,24 +33,17 @@ import numpy as np
 from ..core import euler
 from ..core.ode import Event, Solution, integrate
 from ..core.validate import RESULT_ERRORS, real, span
-from ._averaged import _check_tau_eval, _check_tol, _finish
-from ._model import (
-    K2_SPIN_CAP,
-    Body,
-    Orbit,
-    _as_orbit,
-    _check_body,
-    _frame_y,
-    _nut_freq,
-)
+from ._algebra import K2_SPIN_CAP, nutation_frequency
+from ._checks import check_tau_eval, check_tol
+from ._model import Body, Orbit, as_orbit, check_body, frame_y, relabel
 from ._motion import EulerPoinsot
+from ._output import finish_output
 from ._protocol import Misfire, evaluate
-from ._separatrix import _initial_kind
-from ._start import StartRules, check_start
+from ._start import StartRules, check_start, initial_kind
 from ._stops import stop_message
 from ._torques import probe, resolve
 
-__all__ = ["initial_state", "simulate"]
+__all__ = ["initial_state", "run_full"]
 
 
 def initial_state(
@@ -72,7 +66,7 @@ def initial_state(
     m = EulerPoinsot(body, G0, k2_0, kind, sigma)
     g = m.g(0.0, u0)
     _, theta, phi = m.angles(0.0, u0)
-    Ry = _frame_y(delta0, lam0)
+    Ry = frame_y(delta0, lam0)
     Rb = Ry @ euler.dcm(psi0, theta, phi)
     return {"g": g, "R": Rb, "q": euler.quat_from_dcm(Rb), "psi": psi0, "theta": theta, "phi": phi,
             "T": m.T}
@@ -91,110 +85,239 @@ def _osculating(A: tuple[float, float, float], D: float) -> tuple[tuple[float, f
     return Alab, min(max(_k2_osc(Alab, D), 0.0), 1.0)
 
 
-def simulate(
-    body: Body,
-    torque: Any,
-    eps: Any,
-    G0: Any = 1.0,
-    k2_0: Any = None,
-    delta0: Any = math.pi / 4,
-    lam0: Any = math.pi / 4,
-    tau_span: tuple[float, float] = (0.0, 3.0),
-    tau_eval: Any = None,
-    nu0: Any = 0.0,
-    *,
-    kind: str | None = None,
-    T0: Any = None,
-    orbit: Orbit | None = None,
-    u0: Any = 0.0,
-    psi0: Any = 0.0,
-    sigma: int = 1,
-    formulation: str = "body",
-    rtol: float = 1e-10,
-    atol: float = 1e-12,
-    method: str = "DOP853",
-    k2_max: float | None = 1.0 - 1e-6,
-    min_spin_ratio: float = 1.0,
-) -> Solution:
-    r"""Integrate the full, unaveraged motion (1), (3), (4) in the slow time :math:`\tau`.
+@dataclass
+class _Common:
+    """What both formulations of a single run share."""
 
-    Same arguments and output fields as :func:`averaged` (the slow variables are the instantaneous,
-    osculating ones: :math:`k^2` from (5) with the current :math:`G, T`), plus the body's initial phase.
-    The body-frame equations are regular on the separatrix :math:`G^2 = 2TA_2`: the run goes through it,
-    the osculating kind of motion (and with it the formula for :math:`k^2`) switches there, and each passage
-    is recorded in ``t_events['separatrix']``.
+    body: Body
+    orbit: Orbit
+    torque: Any
+    generic: bool
+    Im: np.ndarray
+    eps: float
+    st: dict[str, Any]
+    nu0: float
+    G0: float
+    delta0: float
+    lam0: float
+    misfire: Misfire
+    nu_of: Any
 
-    Parameters
-    ----------
-    body : Body
-    torque : array_like, Drag, torque object or callable
-        A drag tensor :math:`\tilde I` (3x3, its diagonal, or a :class:`Drag`): Rachinskaya's drag *plus*
-        the gravity-gradient torque (3), as in :func:`averaged`. A torque object
-        (:class:`LinearDrag`, :class:`GravityGradient`, their sums, ...) or a plain callable
-        ``torque(omega, C, nu) -> M`` is the whole perturbation (body components, the section-3 scaling
-        divided by :math:`\varepsilon^2`; see :class:`Torque`): :math:`d\mathbf g/d\tau =
-        \varepsilon^{-2}\mathbf g\times\boldsymbol\omega + \mathbf M`.
-    eps, G0, delta0, lam0, tau_span, tau_eval, nu0, orbit, rtol, atol, method
-        As in :func:`averaged` (``eps``, ``G0``, ``delta0``, ``lam0``, ``nu0`` floats or arrays of a batch);
-        ``eps`` must be positive (the cost grows like :math:`\varepsilon^{-2}`: :math:`\tau` spans
-        :math:`\tau/\varepsilon^2` units of :math:`\tilde t`).
-    k2_0, kind : float or array_like, {'max', 'min'}
-        Initial modulus squared (in [0, 1); default 0.99) and kind of motion (default ``'max'``, the paper's).
-    T0 : float or array_like, optional
-        The initial kinetic energy instead of ``k2_0`` and ``kind``: any :math:`T_0` in
-        :math:`[G_0^2/(2A_1), G_0^2/(2A_3)]` off the separatrix (the kind follows from :func:`kind_of`).
-    u0, psi0, sigma
-        Initial elliptic phase, precession angle about :math:`\mathbf G` (floats or arrays of a batch) and sense
-        of rotation of the Euler--Poinsot motion (see :func:`initial_state`).
-    formulation : {'body', 'angles'}
-        Euler's equations with a quaternion (default, regular everywhere) or the paper's (1), (3), (4).
-    k2_max : float or None
-        The run ends (event ``'separatrix'``) as soon as the osculating :math:`k^2` of the initial kind reaches
-        it (default :math:`1 - 10^{-6}`, as :func:`averaged`). ``None``: no stop; the motion goes on through the
-        separatrix (the body-frame equations are regular there) and the crossings are recorded, not terminal.
-    min_spin_ratio : float
-        The run ends (event ``'slow_rotation'``) when :func:`spin_ratio` of the osculating motion falls to this
-        value, as in :func:`averaged`. In a run through the separatrix (``k2_max=None``) the ratio is taken at
-        :math:`\min(k^2, 0.99)`: within 0.01 of the separatrix the period grows like :math:`\ln(1/(1-k^2))`
-        while the body still turns fast (about the intermediate axis), and the momentary infinite period of a
-        passage must not end the run.
 
-    Returns
-    -------
-    Solution
-        ``tau, G, T, k2, delta, lam, nu, n`` as :func:`averaged`, and ``kind`` (``'max'``/``'min'`` at each
-        output time: the osculating kind of motion; ``k2`` is that kind's modulus) and ``sigma`` (+1/-1: the
-        sign of :math:`g_1` for ``'max'``, of :math:`g_3` for ``'min'``); ``t_events['separatrix']`` holds the
-        times of the passages through the separatrix. ``'body'`` adds ``g`` (body components of G, shape
-        (3, n)) and ``q``; ``'angles'`` adds ``theta, phi, psi`` and ``T`` is the integrated energy of (4).
-        For a batch every field has the leading ``batch_shape`` (and ``tau_eval``, default 101 times, as its
-        last axis), NaN after a member's end; ``status``, ``message``, ``event`` are per member.
 
-    Notes
-    -----
-    *Batches.* Arrays for ``eps``, ``G0``, ``k2_0`` (or ``T0``), ``delta0``, ``lam0``, ``nu0``, ``u0``, ``psi0``
-    broadcast to one batch shape (a batch over initial phases is an ensemble of the same slow state). The
-    ``'body'`` formulation integrates the members together (:func:`rigidbody.core.batch.integrate_batch`, the
-    torque evaluated on all members at once: a torque object through its vectorised protocol), with
-    ``lam`` continuous from the located passages of :math:`\mathbf n` through the branch cut of the azimuth;
-    the ``'angles'`` formulation (and a ``method`` other than DOP853) runs member by member. A member whose
-    start the single call refuses gets ``status = -1`` and that call's message.
-    """
-    from . import _batch
+def _body_form(c: _Common) -> tuple[Any, ...]:
+    """Euler's equations for g with the attitude quaternion: right-hand side, initial state, the slow variables and
+    directions from the state, extra events (none)."""
+    body, orb, tq, generic, st, nu0, misfire = c.body, c.orbit, c.torque, c.generic, c.st, c.nu0, c.misfire
+    nu_of = c.nu_of
+    A1, A2, A3 = body.A1, body.A2, body.A3
+    ie2, ie, circular = 1.0 / (c.eps * c.eps), 1.0 / c.eps, orb.e == 0.0
+    (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in c.Im)
 
-    if _batch.is_batch(eps, G0, k2_0, delta0, lam0, nu0, T0, u0, psi0):
-        opts = dict(kind=kind, T0=T0, orbit=orbit, sigma=sigma, formulation=formulation, rtol=rtol, atol=atol,
-                    method=method, k2_max=k2_max, min_spin_ratio=min_spin_ratio)
-        return _batch.simulate_batch(body, torque, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, u0, psi0,
-                                     opts, simulate)
-    _check_body(body)
-    k2_0, kind = _initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
+    def body_torque_drag(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
+                         nu: float) -> tuple[float, float, float]:
+        cn, sn = math.cos(nu), math.sin(nu)
+        # r_b = R^T e_r, R rows 0 and 1 from the quaternion
+        r1 = (1 - 2 * (yq * yq + z * z)) * cn + 2 * (x * yq + w * z) * sn
+        r2 = 2 * (x * yq - w * z) * cn + (1 - 2 * (x * x + z * z)) * sn
+        r3 = 2 * (x * z + w * yq) * cn + 2 * (yq * z - w * x) * sn
+        f3 = 3.0 * orb.factor(nu)
+        L1 = f3 * (A3 - A2) * r2 * r3 - (I11 * o1 + I12 * o2 + I13 * o3)
+        L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
+        L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
+        return L1, L2, L3
+
+    def body_torque_object(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
+                           nu: float) -> tuple[float, float, float]:
+        # the whole perturbation from the torque object: M = torque(omega, C, nu) in body axes
+        C = np.array([  # body -> Ox_i, the convention of core.euler.dcm_from_quat
+            [1 - 2 * (yq * yq + z * z), 2 * (x * yq - w * z), 2 * (x * z + w * yq)],
+            [2 * (x * yq + w * z), 1 - 2 * (x * x + z * z), 2 * (yq * z - w * x)],
+            [2 * (x * z - w * yq), 2 * (yq * z + w * x), 1 - 2 * (x * x + yq * yq)],
+        ])
+        M = evaluate(tq, np.array([o1, o2, o3]), C, nu, (3,))
+        return float(M[0]), float(M[1]), float(M[2])
+
+    body_torque = body_torque_object if generic else body_torque_drag
+
+    def rhs(tau: float, y: np.ndarray) -> list[float]:
+        g1, g2, g3, w, x, yq, z = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
+        nrm = math.sqrt(w * w + x * x + yq * yq + z * z)
+        w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
+        o1, o2, o3 = g1 / A1, g2 / A2, g3 / A3
+        nu = nu_of(tau, y, 7)
+        try:
+            L1, L2, L3 = body_torque(o1, o2, o3, w, x, yq, z, nu)
+        except RESULT_ERRORS as exc:
+            misfire.note(tau, exc)
+            L1 = L2 = L3 = math.nan
+        dg1 = (g2 * o3 - g3 * o2) * ie2 + L1
+        dg2 = (g3 * o1 - g1 * o3) * ie2 + L2
+        dg3 = (g1 * o2 - g2 * o1) * ie2 + L3
+        h = 0.5 * ie2
+        dw = h * (-x * o1 - yq * o2 - z * o3)
+        dx = h * (w * o1 + yq * o3 - z * o2)
+        dy = h * (w * o2 - x * o3 + z * o1)
+        dz = h * (w * o3 + x * o2 - yq * o1)
+        out = [dg1, dg2, dg3, dw, dx, dy, dz]
+        if not circular:
+            out.append(ie * orb.nu_rate(nu))
+        return out
+
+    if generic:
+        probe(tq, st["g"] / body.A, st["R"], nu0)
+    y0 = [*st["g"], *st["q"]]
+
+    def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        g = y[0:3]
+        return np.sqrt((g * g).sum(0)), 0.5 * (g[0] ** 2 / A1 + g[1] ** 2 / A2 + g[2] ** 2 / A3)
+
+    def nvec(y: np.ndarray) -> np.ndarray:
+        g = y[0:3]
+        R = euler.dcm_from_quat(y[3:7].T)
+        n = np.einsum("nij,jn->in", R, g)
+        return n / np.linalg.norm(n, axis=0)
+
+    def G_D(y: np.ndarray) -> tuple[float, float]:
+        G2 = y[0] ** 2 + y[1] ** 2 + y[2] ** 2
+        return math.sqrt(G2), G2 / (y[0] ** 2 / A1 + y[1] ** 2 / A2 + y[2] ** 2 / A3)
+
+    def body_dir(y: np.ndarray) -> np.ndarray:
+        return y[0:3] / np.sqrt((y[0:3] ** 2).sum(0))
+
+    extra_events: list[Event] = []
+    return rhs, y0, GT, nvec, G_D, body_dir, extra_events
+
+
+def _angles_form(c: _Common) -> tuple[Any, ...]:
+    """The paper's equations (1), (3), (4) in (G, delta, lambda, theta, phi, psi, T): right-hand side, initial state,
+    the slow variables and directions from the state, the events of their singular states."""
+    body, orb, tq, generic, st, nu0, misfire = c.body, c.orbit, c.torque, c.generic, c.st, c.nu0, c.misfire
+    nu_of = c.nu_of
+    A1, A2, A3 = body.A1, body.A2, body.A3
+    ie2, ie, circular = 1.0 / (c.eps * c.eps), 1.0 / c.eps, orb.e == 0.0
+    (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in c.Im)
+    G0, delta0, lam0 = c.G0, c.delta0, c.lam0
+
+    def torques_drag(y: np.ndarray, nu: float) -> tuple[float, ...]:
+        G, de, la, th, ph, ps = y[0], y[1], y[2], y[3], y[4], y[5]
+        c1, s1 = math.cos(ps), math.sin(ps)
+        c2, s2 = math.cos(th), math.sin(th)
+        c3, s3 = math.cos(ph), math.sin(ph)
+        # alpha_ij = y_i . z_j = dcm(psi, theta, phi)
+        a11, a12, a13 = c1 * c3 - s1 * c2 * s3, -c1 * s3 - s1 * c2 * c3, s1 * s2
+        a21, a22, a23 = s1 * c3 + c1 * c2 * s3, -s1 * s3 + c1 * c2 * c3, -c1 * s2
+        a31, a32, a33 = s2 * s3, s2 * c3, c2
+        o1, o2, o3 = G * a31 / A1, G * a32 / A2, G * a33 / A3
+        cnl, snl = math.cos(nu - la), math.sin(nu - la)
+        b1, b2, b3 = cnl * math.cos(de), snl, cnl * math.sin(de)
+        # body components of e_r, then J e_r, then back to Oy: (S beta)_m
+        e1 = a11 * b1 + a21 * b2 + a31 * b3
+        e2 = a12 * b1 + a22 * b2 + a32 * b3
+        e3 = a13 * b1 + a23 * b2 + a33 * b3
+        j1, j2, j3 = A1 * e1, A2 * e2, A3 * e3
+        s_1 = a11 * j1 + a12 * j2 + a13 * j3
+        s_2 = a21 * j1 + a22 * j2 + a23 * j3
+        s_3 = a31 * j1 + a32 * j2 + a33 * j3
+        f3 = 3.0 * orb.factor(nu)
+        Lg1 = f3 * (b2 * s_3 - b3 * s_2)
+        Lg2 = f3 * (b3 * s_1 - b1 * s_3)
+        Lg3 = f3 * (b1 * s_2 - b2 * s_1)
+        d1 = I11 * o1 + I12 * o2 + I13 * o3
+        d2 = I21 * o1 + I22 * o2 + I23 * o3
+        d3 = I31 * o1 + I32 * o2 + I33 * o3
+        L1 = Lg1 - (a11 * d1 + a12 * d2 + a13 * d3)
+        L2 = Lg2 - (a21 * d1 + a22 * d2 + a23 * d3)
+        L3 = Lg3 - (a31 * d1 + a32 * d2 + a33 * d3)
+        return L1, L2, L3
+
+    def torques_generic(y: np.ndarray, nu: float) -> tuple[float, ...]:
+        # the torque object in body axes, projected on Oy: L = alpha M, C = Y alpha
+        G, de, la = y[0], y[1], y[2]
+        if not math.isfinite(y[3] + y[4] + y[5]):  # a stage after a misfire (NaN rates): NaN again
+            return math.nan, math.nan, math.nan
+        alpha = euler.dcm(y[5], y[3], y[4])  # alpha_ij = y_i . z_j (body -> Oy)
+        omega = G * alpha[2] / body.A
+        M = evaluate(tq, omega, frame_y(de, la) @ alpha, nu, (3,))
+        L = alpha @ M
+        return float(L[0]), float(L[1]), float(L[2])
+
+    torques = torques_generic if generic else torques_drag
+
+    def rhs(tau: float, y: np.ndarray) -> list[float]:
+        G, de, th, ph, ps, T = y[0], y[1], y[3], y[4], y[5], y[6]
+        nu = nu_of(tau, y, 7)
+        try:
+            L1, L2, L3 = torques(y, nu)
+        except RESULT_ERRORS as exc:
+            misfire.note(tau, exc)
+            L1 = L2 = L3 = math.nan
+        s2, c2 = math.sin(th), math.cos(th)
+        sp, cp = math.sin(ph), math.cos(ph)
+        sps, cps = math.sin(ps), math.cos(ps)
+        sd = math.sin(de)
+        dG = L3
+        dde = L1 / G
+        dla = L2 / (G * sd)
+        P = L2 * cps - L1 * sps
+        Q = L1 * cps + L2 * sps
+        dth = G * s2 * sp * cp * (1 / A1 - 1 / A2) * ie2 + P / G
+        dph = G * c2 * (1 / A3 - sp * sp / A1 - cp * cp / A2) * ie2 + Q / (G * s2)
+        dps = G * (sp * sp / A1 + cp * cp / A2) * ie2 - Q / G * c2 / s2 - L2 / G * math.cos(de) / sd
+        dT = 2 * T / G * L3 + G * s2 * (
+            c2 * (sp * sp / A1 + cp * cp / A2 - 1 / A3) * P + sp * cp * (1 / A1 - 1 / A2) * Q
+        )
+        out = [dG, dde, dla, dth, dph, dps, dT]
+        if not circular:
+            out.append(ie * orb.nu_rate(nu))
+        return out
+
+    y0 = [G0, delta0, lam0, st["theta"], st["phi"], st["psi"], st["T"]]
+    if generic:
+        probe(tq, st["g"] / body.A, st["R"], nu0)
+    if abs(math.sin(delta0)) <= 1e-6 or abs(math.sin(st["theta"])) <= 1e-6:
+        raise ValueError(
+            "formulation='angles' is singular at sin(delta) = 0 or sin(theta) = 0 (the initial state is "
+            "there): use formulation='body'"
+        )
+
+    def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        return y[0], y[6]
+
+    def nvec(y: np.ndarray) -> np.ndarray:
+        de, la = y[1], y[2]
+        return np.array([np.sin(de) * np.cos(la), np.sin(de) * np.sin(la), np.cos(de)])
+
+    def G_D(y: np.ndarray) -> tuple[float, float]:
+        return y[0], y[0] ** 2 / (2 * y[6])
+
+    def body_dir(y: np.ndarray) -> np.ndarray:
+        st_ = np.sin(y[3])
+        return np.array([st_ * np.sin(y[4]), st_ * np.cos(y[4]), np.cos(y[3])])
+
+    extra_events = [
+        Event(lambda t, y: abs(math.sin(y[3])) - 1e-6, "sin_theta", True, -1.0,
+              "sin(theta) -> 0: the Euler angles of (1) are singular; use formulation='body'"),
+        Event(lambda t, y: abs(math.sin(y[1])) - 1e-6, "sin_delta", True, -1.0,
+              "sin(delta) -> 0: lambda is undefined and (1) singular; use formulation='body'"),
+    ]
+    return rhs, y0, GT, nvec, G_D, body_dir, extra_events
+
+
+def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,
+             tau_eval: Any, nu0: Any, *, kind: str | None, T0: Any, orbit: Orbit | None, u0: Any, psi0: Any,
+             sigma: int, formulation: str, rtol: float, atol: float, method: str, k2_max: float | None,
+             min_spin_ratio: float) -> Solution:
+    """One run of the full equations (the single call of :func:`rigidbody.euler_poinsot.simulate`; a batch runs
+    its ``'angles'`` members through it)."""
+    check_body(body)
+    k2_0, kind = initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
     span(tau_span, "tau_span")
-    _check_tau_eval(tau_eval, tau_span)
-    _check_tol(rtol, atol)
+    check_tau_eval(tau_eval, tau_span)
+    check_tol(rtol, atol)
     if formulation not in ("body", "angles"):
         raise ValueError(f"formulation must be 'body' or 'angles', got {formulation!r}")
-    orb = _as_orbit(orbit)
+    orb = as_orbit(orbit)
     what, tq = resolve(torque)
     generic = what == "torque"
     if generic:
@@ -208,11 +331,9 @@ def simulate(
     eps, G0, k2_0, delta0, lam0, nu0 = check_start(rules, kind, eps, G0, k2_0, delta0, lam0, nu0, u0, psi0)
     A1, A2, A3 = body.A1, body.A2, body.A3
     Aall = (A1, A2, A3)
-    Alab = (A1, A2, A3) if kind == "max" else (A3, A2, A1)
-    ie2 = 1.0 / (eps * eps)
+    Alab = relabel(kind, (A1, A2, A3))
     ie = 1.0 / eps
     circular = orb.e == 0.0
-    (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in Im)
     spin_cap = K2_SPIN_CAP if k2_max is None else 1.0  # see K2_SPIN_CAP: only a run through the separatrix
     st = initial_state(body, G0, k2_0, delta0, lam0, kind=kind, u0=u0, psi0=psi0, sigma=sigma)
 
@@ -221,191 +342,14 @@ def simulate(
 
     misfire = Misfire()  # a torque that misbehaves part-way: NaN rates there, the run ends with a status
 
-    if formulation == "body":
-
-        def body_torque_drag(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
-                             nu: float) -> tuple[float, float, float]:
-            cn, sn = math.cos(nu), math.sin(nu)
-            # r_b = R^T e_r, R rows 0 and 1 from the quaternion
-            r1 = (1 - 2 * (yq * yq + z * z)) * cn + 2 * (x * yq + w * z) * sn
-            r2 = 2 * (x * yq - w * z) * cn + (1 - 2 * (x * x + z * z)) * sn
-            r3 = 2 * (x * z + w * yq) * cn + 2 * (yq * z - w * x) * sn
-            f3 = 3.0 * orb.factor(nu)
-            L1 = f3 * (A3 - A2) * r2 * r3 - (I11 * o1 + I12 * o2 + I13 * o3)
-            L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
-            L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
-            return L1, L2, L3
-
-        def body_torque_object(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
-                               nu: float) -> tuple[float, float, float]:
-            # the whole perturbation from the torque object: M = torque(omega, C, nu) in body axes
-            C = np.array([  # body -> Ox_i, the convention of core.euler.dcm_from_quat
-                [1 - 2 * (yq * yq + z * z), 2 * (x * yq - w * z), 2 * (x * z + w * yq)],
-                [2 * (x * yq + w * z), 1 - 2 * (x * x + z * z), 2 * (yq * z - w * x)],
-                [2 * (x * z - w * yq), 2 * (yq * z + w * x), 1 - 2 * (x * x + yq * yq)],
-            ])
-            M = evaluate(tq, np.array([o1, o2, o3]), C, nu, (3,))
-            return float(M[0]), float(M[1]), float(M[2])
-
-        body_torque = body_torque_object if generic else body_torque_drag
-
-        def rhs(tau: float, y: np.ndarray) -> list[float]:
-            g1, g2, g3, w, x, yq, z = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
-            nrm = math.sqrt(w * w + x * x + yq * yq + z * z)
-            w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
-            o1, o2, o3 = g1 / A1, g2 / A2, g3 / A3
-            nu = nu_of(tau, y, 7)
-            try:
-                L1, L2, L3 = body_torque(o1, o2, o3, w, x, yq, z, nu)
-            except RESULT_ERRORS as exc:
-                misfire.note(tau, exc)
-                L1 = L2 = L3 = math.nan
-            dg1 = (g2 * o3 - g3 * o2) * ie2 + L1
-            dg2 = (g3 * o1 - g1 * o3) * ie2 + L2
-            dg3 = (g1 * o2 - g2 * o1) * ie2 + L3
-            h = 0.5 * ie2
-            dw = h * (-x * o1 - yq * o2 - z * o3)
-            dx = h * (w * o1 + yq * o3 - z * o2)
-            dy = h * (w * o2 - x * o3 + z * o1)
-            dz = h * (w * o3 + x * o2 - yq * o1)
-            out = [dg1, dg2, dg3, dw, dx, dy, dz]
-            if not circular:
-                out.append(ie * orb.nu_rate(nu))
-            return out
-
-        if generic:
-            probe(tq, st["g"] / body.A, st["R"], nu0)
-        y0 = [*st["g"], *st["q"]]
-
-        def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            g = y[0:3]
-            return np.sqrt((g * g).sum(0)), 0.5 * (g[0] ** 2 / A1 + g[1] ** 2 / A2 + g[2] ** 2 / A3)
-
-        def nvec(y: np.ndarray) -> np.ndarray:
-            g = y[0:3]
-            R = euler.dcm_from_quat(y[3:7].T)
-            n = np.einsum("nij,jn->in", R, g)
-            return n / np.linalg.norm(n, axis=0)
-
-        def G_D(y: np.ndarray) -> tuple[float, float]:
-            G2 = y[0] ** 2 + y[1] ** 2 + y[2] ** 2
-            return math.sqrt(G2), G2 / (y[0] ** 2 / A1 + y[1] ** 2 / A2 + y[2] ** 2 / A3)
-
-        def body_dir(y: np.ndarray) -> np.ndarray:
-            return y[0:3] / np.sqrt((y[0:3] ** 2).sum(0))
-
-        extra_events: list[Event] = []
-        inu = 7
-    else:
-
-        def torques_drag(y: np.ndarray, nu: float) -> tuple[float, ...]:
-            G, de, la, th, ph, ps = y[0], y[1], y[2], y[3], y[4], y[5]
-            c1, s1 = math.cos(ps), math.sin(ps)
-            c2, s2 = math.cos(th), math.sin(th)
-            c3, s3 = math.cos(ph), math.sin(ph)
-            # alpha_ij = y_i . z_j = dcm(psi, theta, phi)
-            a11, a12, a13 = c1 * c3 - s1 * c2 * s3, -c1 * s3 - s1 * c2 * c3, s1 * s2
-            a21, a22, a23 = s1 * c3 + c1 * c2 * s3, -s1 * s3 + c1 * c2 * c3, -c1 * s2
-            a31, a32, a33 = s2 * s3, s2 * c3, c2
-            o1, o2, o3 = G * a31 / A1, G * a32 / A2, G * a33 / A3
-            cnl, snl = math.cos(nu - la), math.sin(nu - la)
-            b1, b2, b3 = cnl * math.cos(de), snl, cnl * math.sin(de)
-            # body components of e_r, then J e_r, then back to Oy: (S beta)_m
-            e1 = a11 * b1 + a21 * b2 + a31 * b3
-            e2 = a12 * b1 + a22 * b2 + a32 * b3
-            e3 = a13 * b1 + a23 * b2 + a33 * b3
-            j1, j2, j3 = A1 * e1, A2 * e2, A3 * e3
-            s_1 = a11 * j1 + a12 * j2 + a13 * j3
-            s_2 = a21 * j1 + a22 * j2 + a23 * j3
-            s_3 = a31 * j1 + a32 * j2 + a33 * j3
-            f3 = 3.0 * orb.factor(nu)
-            Lg1 = f3 * (b2 * s_3 - b3 * s_2)
-            Lg2 = f3 * (b3 * s_1 - b1 * s_3)
-            Lg3 = f3 * (b1 * s_2 - b2 * s_1)
-            d1 = I11 * o1 + I12 * o2 + I13 * o3
-            d2 = I21 * o1 + I22 * o2 + I23 * o3
-            d3 = I31 * o1 + I32 * o2 + I33 * o3
-            L1 = Lg1 - (a11 * d1 + a12 * d2 + a13 * d3)
-            L2 = Lg2 - (a21 * d1 + a22 * d2 + a23 * d3)
-            L3 = Lg3 - (a31 * d1 + a32 * d2 + a33 * d3)
-            return L1, L2, L3
-
-        def torques_generic(y: np.ndarray, nu: float) -> tuple[float, ...]:
-            # the torque object in body axes, projected on Oy: L = alpha M, C = Y alpha
-            G, de, la = y[0], y[1], y[2]
-            if not math.isfinite(y[3] + y[4] + y[5]):  # a stage after a misfire (NaN rates): NaN again
-                return math.nan, math.nan, math.nan
-            alpha = euler.dcm(y[5], y[3], y[4])  # alpha_ij = y_i . z_j (body -> Oy)
-            omega = G * alpha[2] / body.A
-            M = evaluate(tq, omega, _frame_y(de, la) @ alpha, nu, (3,))
-            L = alpha @ M
-            return float(L[0]), float(L[1]), float(L[2])
-
-        torques = torques_generic if generic else torques_drag
-
-        def rhs(tau: float, y: np.ndarray) -> list[float]:
-            G, de, th, ph, ps, T = y[0], y[1], y[3], y[4], y[5], y[6]
-            nu = nu_of(tau, y, 7)
-            try:
-                L1, L2, L3 = torques(y, nu)
-            except RESULT_ERRORS as exc:
-                misfire.note(tau, exc)
-                L1 = L2 = L3 = math.nan
-            s2, c2 = math.sin(th), math.cos(th)
-            sp, cp = math.sin(ph), math.cos(ph)
-            sps, cps = math.sin(ps), math.cos(ps)
-            sd = math.sin(de)
-            dG = L3
-            dde = L1 / G
-            dla = L2 / (G * sd)
-            P = L2 * cps - L1 * sps
-            Q = L1 * cps + L2 * sps
-            dth = G * s2 * sp * cp * (1 / A1 - 1 / A2) * ie2 + P / G
-            dph = G * c2 * (1 / A3 - sp * sp / A1 - cp * cp / A2) * ie2 + Q / (G * s2)
-            dps = G * (sp * sp / A1 + cp * cp / A2) * ie2 - Q / G * c2 / s2 - L2 / G * math.cos(de) / sd
-            dT = 2 * T / G * L3 + G * s2 * (
-                c2 * (sp * sp / A1 + cp * cp / A2 - 1 / A3) * P + sp * cp * (1 / A1 - 1 / A2) * Q
-            )
-            out = [dG, dde, dla, dth, dph, dps, dT]
-            if not circular:
-                out.append(ie * orb.nu_rate(nu))
-            return out
-
-        y0 = [G0, delta0, lam0, st["theta"], st["phi"], st["psi"], st["T"]]
-        if generic:
-            probe(tq, st["g"] / body.A, st["R"], nu0)
-        if abs(math.sin(delta0)) <= 1e-6 or abs(math.sin(st["theta"])) <= 1e-6:
-            raise ValueError(
-                "formulation='angles' is singular at sin(delta) = 0 or sin(theta) = 0 (the initial state is "
-                "there): use formulation='body'"
-            )
-
-        def GT(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-            return y[0], y[6]
-
-        def nvec(y: np.ndarray) -> np.ndarray:
-            de, la = y[1], y[2]
-            return np.array([np.sin(de) * np.cos(la), np.sin(de) * np.sin(la), np.cos(de)])
-
-        def G_D(y: np.ndarray) -> tuple[float, float]:
-            return y[0], y[0] ** 2 / (2 * y[6])
-
-        def body_dir(y: np.ndarray) -> np.ndarray:
-            st_ = np.sin(y[3])
-            return np.array([st_ * np.sin(y[4]), st_ * np.cos(y[4]), np.cos(y[3])])
-
-        extra_events = [
-            Event(lambda t, y: abs(math.sin(y[3])) - 1e-6, "sin_theta", True, -1.0,
-                  "sin(theta) -> 0: the Euler angles of (1) are singular; use formulation='body'"),
-            Event(lambda t, y: abs(math.sin(y[1])) - 1e-6, "sin_delta", True, -1.0,
-                  "sin(delta) -> 0: lambda is undefined and (1) singular; use formulation='body'"),
-        ]
-        inu = 7
+    c = _Common(body, orb, tq, generic, Im, eps, st, nu0, G0, delta0, lam0, misfire, nu_of)
+    rhs, y0, GT, nvec, G_D, body_dir, extra_events = (_body_form if formulation == "body" else _angles_form)(c)
+    inu = 7
 
     def ev_spin(tau: float, y: np.ndarray) -> float:
         G, D = G_D(y)
         Ak, k2 = _osculating(Aall, D)
-        return _nut_freq(Ak, G, min(k2, spin_cap)) / eps - min_spin_ratio
+        return nutation_frequency(Ak, G, min(k2, spin_cap)) / eps - min_spin_ratio
 
     if k2_max is None:
         # every passage of D = G^2/2T through A2 is recorded; the run goes on
@@ -446,6 +390,6 @@ def simulate(
             out["theta"], out["phi"], out["psi"] = y[3], y[4], y[5]
         return out
 
-    return _finish(res, tau_eval, make_fields, lam0, nvec)
+    return finish_output(res, tau_eval, make_fields, lam0, nvec)
 
 

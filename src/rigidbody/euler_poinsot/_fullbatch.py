@@ -27,7 +27,8 @@ from ..core.euler import dcm_from_unit_quat
 from ..core.ode import Event, Solution
 from ..core.validate import result_message
 from . import _kernel as _k
-from ._batch import Members
+from ._full import initial_state
+from ._members import Members
 from ._model import Body, Orbit
 from ._protocol import ROLE, evaluate
 from ._stops import stop_message
@@ -77,8 +78,6 @@ def _k2_initial_kind(A1: Any, A2: float, A3: Any, D: np.ndarray) -> np.ndarray:
 def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau_span: tuple[float, float],
                te: np.ndarray) -> Solution:
     """The batch branch of :func:`rigidbody.euler_poinsot.simulate` (flat per-member arrays in ``mem``)."""
-    from ._full import initial_state  # the single run's attitude from the slow variables
-
     body, orb = run.body, run.orbit
     A = (body.A1, body.A2, body.A3)
     A1, A2, A3 = A
@@ -112,46 +111,7 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
         args = (ie, ie * ie, mem.nu0[idx], np.where(mx, A1, A3), np.where(mx, A3, A1), idx.astype(float))
         t_bad = np.full(B, np.nan)
         Ab = np.array(A)
-        drag = run.what == "drag"
-        if drag:
-            (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = np.asarray(run.torque.I, dtype=float).tolist()
-
-        def rhs(t: np.ndarray, y: np.ndarray, ie: np.ndarray, ie2: np.ndarray, nu0: np.ndarray, *lab: np.ndarray
-                ) -> np.ndarray:
-            g1, g2, g3, w, x, yq, z = y[:, 0], y[:, 1], y[:, 2], y[:, 3], y[:, 4], y[:, 5], y[:, 6]
-            nrm = np.sqrt(w * w + x * x + yq * yq + z * z)
-            w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
-            o1, o2, o3 = g1 / A1, g2 / A2, g3 / A3
-            nu = t * ie + nu0 if e == 0.0 else y[:, 7]
-            if drag:  # drag plus gravity gradient, written out as in the single run
-                cn, sn = np.cos(nu), np.sin(nu)
-                r1 = (1 - 2 * (yq * yq + z * z)) * cn + 2 * (x * yq + w * z) * sn  # e_r in body axes
-                r2 = 2 * (x * yq - w * z) * cn + (1 - 2 * (x * x + z * z)) * sn
-                r3 = 2 * (x * z + w * yq) * cn + 2 * (yq * z - w * x) * sn
-                f3 = 3.0 * _k.orbit_factor(np, e, nu) if e != 0.0 else 3.0
-                L1 = f3 * (A3 - A2) * r2 * r3 - (I11 * o1 + I12 * o2 + I13 * o3)
-                L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
-                L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
-            else:  # the torque's type and shape checked, its finiteness per member (a NaN ends that member only)
-                C = dcm_from_unit_quat(w, x, yq, z)
-                M = np.broadcast_to(evaluate(run.torque, np.stack([o1, o2, o3], axis=1), C, nu, (t.size, 3),
-                                             finite=False), (t.size, 3))
-                bad = ~np.isfinite(M).all(axis=1)
-                if bad.any():
-                    t_bad[lab[2][bad].astype(int)] = t[bad]
-                L1, L2, L3 = M[:, 0], M[:, 1], M[:, 2]
-            out = np.empty_like(y)
-            out[:, 0] = (g2 * o3 - g3 * o2) * ie2 + L1
-            out[:, 1] = (g3 * o1 - g1 * o3) * ie2 + L2
-            out[:, 2] = (g1 * o2 - g2 * o1) * ie2 + L3
-            h = 0.5 * ie2
-            out[:, 3] = h * (-x * o1 - yq * o2 - z * o3)
-            out[:, 4] = h * (w * o1 + yq * o3 - z * o2)
-            out[:, 5] = h * (w * o2 - x * o3 + z * o1)
-            out[:, 6] = h * (w * o3 + x * o2 - yq * o1)
-            if e != 0.0:
-                out[:, 7] = ie * _k.nu_rate(np, e, y[:, 7])
-            return out
+        rhs = _rhs(run, t_bad)
 
         def GD(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             g2 = y[:, 0:3] ** 2
@@ -215,7 +175,69 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
                 if tc.size:
                     tc = tc[n_of(yc)[:, 0] < 0.0]
                     lam_shift[i] += sign * 2.0 * math.pi * (tc[:, None] <= te[None, :]).sum(axis=0)
-    # ---- output fields ---------------------------------------------------------------------------
+    data = _fields(A, Y, lam_shift, mem, te, e)
+    shape = mem.batch_shape
+    data = {k: v.reshape(shape + v.shape[1:]) for k, v in data.items()}
+    t_events = {k: v.reshape(shape) for k, v in t_ev.items()}
+    return Solution("tau", te, Y.reshape(shape + Y.shape[1:]), data, status.reshape(shape), message.reshape(shape),
+                    event.reshape(shape), t_events, {}, None, nfev.reshape(shape), batch_shape=shape,
+                    t_final=t_final.reshape(shape))
+
+
+def _rhs(run: FullRun, t_bad: np.ndarray) -> Any:
+    """The vectorised body-frame equations of the members (drag tensor plus gravity gradient written out, or the
+    torque object through its vectorised protocol; where it turns non-finite, the time is noted in ``t_bad``)."""
+    A1, A2, A3 = run.body.A1, run.body.A2, run.body.A3
+    e = run.orbit.e
+    drag = run.what == "drag"
+    if drag:
+        (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = np.asarray(run.torque.I, dtype=float).tolist()
+
+    def rhs(t: np.ndarray, y: np.ndarray, ie: np.ndarray, ie2: np.ndarray, nu0: np.ndarray, *lab: np.ndarray
+            ) -> np.ndarray:
+        g1, g2, g3, w, x, yq, z = y[:, 0], y[:, 1], y[:, 2], y[:, 3], y[:, 4], y[:, 5], y[:, 6]
+        nrm = np.sqrt(w * w + x * x + yq * yq + z * z)
+        w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
+        o1, o2, o3 = g1 / A1, g2 / A2, g3 / A3
+        nu = t * ie + nu0 if e == 0.0 else y[:, 7]
+        if drag:  # drag plus gravity gradient, written out as in the single run
+            cn, sn = np.cos(nu), np.sin(nu)
+            r1 = (1 - 2 * (yq * yq + z * z)) * cn + 2 * (x * yq + w * z) * sn  # e_r in body axes
+            r2 = 2 * (x * yq - w * z) * cn + (1 - 2 * (x * x + z * z)) * sn
+            r3 = 2 * (x * z + w * yq) * cn + 2 * (yq * z - w * x) * sn
+            f3 = 3.0 * _k.orbit_factor(np, e, nu) if e != 0.0 else 3.0
+            L1 = f3 * (A3 - A2) * r2 * r3 - (I11 * o1 + I12 * o2 + I13 * o3)
+            L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
+            L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
+        else:  # the torque's type and shape checked, its finiteness per member (a NaN ends that member only)
+            C = dcm_from_unit_quat(w, x, yq, z)
+            M = np.broadcast_to(evaluate(run.torque, np.stack([o1, o2, o3], axis=1), C, nu, (t.size, 3),
+                                         finite=False), (t.size, 3))
+            bad = ~np.isfinite(M).all(axis=1)
+            if bad.any():
+                t_bad[lab[2][bad].astype(int)] = t[bad]
+            L1, L2, L3 = M[:, 0], M[:, 1], M[:, 2]
+        out = np.empty_like(y)
+        out[:, 0] = (g2 * o3 - g3 * o2) * ie2 + L1
+        out[:, 1] = (g3 * o1 - g1 * o3) * ie2 + L2
+        out[:, 2] = (g1 * o2 - g2 * o1) * ie2 + L3
+        h = 0.5 * ie2
+        out[:, 3] = h * (-x * o1 - yq * o2 - z * o3)
+        out[:, 4] = h * (w * o1 + yq * o3 - z * o2)
+        out[:, 5] = h * (w * o2 - x * o3 + z * o1)
+        out[:, 6] = h * (w * o3 + x * o2 - yq * o1)
+        if e != 0.0:
+            out[:, 7] = ie * _k.nu_rate(np, e, y[:, 7])
+        return out
+
+    return rhs
+
+
+def _fields(A: tuple[float, float, float], Y: np.ndarray, lam_shift: np.ndarray, mem: Members, te: np.ndarray,
+            e: float) -> dict[str, np.ndarray]:
+    """The output fields of the batch from its raw rows ``Y`` (g, q[, nu]; NaN after a member's end), lambda
+    continuous from the counted passages through the branch cut (``lam_shift``)."""
+    A1, A2, A3 = A
     g = Y[:, 0:3]
     qn = Y[:, 3:7] / np.linalg.norm(Y[:, 3:7], axis=1, keepdims=True)
     R = dcm_from_unit_quat(*np.moveaxis(qn, 1, 0))  # (B, nt, 3, 3)
@@ -241,11 +263,5 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
             nu = np.where(nan, np.nan, te[None, :] / mem.eps[:, None] + mem.nu0[:, None])
     else:
         nu = Y[:, 7]
-    data = {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[:, 2], -1.0, 1.0)), "n": n, "nu": nu,
+    return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[:, 2], -1.0, 1.0)), "n": n, "nu": nu,
             "kind": kinds, "sigma": sig, "lam": lam, "g": g, "q": qn}
-    shape = mem.batch_shape
-    data = {k: v.reshape(shape + v.shape[1:]) for k, v in data.items()}
-    t_events = {k: v.reshape(shape) for k, v in t_ev.items()}
-    return Solution("tau", te, Y.reshape(shape + Y.shape[1:]), data, status.reshape(shape), message.reshape(shape),
-                    event.reshape(shape), t_events, {}, None, nfev.reshape(shape), batch_shape=shape,
-                    t_final=t_final.reshape(shape))

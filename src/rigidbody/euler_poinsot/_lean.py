@@ -1,7 +1,7 @@
 r"""The averaging engine's mean on a fixed grid, for the right-hand sides of the averaged evolution.
 
 :func:`._engine.lean_mean` computes the six means of a torque (``<C M>``, ``<omega.M>``, ``<dP/dt>``,
-``<dQ/dt>``) on the grid an integration chose at its start, from a :class:`._engine._State`. An averaged run
+``<dQ/dt>``) on the grid an integration chose at its start, from a :class:`._engine.State`. An averaged run
 asks for it at every right-hand side (tens of thousands of times with the true anomaly resolved), on grids of
 a few hundred nodes where NumPy's cost per operation, not per node, decides. :class:`LeanMean` gives the same
 numbers (to rounding; tested) with what does not change along a run done once (the node tables of the
@@ -31,8 +31,8 @@ from scipy import special
 
 from ..core import averaging as avg
 from ..core.elliptic import jacobi
-from ._engine import Grid, nu_nodes
-from ._model import Body, Orbit, _labels
+from ._grid import Grid, nu_nodes
+from ._model import AXES, Body, Orbit, labelled, relabel
 from ._protocol import evaluate
 
 __all__ = ["LeanMean"]
@@ -95,8 +95,8 @@ class LeanMean:
                  held: bool) -> None:
         self.torque, self.kind, self.sigma, self.grid = torque, kind, sigma, grid
         self.compact, self.held = compact, held
-        self.a = _labels(body, kind)
-        self.lab = (0, 1, 2) if kind == "max" else (2, 1, 0)
+        self.a = labelled(body, kind)
+        self.lab = AXES[kind]
         # omega in body order from the rows (sn, cn, dn): 'max' (dn, sn, cn), 'min' (cn, sn, dn)
         self.perm = (2, 0, 1) if kind == "max" else (1, 0, 2)
         self.A = body.A[:, None]
@@ -139,10 +139,7 @@ class LeanMean:
         c_dn, c_sn = sg * math.sqrt(self.q_dn / R), -sg * k * math.sqrt(self.q_sn / R)
         c_cn = k * math.sqrt(self.q_cn / R)
         coef = self.coef
-        if self.kind == "max":
-            coef[0, 0], coef[1, 0], coef[2, 0] = c_dn, c_sn, c_cn
-        else:
-            coef[0, 0], coef[1, 0], coef[2, 0] = c_cn, c_sn, c_dn
+        coef[0, 0], coef[1, 0], coef[2, 0] = relabel(self.kind, (c_dn, c_sn, c_cn))
         W = E.ravel()[t.flat].reshape(3, n_u)
         W *= t.sign
         W *= coef

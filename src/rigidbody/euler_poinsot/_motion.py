@@ -38,7 +38,8 @@ from ..core import averaging as avg
 from ..core import elliptic as ell
 from ..core import euler
 from ..core.validate import real
-from ._model import Body, T_from, _check_kind, k2_from
+from ._algebra import T_from, k2_from
+from ._model import Body, check_kind
 
 __all__ = ["EulerPoinsot"]
 
@@ -80,7 +81,7 @@ class EulerPoinsot:
     def __post_init__(self) -> None:
         if not isinstance(self.body, Body):
             raise TypeError(f"body must be a Body, got {type(self.body).__name__}")
-        _check_kind(self.kind)
+        check_kind(self.kind)
         G = real(self.G, "G")
         if G <= 0:
             raise ValueError(f"G must be positive, got {G}")

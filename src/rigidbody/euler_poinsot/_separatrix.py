@@ -71,60 +71,26 @@ import numpy as np
 
 from ..core import euler
 from ..core.validate import real
-from ._engine import frame, nu_nodes
-from ._model import KINDS, Body, Orbit, _as_orbit, _check_body, _check_kind, k2_from, kind_of
+from ._engine import nu_nodes
+from ._model import Body, Orbit, as_orbit, check_body
 from ._protocol import evaluate
-from ._stops import stop_message
+from ._regions import ARCS, REGIONS, Arc, Region, check_arc, check_region, next_arc, region_arcs
+from ._state import frame
 from ._torques import drag_as_torque, resolve
 
 __all__ = ["ARCS", "REGIONS", "Separatrix", "SeparatrixCrossing", "SeparatrixLimits", "separatrix_crossing",
            "separatrix_limits"]
 
-#: The four arcs (s1, s3) of the separatrix: signs of g1 and g3 on them.
-ARCS: tuple[tuple[int, int], ...] = ((1, 1), (1, -1), (-1, 1), (-1, -1))
-#: The four regions (kind, sigma) the separatrix cuts the sphere into.
-REGIONS: tuple[tuple[str, int], ...] = (("max", 1), ("max", -1), ("min", 1), ("min", -1))
 
-Region = tuple[str, int]
-Arc = tuple[int, int]
 TorqueFn = Callable[[np.ndarray, np.ndarray, np.ndarray], Any]
 
 
-def _check_arc(arc: Any) -> Arc:
-    try:
-        s1, s3 = arc
-    except (TypeError, ValueError):
-        raise ValueError(f"arc must be a pair (s1, s3) of signs +1/-1, got {arc!r}") from None
-    if s1 not in (1, -1) or s3 not in (1, -1):
-        raise ValueError(f"arc must be a pair (s1, s3) of signs +1/-1, got {arc!r}")
-    return int(s1), int(s3)
 
 
-def _check_region(region: Any, name: str = "region") -> Region:
-    try:
-        kind, sigma = region
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a pair (kind, sigma), e.g. ('min', 1), got {region!r}") from None
-    if not isinstance(kind, str) or kind not in KINDS:
-        raise ValueError(f"{name}: kind must be 'max' (rotation about the axis of A1) or 'min' (about A3), "
-                         f"got {kind!r}")
-    if sigma not in (1, -1):
-        raise ValueError(f"{name}: sigma must be +1 or -1, got {sigma!r}")
-    return str(kind), int(sigma)
 
 
-def region_arcs(region: Region) -> tuple[Arc, Arc]:
-    """The two arcs bounding a region, in the order the motion runs along them (from ``+e2`` first)."""
-    kind, sigma = _check_region(region)
-    if kind == "max":
-        return ((sigma, sigma), (sigma, -sigma))
-    return ((sigma, sigma), (-sigma, sigma))
 
 
-def _next(arc: Arc, h: float) -> Arc:
-    """The arc followed after ``arc`` by a motion with energy offset ``h`` at the saddle where ``arc`` ends."""
-    s1, s3 = arc
-    return (s1, -s3) if h < 0.0 else (-s1, s3)
 
 
 @dataclass(frozen=True)
@@ -158,7 +124,7 @@ class Separatrix:
     G: float
 
     def __post_init__(self) -> None:
-        _check_body(self.body)
+        check_body(self.body)
         G = real(self.G, "G")
         if G <= 0:
             raise ValueError(f"G must be positive, got {G}")
@@ -200,7 +166,7 @@ class Separatrix:
         arc : (int, int)
             Signs ``(s1, s3)`` of :math:`g_1, g_3` on the arc.
         """
-        a = _check_arc(arc)
+        a = check_arc(arc)
         u = self.rate * np.asarray(t, dtype=float)
         return self._g_x(np.arctan(np.sinh(u)), a)  # gd(u): sin x = tanh u, cos x = sech u
 
@@ -268,8 +234,8 @@ def _check_nodes(n: Any, name: str, minimum: int) -> int:
 
 def _setup(body: Any, torque: Any, G: Any, delta: Any, lam: Any, nu: Any, orbit: Any, n_x: Any, n_psi: Any,
            n_nu: Any) -> tuple[Separatrix, TorqueFn, np.ndarray, float | None, Orbit, tuple[int, int, int]]:
-    _check_body(body)
-    orb = _as_orbit(orbit)
+    check_body(body)
+    orb = as_orbit(orbit)
     sep = Separatrix(body, G)
     n = _unit_n(delta, lam)
     nu_ = None if nu is None else real(nu, "nu")
@@ -334,7 +300,7 @@ def _propagate(drifts: dict[Arc, float], source: Region, first: int = 0, max_ste
                     continue
                 h_side = -1.0 if phi_ <= 0.0 else 1.0
                 region: Region = ("max", arc[0]) if h_side < 0 else ("min", arc[1])
-                nxt = _next(arc, h_side)
+                nxt = next_arc(arc, h_side)
                 q1, q2 = drifts[nxt], loops[region]
                 if _captures(region[0], q2, scale) and (
                     (region[0] == "max" and phi_ + max(q1, q2) < 0.0)
@@ -455,7 +421,7 @@ def separatrix_crossing(
     {('max', 1): 0.464, ('min', -1): 0.536}
     """
     sep, fn, n, nu_, orb, (n_x, n_psi, n_nu) = _setup(body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu)
-    src = _check_region(source, "source")
+    src = check_region(source, "source")
     nus, wnu = _orbit_nodes(nu_, orb, n_nu)
     drifts = _arc_drifts(sep, fn, n, nus, wnu, n_x, n_psi)
     nus2, wnu2 = _orbit_nodes(nu_, orb, max(2, n_nu // 2))
@@ -518,7 +484,7 @@ class SeparatrixLimits:
         r"""The two-term asymptotic rates ``limit + slope/K`` at :math:`1 - k^2 = ` ``mc`` in ``region``."""
         from ..core.elliptic import K
 
-        reg = _check_region(region)
+        reg = check_region(region)
         mcf = real(mc, "mc")
         if not (0.0 < mcf <= 1.0):
             raise ValueError(f"mc (= 1 - k**2) must lie in (0, 1], got {mcf}")
@@ -604,66 +570,3 @@ def separatrix_limits(
 K2_SWITCH = 1.0 - 1e-9
 
 
-def _initial_kind(body: Body, G0: float, k2_0: float | None, kind: str | None, T0: float | None
-                  ) -> tuple[float, str]:
-    """(k2_0, kind) from k2_0 and kind (defaults 0.99, 'max') or from the energy T0."""
-    if T0 is None:
-        kind = "max" if kind is None else kind
-        _check_kind(kind)
-        return (0.99 if k2_0 is None else k2_0), kind
-    if k2_0 is not None or kind is not None:
-        raise ValueError("give the initial state either by T0 or by k2_0 and kind, not both")
-    T0 = real(T0, "T0")
-    if T0 <= 0:
-        raise ValueError(f"T0 must be positive, got {T0}")
-    lo, hi = G0**2 / (2 * body.A1), G0**2 / (2 * body.A3)
-    if not (lo * (1 - 1e-12) <= T0 <= hi * (1 + 1e-12)):
-        raise ValueError(f"T0 must lie in [G0^2/(2 A1), G0^2/(2 A3)] = [{lo:.6g}, {hi:.6g}] (a rigid body), got {T0}")
-    k = kind_of(body, G0, T0)
-    if k == "separatrix":
-        raise ValueError(f"T0 = {T0} lies on the separatrix G0^2 = 2 T0 A2: start on either side of it")
-    return float(k2_from(body, G0, T0, k)), k
-
-
-BRANCHES = ("likely", "random")
-
-
-def _check_branch(branch: Any) -> Any:
-    """'likely', 'random', a region (kind, sigma) or a sequence of regions (one per crossing)."""
-    if isinstance(branch, str):
-        if branch not in BRANCHES:
-            raise ValueError(f"branch must be 'likely', 'random', a region such as ('max', 1) or a list of "
-                             f"regions, got {branch!r}")
-        return branch
-    try:
-        return (_check_region(branch, "branch"),)
-    except ValueError:
-        pass
-    try:
-        seq = tuple(branch)
-    except TypeError:
-        raise ValueError(f"branch must be 'likely', 'random', a region such as ('max', 1) or a list of regions, "
-                         f"got {branch!r}") from None
-    return tuple(_check_region(r, "branch") for r in seq)
-
-
-def _choose(crossing: SeparatrixCrossing, branch: Any, index: int, rng: np.random.Generator | None
-            ) -> tuple[Region | None, str]:
-    """The region the averaged motion continues in at crossing number ``index`` (or None and why not)."""
-    probs = crossing.probabilities
-    text = ", ".join(f"{r}: {p:.3g}" for r, p in probs.items() if p > 0)
-    if not crossing.crosses or crossing.undetermined > 0.5 or not any(p > 0 for p in probs.values()):
-        loops = ", ".join(f"{r}: {v:.3g}" for r, v in crossing.loop_drifts.items())
-        return None, ("the separatrix attracts from both sides: no region keeps the motions that reach it "
-                      f"(loop drifts {loops}); the averaged theory cannot continue")
-    if isinstance(branch, tuple) and index < len(branch):
-        want = branch[index]
-        if probs[want] <= 0.0:
-            return None, stop_message("branch", region=want, probabilities=text)
-        return want, ""
-    if branch == "random":
-        regions = [r for r in REGIONS if probs[r] > 0]
-        p = np.array([probs[r] for r in regions])
-        gen = rng if rng is not None else np.random.default_rng()
-        return regions[int(gen.choice(len(regions), p=p / p.sum()))], ""
-    return crossing.most_probable(), ""

@@ -14,10 +14,11 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..core.validate import real
-from ._model import K2_SPIN_CAP, Body, _labels, _nut_freq
+from ._algebra import K2_SPIN_CAP, k2_from, kind_of, nutation_frequency
+from ._model import Body, check_kind, labelled
 from ._separatrix import K2_SWITCH
 
-__all__ = ["StartRules", "check_start"]
+__all__ = ["StartRules", "check_start", "initial_kind"]
 
 
 @dataclass(frozen=True)
@@ -75,7 +76,7 @@ def check_start(rules: StartRules, kind: str, eps: Any, G0: Any, k2_0: Any, delt
     if eps > 0 and r > 0:
         # within 0.01 of the separatrix a run through it takes the period at K2_SPIN_CAP (see there)
         cap = K2_SPIN_CAP if rules.k2_max is None else 1.0
-        ratio = _nut_freq(_labels(rules.body, kind), G0, min(k2_0, cap)) / eps
+        ratio = nutation_frequency(labelled(rules.body, kind), G0, min(k2_0, cap)) / eps
         if ratio <= r:
             raise ValueError(
                 f"eps = {eps:g} is too large for this state: the Euler-Poinsot frequency over the orbital rate is "
@@ -86,3 +87,24 @@ def check_start(rules: StartRules, kind: str, eps: Any, G0: Any, k2_0: Any, delt
         real(u0, "u0")
         real(psi0, "psi0")
     return eps, G0, k2_0, delta0, lam0, nu0
+
+
+def initial_kind(body: Body, G0: float, k2_0: float | None, kind: str | None, T0: float | None
+                  ) -> tuple[float, str]:
+    """(k2_0, kind) from k2_0 and kind (defaults 0.99, 'max') or from the energy T0."""
+    if T0 is None:
+        kind = "max" if kind is None else kind
+        check_kind(kind)
+        return (0.99 if k2_0 is None else k2_0), kind
+    if k2_0 is not None or kind is not None:
+        raise ValueError("give the initial state either by T0 or by k2_0 and kind, not both")
+    T0 = real(T0, "T0")
+    if T0 <= 0:
+        raise ValueError(f"T0 must be positive, got {T0}")
+    lo, hi = G0**2 / (2 * body.A1), G0**2 / (2 * body.A3)
+    if not (lo * (1 - 1e-12) <= T0 <= hi * (1 + 1e-12)):
+        raise ValueError(f"T0 must lie in [G0^2/(2 A1), G0^2/(2 A3)] = [{lo:.6g}, {hi:.6g}] (a rigid body), got {T0}")
+    k = kind_of(body, G0, T0)
+    if k == "separatrix":
+        raise ValueError(f"T0 = {T0} lies on the separatrix G0^2 = 2 T0 A2: start on either side of it")
+    return float(k2_from(body, G0, T0, k)), k

@@ -9,7 +9,11 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["STOPS", "stop_message"]
+__all__ = ["MAX_CROSSINGS", "STOPS", "stop_message"]
+
+#: a run that crosses the separatrix more often than this ends with a status (the averaged motion stalls there:
+#: single runs and batches alike)
+MAX_CROSSINGS = 50
 
 #: stop -> message template (its fields are the keywords of :func:`stop_message`)
 STOPS: dict[str, str] = {

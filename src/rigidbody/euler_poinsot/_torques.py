@@ -50,9 +50,11 @@ import numpy as np
 from scipy import special
 
 from ..core.validate import RESULT_ERRORS, returned
-from ._engine import _Mean, _State, amplitudes, nu_nodes
-from ._model import Body, Orbit, _as_orbit, _check_body, _dk2, _drag_rates, _nstar, _ratios, as_drag
+from ._algebra import dk2_labelled, drag_rates_labelled, nstar_labelled
+from ._engine import nu_nodes
+from ._model import Body, Orbit, as_drag, as_orbit, check_body, elliptic_ratios
 from ._protocol import FunctionTorque, Torque, TorqueSum, evaluate
+from ._state import Mean, State, amplitudes
 
 __all__ = [
     "ConstantTorque",
@@ -120,11 +122,11 @@ class LinearDrag(_ArrayEq):
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
         return -(np.asarray(omega, dtype=float) @ self.I.T)
 
-    def _closed(self, st: _State) -> _Mean:
+    def _closed(self, st: State) -> Mean:
         # (6) and (8): only the diagonal enters; the averaged drag is along G
         Id = tuple(float(self.I[i, i]) for i in st.lab)
-        dG, dT = _drag_rates(st.a, Id, st.G, st.k2)  # type: ignore[arg-type]  # a 3-tuple
-        return _Mean(dG * st.n, dT, _dk2(st.a, Id, st.k2))  # type: ignore[arg-type]  # a 3-tuple
+        dG, dT = drag_rates_labelled(st.a, Id, st.G, st.k2)  # type: ignore[arg-type]  # a 3-tuple
+        return Mean(dG * st.n, dT, dk2_labelled(st.a, Id, st.k2))  # type: ignore[arg-type]  # a 3-tuple
 
 
 @dataclass(frozen=True, eq=False)
@@ -156,8 +158,8 @@ class GravityGradient(_ArrayEq):
     omega0: float = 1.0
 
     def __post_init__(self) -> None:
-        _check_body(self.body)
-        object.__setattr__(self, "orbit", _as_orbit(self.orbit))
+        check_body(self.body)
+        object.__setattr__(self, "orbit", as_orbit(self.orbit))
         w = self.omega0
         if isinstance(w, bool) or not isinstance(w, (int, float, np.integer, np.floating)) or not math.isfinite(w):
             raise TypeError(f"omega0 must be a finite real number, got {w!r}")
@@ -202,17 +204,17 @@ class GravityGradient(_ArrayEq):
         out[..., 2] = f * (A2 - A1) * r1 * r2
         return out
 
-    def _closed(self, st: _State) -> _Mean:
+    def _closed(self, st: State) -> Mean:
         # (6): d n/dt = (3 w0^2/2G) f N* (e_r . n)(n x e_r); over the orbit <f e_r e_r^T> = mf diag(1/2, 1/2, 0)
-        Ns = _nstar(st.a, st.k2)
+        Ns = nstar_labelled(st.a, st.k2)
         n1, n2, n3 = (float(x) for x in st.n)
         w2 = self.omega0**2
         if st.nu is None:  # n x e3 = (n2, -n1, 0)
             c = -0.75 * w2 * st.orbit.mean_factor * Ns * n3
-            return _Mean(np.array([c * n2, -c * n1, 0.0]), 0.0, 0.0)
+            return Mean(np.array([c * n2, -c * n1, 0.0]), 0.0, 0.0)
         cn, sn = math.cos(st.nu), math.sin(st.nu)  # n x e_r = (-n3 sin nu, n3 cos nu, n1 sin nu - n2 cos nu)
         c = 1.5 * w2 * st.orbit.factor(st.nu) * Ns * (cn * n1 + sn * n2)
-        return _Mean(np.array([-c * n3 * sn, c * n3 * cn, c * (n1 * sn - n2 * cn)]), 0.0, 0.0)
+        return Mean(np.array([-c * n3 * sn, c * n3 * cn, c * (n1 * sn - n2 * cn)]), 0.0, 0.0)
 
     def _check_setup(self, body: Body, orbit: Orbit) -> None:
         _check_same_body("GravityGradient", self.body, body)
@@ -284,7 +286,7 @@ def _vector(v: Any, name: str) -> np.ndarray:
     return _frozen_array(a)
 
 
-def _mean_omega1(st: _State) -> float:
+def _mean_omega1(st: State) -> float:
     r"""Mean of the labelled component :math:`\omega_1 = \sigma c_{dn}\operatorname{dn}` over the period:
     :math:`\sigma c_{dn}\pi/(2K)` (the other two components have zero mean)."""
     c_dn = amplitudes(st)[0]
@@ -328,12 +330,12 @@ class ConstantTorque(_ArrayEq):
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
         return np.zeros(np.shape(omega)) + self.M
 
-    def _closed(self, st: _State) -> _Mean:
+    def _closed(self, st: State) -> Mean:
         w1 = _mean_omega1(st)
         M1 = float(self.M[st.lab[0]])
         a1, _, a3 = st.a
         dQ = 2.0 * (a1 - a3) * w1 * M1  # d(G^2 - 2 T a3)/dt: only omega_1 has a mean
-        return _Mean(st.n * (a1 * w1 * M1 / st.G), w1 * M1, -st.k2 * dQ / st.Q)
+        return Mean(st.n * (a1 * w1 * M1 / st.G), w1 * M1, -st.k2 * dQ / st.Q)
 
 
 #: below this k^2 the mean of sn^4 comes from its power series (the recurrence cancels like eps/k^2)
@@ -350,7 +352,7 @@ def _sn4_mean(k2: float) -> float:
     :math:`K = \tfrac\pi2\sum a_n^2k^{2n}`, :math:`a_n = (1/2)_n/n!` (converged to 1e-21 in 30 terms).
     """
     if k2 >= _SN4_SERIES:
-        _, sn2 = _ratios(k2)
+        _, sn2 = elliptic_ratios(k2)
         return (2.0 * (1.0 + k2) * sn2 - 1.0) / (3.0 * k2)
     a = [1.0]
     for n in range(1, 33):
@@ -402,7 +404,7 @@ class ViscousCavity(_ArrayEq):
     P: Any = field()
 
     def __post_init__(self) -> None:
-        _check_body(self.body)
+        check_body(self.body)
         try:
             Pm = np.asarray(self.P, dtype=float)
         except (TypeError, ValueError):
@@ -427,11 +429,11 @@ class ViscousCavity(_ArrayEq):
         wddot = (_cross(gdot, w) + _cross(g, wdot)) / A
         return wddot @ self.P + _cross(w, wdot @ self.P)
 
-    def _closed(self, st: _State) -> _Mean:
+    def _closed(self, st: State) -> Mean:
         a1, a2, a3 = st.a
         k2 = st.k2
         c_dn, c_sn, c_cn = amplitudes(st)
-        _, s2 = _ratios(k2)
+        _, s2 = elliptic_ratios(k2)
         s4 = _sn4_mean(k2)
         sncn, sndn, cndn = s2 - s4, s2 - k2 * s4, 1.0 - (1.0 + k2) * s2 + k2 * s4
         # <(d omega_i/dt)^2> in the labelled axes: d omega_1/dt = (a2 - a3)/a1 omega_2 omega_3, cyclic
@@ -442,7 +444,7 @@ class ViscousCavity(_ArrayEq):
         l1, l2, l3 = st.lab
         dT = -(P[l1, l1] * w1 + P[l2, l2] * w2 + P[l3, l3] * w3)
         c = (a2 - a3) / (a1 - a2)
-        return _Mean(np.zeros(3), float(dT), float(2.0 * dT * (c * a1 + k2 * a3) / st.Q))
+        return Mean(np.zeros(3), float(dT), float(2.0 * dT * (c * a1 + k2 * a3) / st.Q))
 
     def _check_setup(self, body: Body, orbit: Orbit) -> None:
         _check_same_body("ViscousCavity", self.body, body)
@@ -491,7 +493,7 @@ class MagneticDipole(_ArrayEq):
         Bb = np.einsum("...ij,...i->...j", np.asarray(C, dtype=float), self.field_at(nu))  # C^T B
         return _cross(np.broadcast_to(self.m, Bb.shape), Bb)
 
-    def _closed(self, st: _State) -> _Mean:
+    def _closed(self, st: State) -> Mean:
         if st.nu is None:  # the field averaged over the orbit in time (Kepler's law)
             nu, w = nu_nodes(st.orbit.e, 256)
             B = w @ self.field_at(nu)
@@ -500,4 +502,4 @@ class MagneticDipole(_ArrayEq):
         mu = st.a[0] * _mean_omega1(st) * float(self.m[st.lab[0]]) / st.G  # <C m> = mu n
         n = st.n
         L = mu * np.array([n[1] * B[2] - n[2] * B[1], n[2] * B[0] - n[0] * B[2], n[0] * B[1] - n[1] * B[0]])
-        return _Mean(L, 0.0, 0.0)
+        return Mean(L, 0.0, 0.0)

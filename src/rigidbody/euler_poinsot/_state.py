@@ -1,0 +1,78 @@
+"""The slow state of the averaged system at one time (body, kind and sense of motion, G, k^2, n, true anomaly) and
+the averaged effect of a torque there, as values; the frame attached to G and the amplitudes of the motion."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ._model import AXES, Body, Orbit, labelled
+
+__all__ = ["Mean", "State", "amplitudes", "frame"]
+
+
+@dataclass
+class State:
+    """One slow state: the body, the kind of motion and its sense, G, k^2, n and the true anomaly."""
+
+    body: Body
+    kind: str
+    sigma: int
+    G: float
+    k2: float
+    n: np.ndarray
+    nu: float | None
+    orbit: Orbit
+    mc: float = field(default=-1.0)
+
+    def __post_init__(self) -> None:
+        if self.mc < 0.0:
+            self.mc = 1.0 - self.k2
+        self.lab = AXES[self.kind]
+        self.a: tuple[float, float, float] = labelled(self.body, self.kind)
+
+    @property
+    def Q(self) -> float:
+        a1, a2, a3 = self.a
+        R = a1 * (a2 - a3) + a3 * (a1 - a2) * self.k2
+        return self.G**2 * (a1 - a3) * (a2 - a3) / R
+
+    @property
+    def T(self) -> float:
+        a1, a2, a3 = self.a
+        return 0.5 * self.G**2 * (a2 - a3 + (a1 - a2) * self.k2) / (a1 * (a2 - a3) + a3 * (a1 - a2) * self.k2)
+
+
+@dataclass
+class Mean:
+    """Averaged effect of a torque: L = <C M> (orbital axes), dT, dk2; linear in the torque."""
+
+    L: np.ndarray
+    dT: float
+    dk2: float
+
+    def __add__(self, other: Mean) -> Mean:
+        return Mean(self.L + other.L, self.dT + other.dT, self.dk2 + other.dk2)
+
+
+def frame(n: np.ndarray) -> np.ndarray:
+    """An orthonormal frame (columns y1, y2, y3 = n); y2 in the orbit plane (the paper's Oy) off the poles."""
+    n1, n2, n3 = (float(x) for x in n)
+    r = math.sqrt(n1 * n1 + n2 * n2 + n3 * n3)
+    n1, n2, n3 = n1 / r, n2 / r, n3 / r
+    h = math.hypot(n1, n2)
+    c, s = (n1 / h, n2 / h) if h > 1e-300 else (1.0, 0.0)
+    # y2 = (-sin lam, cos lam, 0), y1 = y2 x n = (cos delta cos lam, cos delta sin lam, -sin delta)
+    return np.array([[n3 * c, -s, n1], [n3 * s, c, n2], [-h, 0.0, n3]])
+
+
+def amplitudes(st: State) -> tuple[float, float, float]:
+    r"""The amplitudes of the Euler--Poinsot motion in the labelled axes (sec. 2):
+    :math:`\omega = (\sigma c_{dn}\operatorname{dn}, -\sigma k c_{sn}\operatorname{sn}, k c_{cn}\operatorname{cn})`."""
+    a1, a2, a3 = st.a
+    R = a1 * (a2 - a3) + a3 * (a1 - a2) * st.k2
+    G = st.G
+    return (G * math.sqrt((a2 - a3) / (a1 * R)), G * math.sqrt((a1 - a3) / (a2 * R)),
+            G * math.sqrt((a1 - a2) / (a3 * R)))
