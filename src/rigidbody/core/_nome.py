@@ -212,6 +212,13 @@ def jacobi_near(u: Any, m: Any, mc: Any, consts: tuple[Any, Any, Any, Any, Any],
     # first order in the low part of the argument: sn' = cn dn, cn' = -sn dn, dn' = -m sn cn
     du = xl * (1.0 + eps)
     s0, c0_, d0 = s0 + c0_ * d0 * du, c0_ - s0 * d0 * du, d0 - m * s0 * c0_ * du
+    # below K/2 where sn^2 < 1/2, cn = sqrt((1 - sn)(1 + sn)) and dn = sqrt(1 - m sn^2) carry at most the
+    # error of sn (|d cn| <= |sn/cn| |d sn| <= |d sn|, and as much for dn) plus a rounding, and never exceed
+    # 1: the products of the series gather a few ulp, which showed as cn = dn = 1 + 2 ulp at u ~ 1e-9 K.
+    # (Above K/2 the results are ratios of these, whose shared factors cancel: kept as they are.)
+    lib, small = _lib(xp), (s0 * s0 < 0.5) & (ah <= 0.25 * ph)  # not upper
+    c0_ = xp.where(small, lib.sqrt((1.0 - s0) * (1.0 + s0)), c0_)
+    d0 = xp.where(small, lib.sqrt(1.0 - m * s0 * s0), d0)
     kp = _lib(xp).sqrt(mc)
     s1 = xp.where(upper, c0_ / d0, s0)
     c1 = xp.where(upper, kp * s0 / d0, c0_)

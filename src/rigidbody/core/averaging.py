@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 from scipy import special
 
-from .elliptic import _m_mc, jacobi
+from .elliptic import jacobi, m_mc
 
 __all__ = ["jacobi_average", "n_nodes", "phase_grid", "sn2_average"]
 
@@ -51,7 +51,7 @@ def _scalar_mc(k: Any, mc: Any) -> float:
         if not (0.0 <= mcf <= 1.0):  # also rejects NaN
             raise ValueError(f"mc must lie in [0, 1] (mc = 1 - k**2); got {mc!r}")
         return mcf
-    _, mca = _m_mc(k, mc)
+    _, mca = m_mc(k, mc)
     if np.ndim(mca) != 0:
         raise ValueError("period averages take a scalar modulus (one state per call)")
     return float(mca)

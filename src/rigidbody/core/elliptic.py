@@ -169,7 +169,7 @@ def _moduli(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[np.ndarray, np.n
     return m, mca, lo
 
 
-def _m_mc(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[np.ndarray, np.ndarray]:
+def m_mc(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[np.ndarray, np.ndarray]:
     """Return the parameter ``m = k**2`` and its complement ``mc = 1 - m`` (validated)."""
     m, mca, _ = _moduli(k, mc)
     return m, mca

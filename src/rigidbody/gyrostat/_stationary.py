@@ -20,7 +20,7 @@ __all__ = ["StationaryMotion", "stationary_motion"]
 SINGULAR_TOL = 1e-6
 
 
-def _wrap(theta: Any) -> Any:
+def wrap_angle(theta: Any) -> Any:
     """Reduce an angle to (-pi, pi]; angles already there are returned unchanged (bit for bit).
 
     (Reducing every angle as ``(theta + pi) mod 2 pi - pi`` rounds it to the ulp of pi: theta0 = 1e-12
@@ -526,7 +526,7 @@ def stationary_motion(
         raise ValueError(f"the family (2.3) requires k1 = 0; sat.k1 = {sat.k1!r}")
     R0 = positive(R0, "R0")
     check_fits(sat, R0)
-    theta0 = float(_wrap(real(theta0, "theta0")))
+    theta0 = float(wrap_angle(real(theta0, "theta0")))
     omega_sign = check_omega_sign(omega_sign)
     if (k2 is None) == (k3 is None):
         raise TypeError("give exactly one of k2 and k3 (the other is computed from (2.4))")

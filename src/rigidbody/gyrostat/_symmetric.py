@@ -14,7 +14,7 @@ from ..core.quadform import inertia, leading_minors
 from ..core.validate import positive, real
 from ._model import GyrostatWarning, Satellite
 from ._secondvar import VERDICTS, verdict_codes
-from ._stationary import SINGULAR_TOL, _wrap, broadcast_shape, check_fits, check_omega_sign, float_arrays
+from ._stationary import SINGULAR_TOL, broadcast_shape, check_fits, check_omega_sign, float_arrays, wrap_angle
 
 __all__ = [
     "SymmetricMotion",
@@ -289,7 +289,7 @@ def symmetric_stationary_motion(
     _check_symmetric(sat)
     R0 = positive(R0, "R0")
     check_fits(sat, R0)
-    theta0 = float(_wrap(real(theta0, "theta0")))
+    theta0 = float(wrap_angle(real(theta0, "theta0")))
     omega_sign = check_omega_sign(omega_sign)
     if math.sin(theta0) == 0.0:
         raise ValueError(

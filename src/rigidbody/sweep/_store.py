@@ -88,8 +88,8 @@ class Store:
             raise ValueError(f"store {str(p)!r} is not a sweep store (format {meta.get('format')!r})")
         if meta.get("version") != VERSION:
             raise ValueError(f"store {str(p)!r} has format version {meta.get('version')!r}; this rigidbody "
-                             f"reads version {VERSION} (per-point done flags): it cannot resume that store; pass a new store "
-                             "path to sweep again")
+                             f"reads version {VERSION} (per-point done flags): it cannot resume that store; pass a "
+                             "new store path to sweep again")
         return cls(p, group, meta)
 
     @classmethod

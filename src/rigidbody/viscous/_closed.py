@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from ..core.validate import real
-from ._model import Body, Medium, _check
+from ._model import Body, Medium, check_body_medium
 
 __all__ = [
     "F4",
@@ -38,17 +38,17 @@ def _out(x: np.ndarray) -> Any:
     return float(x) if np.ndim(x) == 0 else x
 
 
-def _scalar(x: Any) -> Any:
+def as_scalar(x: Any) -> Any:
     """A 0-d array is accepted as the number it holds."""
     return x.item() if isinstance(x, np.ndarray) and x.ndim == 0 else x
 
 
 def _Omega0(Omega0: Any) -> float:
-    return real(_scalar(Omega0), "Omega0")
+    return real(as_scalar(Omega0), "Omega0")
 
 
 def _v0(v0: Any) -> float:
-    v0 = _scalar(v0)
+    v0 = as_scalar(v0)
     if isinstance(v0, (bool, np.bool_)) or not isinstance(v0, (numbers.Real, np.floating, np.integer)):
         raise TypeError(f"v0 = |ndot0| must be a real number >= 0, got {type(v0).__name__}")
     val = float(v0)
@@ -59,14 +59,14 @@ def _v0(v0: Any) -> float:
 
 def Omega(body: Body, medium: Medium, Omega0: float, t: Any) -> Any:
     """Spin ``Ω = ω·n``, eq. (3.3): ``Ω0 exp(-B3 t/θ3)``. Vectorised in ``t >= 0``."""
-    _check(body, medium)
+    check_body_medium(body, medium)
     tt = _time(t)
     return _out(_Omega0(Omega0) * np.exp(-(medium.B3 / body.theta3) * tt))
 
 
 def v(body: Body, medium: Medium, v0: float, t: Any) -> Any:
     """Speed of the axis tip ``v = |ṅ|``, eqs. (3.3)-(3.4): ``v0 exp(-B12 t/θ12)``."""
-    _check(body, medium)
+    check_body_medium(body, medium)
     tt = _time(t)
     return _out(_v0(v0) * np.exp(-(medium.B12 / body.theta12) * tt))
 
@@ -136,7 +136,7 @@ def curvature(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) -> A
     ValueError
         ``v0 = 0`` and ``Ω0 = 0``: a body at rest has no path, its curvature is undefined.
     """
-    _check(body, medium)
+    check_body_medium(body, medium)
     tt = _time(t)
     Om0, vv0 = _Omega0(Omega0), _v0(v0)
     if vv0 == 0.0:
@@ -156,7 +156,7 @@ def spiral_radius(body: Body, medium: Medium, Omega0: float, v0: float, t: Any) 
     ``R = sin ρ`` is the chordal radius of the osculating small circle (angular radius ``ρ``,
     ``cot ρ = |k|``). Computed in log form: finite for all ``t``; ``v0 = 0`` gives ``R = 0``.
     """
-    _check(body, medium)
+    check_body_medium(body, medium)
     tt = _time(t)
     Om0, vv0 = _Omega0(Omega0), _v0(v0)
     if vv0 == 0.0:
@@ -182,7 +182,7 @@ def quasi_coordinates(body: Body, medium: Medium, Omega0: float, v0: float, t: A
 
     ``t = inf`` gives :func:`limits`.
     """
-    _check(body, medium)
+    check_body_medium(body, medium)
     tt = _time(t)
     Om0, vv0 = _Omega0(Omega0), _v0(v0)
     a = medium.B12 / body.theta12
@@ -199,7 +199,7 @@ def limits(body: Body, medium: Medium, Omega0: float, v0: float) -> tuple[float,
     """Limits of (5.1) as ``t → ∞``: ``s∞ = θ12 v0/B12`` (length of the spiral),
     ``ξ∞ = θ3² Ω0/(θ12 B3)`` (total turning of the spiral), ``ζ∞ = θ3 Ω0/B3`` (total turn of the body
     about ``n`` relative to parallel transport)."""
-    _check(body, medium)
+    check_body_medium(body, medium)
     Om0, vv0 = _Omega0(Omega0), _v0(v0)
     s_inf = body.theta12 * vv0 / medium.B12
     zeta_inf = body.theta3 * Om0 / medium.B3

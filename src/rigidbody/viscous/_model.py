@@ -64,7 +64,8 @@ class Medium:
         object.__setattr__(self, "B3", positive(self.B3, "B3"))
 
 
-def _check(body: Body, medium: Medium) -> None:
+def check_body_medium(body: Body, medium: Medium) -> None:
+    """Refuse a body or a medium of the wrong type (TypeError naming which)."""
     if not isinstance(body, Body):
         raise TypeError(f"body must be a viscous.Body, got {type(body).__name__}")
     if not isinstance(medium, Medium):
@@ -73,7 +74,7 @@ def _check(body: Body, medium: Medium) -> None:
 
 def decay_rates(body: Body, medium: Medium) -> tuple[float, float]:
     """Return ``(B12/θ12, B3/θ3)``: the decay rates of ``v`` and ``Ω``, eq. (3.3)."""
-    _check(body, medium)
+    check_body_medium(body, medium)
     return medium.B12 / body.theta12, medium.B3 / body.theta3
 
 

@@ -11,8 +11,8 @@ from typing import Any
 import numpy as np
 
 from ..core.ode import Event, integrate
-from ._closed import _scalar, curvature, quasi_coordinates, spiral_radius
-from ._model import Body, Medium, _check
+from ._closed import as_scalar, curvature, quasi_coordinates, spiral_radius
+from ._model import Body, Medium, check_body_medium
 from ._state import initial_state
 
 __all__ = ["Turn", "axis_path", "turn"]
@@ -114,7 +114,7 @@ def axis_path(
     n : ndarray, shape (3, len(t_eval))
         Or ``(n, tau, g)`` if ``frame``. ``v0 = 0``: the axis is fixed, ``n = n0`` (``τ, g`` are NaN).
     """
-    _check(body, medium)
+    check_body_medium(body, medium)
     n, nd, v0, Om0 = initial_state(n0, ndot0, Omega0)
     t = _times(t_eval)
     if v0 == 0.0:
@@ -233,9 +233,9 @@ def turn(
         turning of the spiral is too small), or the turn is too small to resolve (``R(t1) < 1e-7``: its
         relative accuracy would be ~``rtol/R``; use the cap formula).
     """
-    _check(body, medium)
+    check_body_medium(body, medium)
     n, nd, v0, Om0 = initial_state(n0, ndot0, Omega0)
-    t1 = _scalar(t1)
+    t1 = as_scalar(t1)
     if isinstance(t1, (bool, np.bool_)) or not isinstance(t1, (numbers.Real, np.floating, np.integer)):
         raise TypeError(f"t1 must be a real number >= 0, got {type(t1).__name__}")
     t1 = float(t1)

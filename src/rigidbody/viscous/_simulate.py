@@ -9,7 +9,7 @@ import numpy as np
 
 from ..core import euler
 from ..core.ode import Solution, integrate
-from ._model import Body, Medium, _check
+from ._model import Body, Medium, check_body_medium
 from ._state import initial_state, perpendicular
 
 __all__ = ["axial_rotation", "simulate"]
@@ -32,6 +32,39 @@ def _initial_attitude(n0: np.ndarray, ndot0: np.ndarray, v0: float, attitude0: A
     if np.linalg.norm(R[:, 2] - n0) > 1e-10:
         raise ValueError("attitude0 must put the body z axis on n0 (R(attitude0)[:, 2] == n0)")
     return q
+
+
+def _cartesian_problem(body: Body, medium: Medium, q0: Any, wb0: np.ndarray) -> tuple[list[float], Any, Any, Any, Any]:
+    """Euler's equations in body rates (p, q, r) with the quaternion: start, right-hand side and read-outs."""
+    t1 = t2 = body.theta12
+    t3 = body.theta3
+    b1 = b2 = medium.B12
+    B3 = medium.B3
+    y0 = [*q0, *wb0, 0.0]
+
+    def rhs(t: float, y: np.ndarray) -> list[float]:
+        qw, qx, qy, qz, p, q, r, _ = y
+        return [
+            -0.5 * (qx * p + qy * q + qz * r),
+            0.5 * (qw * p + qy * r - qz * q),
+            0.5 * (qw * q + qz * p - qx * r),
+            0.5 * (qw * r + qx * q - qy * p),
+            ((t2 - t3) * q * r - b1 * p) / t1,
+            ((t3 - t1) * r * p - b2 * q) / t2,
+            ((t1 - t2) * p * q - B3 * r) / t3,
+            r,
+        ]
+
+    def body_rates(y: np.ndarray) -> np.ndarray:
+        return np.array(y[4:7])
+
+    def speed(y: np.ndarray) -> np.ndarray:
+        return np.hypot(y[4], y[5])
+
+    def curv(y: np.ndarray) -> np.ndarray | None:
+        return None
+
+    return y0, rhs, body_rates, speed, curv
 
 
 def simulate(
@@ -89,7 +122,7 @@ def simulate(
         at rest, ``v0 = Ω0 = 0``, whose path has no curvature); ``sim.zeta``, the
         body's turning angle about ``n`` (∫ ω·n dt, the quasi-coordinate ζ); ``sim.quat_norm_error``.
     """
-    _check(body, medium)
+    check_body_medium(body, medium)
     n, nd, v0, Om0 = initial_state(n0, ndot0, Omega0)
     if formulation not in ("polar", "cartesian"):
         raise ValueError(f"formulation must be 'polar' or 'cartesian', got {formulation!r}")
@@ -153,29 +186,7 @@ def simulate(
                 return sr * np.exp(math.log(t3 / t12) + y[6] - y[4])
 
     else:
-        y0 = [*q0, *wb0, 0.0]
-
-        def rhs(t: float, y: np.ndarray) -> list[float]:
-            qw, qx, qy, qz, p, q, r, _ = y
-            return [
-                -0.5 * (qx * p + qy * q + qz * r),
-                0.5 * (qw * p + qy * r - qz * q),
-                0.5 * (qw * q + qz * p - qx * r),
-                0.5 * (qw * r + qx * q - qy * p),
-                ((t2 - t3) * q * r - b1 * p) / t1,
-                ((t3 - t1) * r * p - b2 * q) / t2,
-                ((t1 - t2) * p * q - B3 * r) / t3,
-                r,
-            ]
-
-        def body_rates(y: np.ndarray) -> np.ndarray:
-            return np.array(y[4:7])
-
-        def speed(y: np.ndarray) -> np.ndarray:
-            return np.hypot(y[4], y[5])
-
-        def curv(y: np.ndarray) -> np.ndarray | None:
-            return None
+        y0, rhs, body_rates, speed, curv = _cartesian_problem(body, medium, q0, wb0)
 
     def fields(t: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
         q = y[0:4]
