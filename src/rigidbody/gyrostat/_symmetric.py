@@ -350,7 +350,7 @@ class SymmetricMotion:
 
         Examples
         --------
-    >>> import math
+        >>> import math
         >>> import numpy as np
         >>> from rigidbody import gyrostat
         >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
@@ -366,7 +366,7 @@ class SymmetricMotion:
 
         Examples
         --------
-    >>> import math
+        >>> import math
         >>> import numpy as np
         >>> from rigidbody import gyrostat
         >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
@@ -629,7 +629,7 @@ class SymmetricStability:
 
         Examples
         --------
-    >>> import math
+        >>> import math
         >>> import numpy as np
         >>> from rigidbody import gyrostat
         >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
@@ -646,7 +646,7 @@ class SymmetricStability:
 
         Examples
         --------
-    >>> import math
+        >>> import math
         >>> import numpy as np
         >>> from rigidbody import gyrostat
         >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
@@ -663,7 +663,7 @@ class SymmetricStability:
 
         Examples
         --------
-    >>> import math
+        >>> import math
         >>> import numpy as np
         >>> from rigidbody import gyrostat
         >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)

@@ -44,7 +44,36 @@ SKETCH_N, SKETCH_A, SKETCH_B, SKETCH_BALL = 4, 1.0, 1.5, 0.3
 
 def figure_data(name: str, t_max: float = 200.0, num: int = 4000) -> dict[str, np.ndarray]:
     """The arrays behind the spiral figures ('contracting' or 'unwinding'): path n(t) from (v, k) and
-    the closed-form histories."""
+    the closed-form histories.
+
+    Parameters
+    ----------
+    name : {'contracting', 'unwinding'}
+    t_max : float
+        The last time of the histories.
+    num : int
+        Number of times.
+
+    Returns
+    -------
+    dict
+        ``t``, the path ``n`` (3, num), its end point ``n_inf`` and binormal ``g_inf`` at ``t = inf``, the
+        curvature ``k``, the radius ``R`` and the quasi-coordinates ``s, xi, zeta`` at ``t``.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eqs. (3.4), (4.5), (5.1)-(5.2).
+
+    Examples
+    --------
+    The contracting spiral: ``k0 = (1 · 6)/(2 · 2) = 1.5``, and the tangent turns by ``ξ∞ = θ3² Ω0/(θ12 B3) = 30``
+    rad in all:
+
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> d = figs.figure_data("contracting", num=50)
+    >>> print(f"{d['k'][0]:.12f} {d['xi'][-1]:.6f}")
+    1.500000000000 30.000000
+    """
     medium = MEDIA[name]
     ndot0 = NDOT0[name]
     v0 = float(np.linalg.norm(ndot0))
@@ -63,7 +92,30 @@ def figure_data(name: str, t_max: float = 200.0, num: int = 4000) -> dict[str, n
 
 def fig1_ball_and_rod() -> Any:
     """Fig. 1: the ball-and-rod structure whose drag torque is exactly (1.1), with the body and medium
-    :func:`rigidbody.viscous.ball_and_rod` gives for it (one ball: mass 1, drag coefficient 0.1)."""
+    :func:`rigidbody.viscous.ball_and_rod` gives for it (one ball: mass 1, drag coefficient 0.1).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.plotting.ball_and_rod_sketch : the drawing.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, section 2, fig. 1.
+
+    Examples
+    --------
+    Four balls of radius 0.3 on a circle of radius 1, two on the rod at ``±1.5``: ``θ12 = 2 + 4.5 + 6 · 0.4 · 0.09``,
+    ``θ3 = 4 + 0.216``, ``B12 = 0.1 (2 + 4.5)``, ``B3 = 0.4``; ``B12/θ12 > B3/θ3``, so the spiral contracts:
+
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> print(figs.fig1_ball_and_rod().get_suptitle())
+    Fig. 1: N = 4 balls on a circle of radius a = 1, rod AB of length 2b = 3
+    θ12 = 6.716, θ3 = 4.216, B12 = 0.65, B3 = 0.4: contracting spiral
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import viscous as pv
@@ -83,6 +135,27 @@ def spiral_figure(name: str, data: dict[str, np.ndarray] | None = None) -> Any:
 
     The contracting spiral is seen from its limit point, the unwinding one from the pole of the great
     circle it tends to; the far side of the sphere is dashed. ``data`` defaults to :func:`figure_data`.
+
+    Parameters
+    ----------
+    name : {'contracting', 'unwinding'}
+    data : dict, optional
+        :func:`figure_data` of ``name``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, figs 2-3.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> fig = figs.spiral_figure("unwinding", figs.figure_data("unwinding", num=50))
+    >>> fig.axes[0].get_title()
+    'Fig. 3: unwinding spiral (B12=0.1, B3=0.1, θ12=2, θ3=1)'
     """
     import matplotlib.pyplot as plt
 
@@ -101,7 +174,32 @@ def spiral_figure(name: str, data: dict[str, np.ndarray] | None = None) -> Any:
 
 def turn_figure(name: str) -> Any:
     """Fig. 4 (``'contracting'``) or 5 (``'unwinding'``): one turn of the spiral from ``t1 = 0`` and the solid
-    angle χ it bounds (:func:`rigidbody.viscous.turn`), seen from the turn's centre."""
+    angle χ it bounds (:func:`rigidbody.viscous.turn`), seen from the turn's centre.
+
+    Parameters
+    ----------
+    name : {'contracting', 'unwinding'}
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.plotting.turn_solid_angle : the drawing.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, section 5, figs 4-5.
+
+    Examples
+    --------
+    The panel's title gives χ and the paper's cap approximation ``2π(1 - sqrt(1 - R²))`` at mid-turn:
+
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> figs.turn_figure("contracting").axes[0].get_title()[:2]
+    'χ '
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import viscous as pv
@@ -117,7 +215,31 @@ def turn_figure(name: str) -> Any:
 
 def histories(data: dict[str, dict[str, np.ndarray]] | None = None) -> Any:
     """Beyond the paper: curvature (4.5), spiral radius (5.2) and quasi-coordinates (5.1) against t for both
-    spirals, to t = 80."""
+    spirals, to t = 80.
+
+    Parameters
+    ----------
+    data : dict, optional
+        ``{'contracting': figure_data(...), 'unwinding': figure_data(...)}`` (computed if not given).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eqs. (4.5), (5.1)-(5.2).
+
+    Examples
+    --------
+    Five panels a spiral, one column each:
+
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> data = {name: figs.figure_data(name, num=50) for name in ("contracting", "unwinding")}
+    >>> fig = figs.histories(data)
+    >>> [ax.get_title() for ax in fig.axes[:2]], [ax.get_ylabel() for ax in fig.axes[::2]]
+    (['contracting', 'unwinding'], ['k', 'R', 's', 'ξ', 'ζ'])
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import viscous as pv
@@ -137,22 +259,136 @@ def histories(data: dict[str, dict[str, np.ndarray]] | None = None) -> Any:
 
 
 def fig2_contracting_spiral(data: dict[str, np.ndarray] | None = None) -> Any:
-    """Fig. 2: the contracting spiral (:func:`spiral_figure`)."""
+    """Fig. 2: the contracting spiral (:func:`spiral_figure`).
+
+    Parameters
+    ----------
+    data : dict, optional
+        :func:`figure_data` of ``'contracting'`` (computed if not given).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    spiral_figure : the same for either spiral.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, fig. 2.
+
+    Examples
+    --------
+    Our parameters (the paper gives none) start the path with the curvature ``k0 = 1.5`` and the radius
+    ``R0 = 1/sqrt(1 + k0²)``:
+
+    >>> import math
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> data = figs.figure_data("contracting", num=50)
+    >>> print(f"{data['k'][0]:.12f} {data['R'][0]:.12f} {1 / math.sqrt(1 + 1.5**2):.12f}")
+    1.500000000000 0.554700196225 0.554700196225
+    >>> figs.fig2_contracting_spiral(data).axes[0].get_title()[:26]
+    'Fig. 2: contracting spiral'
+    """
     return spiral_figure("contracting", data)
 
 
 def fig3_unwinding_spiral(data: dict[str, np.ndarray] | None = None) -> Any:
-    """Fig. 3: the unwinding spiral (:func:`spiral_figure`)."""
+    """Fig. 3: the unwinding spiral (:func:`spiral_figure`).
+
+    Parameters
+    ----------
+    data : dict, optional
+        :func:`figure_data` of ``'unwinding'`` (computed if not given).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    spiral_figure : the same for either spiral.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, fig. 3.
+
+    Examples
+    --------
+    Our parameters (the paper gives none) start the path with the curvature ``k0 = 5.0`` and the radius
+    ``R0 = 1/sqrt(1 + k0²)``:
+
+    >>> import math
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> data = figs.figure_data("unwinding", num=50)
+    >>> print(f"{data['k'][0]:.12f} {data['R'][0]:.12f} {1 / math.sqrt(1 + 5.0**2):.12f}")
+    5.000000000000 0.196116135138 0.196116135138
+    >>> figs.fig3_unwinding_spiral(data).axes[0].get_title()[:24]
+    'Fig. 3: unwinding spiral'
+    """
     return spiral_figure("unwinding", data)
 
 
 def fig4_turn_contracting() -> Any:
-    """Fig. 4: one turn of the contracting spiral and its solid angle (:func:`turn_figure`)."""
+    """Fig. 4: one turn of the contracting spiral and its solid angle (:func:`turn_figure`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    turn_figure : the same for either spiral.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, fig. 4.
+
+    Examples
+    --------
+    The spiral radius (5.2) shrinks over the turn:
+
+    >>> from rigidbody import viscous
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> tr = viscous.turn(figs.BODY, figs.MEDIA["contracting"], figs.N0, figs.NDOT0["contracting"], figs.OMEGA0)
+    >>> bool(tr.R2 < tr.R1)
+    True
+    >>> fig = figs.fig4_turn_contracting()
+    >>> fig.get_suptitle() == f"Fig. 4: one turn of the contracting spiral, t in [0, {tr.t2:.3f}]"
+    True
+    """
     return turn_figure("contracting")
 
 
 def fig5_turn_unwinding() -> Any:
-    """Fig. 5: one turn of the unwinding spiral and its solid angle (:func:`turn_figure`)."""
+    """Fig. 5: one turn of the unwinding spiral and its solid angle (:func:`turn_figure`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    turn_figure : the same for either spiral.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, fig. 5.
+
+    Examples
+    --------
+    The spiral radius (5.2) grows over the turn:
+
+    >>> from rigidbody import viscous
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> tr = viscous.turn(figs.BODY, figs.MEDIA["unwinding"], figs.N0, figs.NDOT0["unwinding"], figs.OMEGA0)
+    >>> bool(tr.R2 > tr.R1)
+    True
+    >>> fig = figs.fig5_turn_unwinding()
+    >>> fig.get_suptitle() == f"Fig. 5: one turn of the unwinding spiral, t in [0, {tr.t2:.3f}]"
+    True
+    """
     return turn_figure("unwinding")
 
 

@@ -382,8 +382,9 @@ def slow_variables(sol: Any, axes: Any = None, label: str | None = None, **kw: A
     >>> from rigidbody import euler_poinsot as ep
     >>> body, I = ep.Body(3.2, 2.6, 1.67), np.diag([0.919, 5.228, 1.666])
     >>> sol = ep.averaged(body, I, 0.0, G0=1.0, k2_0=0.99, tau_span=(0.0, 6.0), tau_eval=np.linspace(0.0, 6.0, 61))
+    >>> import matplotlib.pyplot as plt
     >>> from rigidbody.plotting import slow_variables
-    >>> axes = slow_variables(sol)
+    >>> axes = slow_variables(sol, plt.subplots(5, 1, sharex=True)[1])  # on given Axes (else a new figure)
     >>> print(*(ax.get_ylabel() for ax in axes))
     $G$ $T$ $k^2$ $\\delta$ $\\lambda$
     >>> np.array_equal(axes[0].lines[0].get_ydata(), sol.G)

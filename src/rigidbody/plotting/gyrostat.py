@@ -249,7 +249,8 @@ def plot_satellite_motion(sol: Any, ax: Any = None, **kw: Any) -> Any:
     >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
     >>> m = gyrostat.stationary_motion(sat, 1.0, math.pi / 4, k2=0.0)
     >>> sol = gyrostat.simulate(m.satellite, m, (0.0, 2 * math.pi), t_eval=np.linspace(0.0, 2 * math.pi, 50))
-    >>> [ax.get_ylabel() for ax in plot_satellite_motion(sol)]
+    >>> import matplotlib.pyplot as plt
+    >>> [ax.get_ylabel() for ax in plot_satellite_motion(sol, plt.subplots(3, 1, sharex=True)[1])]
     ['R', 'κ', 'γ (OG in body axes)']
     """
     import matplotlib.pyplot as plt

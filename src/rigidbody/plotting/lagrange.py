@@ -189,7 +189,8 @@ def plot_averaged(sol: Any, ax: Any = None, x: str = "tau") -> np.ndarray:
     >>> from rigidbody.plotting import plot_averaged
     >>> from rigidbody import lagrange
     >>> sol = lagrange.paper_solution(3, n_out=50, tau_end=5.0)
-    >>> [ax.get_ylabel() for ax in plot_averaged(sol)]
+    >>> import matplotlib.pyplot as plt
+    >>> [ax.get_ylabel() for ax in plot_averaged(sol, plt.subplots(1, 2)[1])]
     ['roots of Q(u)', 'slow variables']
     """
     axes = _panels(ax, 2, (11.0, 4.0))
@@ -230,11 +231,12 @@ def plot_top_motion(sol: Any, ax: Any = None, **kw: Any) -> np.ndarray:
 
     Examples
     --------
+    >>> import matplotlib.pyplot as plt
     >>> import numpy as np
     >>> from rigidbody import lagrange
     >>> from rigidbody.plotting import plot_top_motion
-    >>> m = lagrange.lagrange_motion(lagrange.PAPER_TOP, lagrange.paper_initial_state(3), np.linspace(0, 10, 201))
-    >>> axes = plot_top_motion(m)
+    >>> m = lagrange.lagrange_motion(lagrange.PAPER_TOP, lagrange.paper_initial_state(3), np.linspace(0, 10, 101))
+    >>> axes = plot_top_motion(m, plt.subplots(1, 2)[1])  # on given Axes (without them: a new figure)
     >>> u = axes[0].lines[0].get_ydata()
     >>> bool(m.u1 - 1e-9 <= u.min() and u.max() <= m.u2 + 1e-9)
     True
