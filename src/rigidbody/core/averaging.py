@@ -259,7 +259,8 @@ def sn2_average(
 
     References
     ----------
-    L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979), eqs. (1.3)-(1.4).
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    eqs. (1.3)-(1.4).
 
     Examples
     --------

@@ -195,7 +195,8 @@ def body_rates(theta: Any, phi: Any, dpsi: Any, dtheta: Any, dphi: Any) -> tuple
 
     References
     ----------
-    L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979), eq. (1.1) (its kinematic part, inverted).
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    eq. (1.1) (its kinematic part, inverted).
 
     Examples
     --------
@@ -249,7 +250,8 @@ def euler_rates(theta: Any, phi: Any, p: Any, q: Any, r: Any) -> tuple[Any, Any,
 
     References
     ----------
-    L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979), eq. (1.1) (its kinematic part).
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    eq. (1.1) (its kinematic part).
 
     Examples
     --------

@@ -228,7 +228,7 @@ def amended_potential(
     A motion (2.3) is a stationary point of W1 (its complex-step gradient vanishes), and there ``chi = 0``,
     so ``W1 = W``:
 
-        >>> import math
+    >>> import math
     >>> import numpy as np
     >>> from rigidbody import gyrostat
     >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
@@ -282,7 +282,7 @@ def gradient_W1(
     The closed form agrees with the complex-step derivative of :func:`amended_potential` at any point, and
     (2.2) vanishes at a motion (2.3):
 
-        >>> import math
+    >>> import math
     >>> import numpy as np
     >>> from rigidbody import gyrostat
     >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)

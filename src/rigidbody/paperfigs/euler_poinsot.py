@@ -5,7 +5,7 @@ I = diag(2.322, 1.31, 1.425) (case 1, χ < 0: figs 1-3) and diag(0.919, 5.228, 1
 figs 4-6). Fig. 1 (4) is the 3-D hodograph in the orbital axes Ox1x2x3, fig. 2 (5) its projection on the
 orbit plane Ox1x2, fig. 3 (6) the view along the spiral axis; figs 2, 3, 5, 6 are "at a larger scale".
 
-The paper states neither ε, ν0 nor the end time. Our choices (also in docs/euler_poinsot.md): ν0 = 0,
+The paper states neither ε, ν0 nor the end time. Our choices (also in :doc:`/euler_poinsot`): ν0 = 0,
 τ ∈ [0, 6]; the hodographs show the orbit-averaged limit ε = 0 and ε = 0.005 (ν kept; in case 1 that run
 ends at τ = 4.77 when the decaying rotation is no longer fast, spin ratio = 1; in case 2 it stays fast to
 τ = 6). "Larger scale" is an inset magnifying the inner turns. "Along the spiral axis" is read both ways:

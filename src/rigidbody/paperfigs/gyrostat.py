@@ -1,6 +1,6 @@
 """Stepanov (1968): the paper's figure (the dumbbell), and stability maps and kappa0(theta0) beyond it.
 
-Choices the paper leaves open (stated here and in docs/gyrostat.md):
+Choices the paper leaves open (stated here and in :doc:`/gyrostat`):
 
 - nondimensional units M = mu = R0 = 1; bodies with principal moments proportional to the six orderings
   of (1.2, 1.0, 0.8), scaled so that l = sqrt(Abar/M) = l/R;

@@ -2,7 +2,7 @@
 
 Fig. 1 is the model: the ball-and-rod structure of section 2, drawn for ``N = 4`` balls on a circle of
 radius ``a = 1``, rod half-length ``b = 1.5``, ball radius 0.3 (our choice; the paper draws it without
-numbers). The paper prints no parameters for figs 2-5 either; we choose (stated here and in docs/viscous.md):
+numbers). The paper prints no parameters for figs 2-5 either; we choose (stated here and in :doc:`/viscous`):
 ``θ12 = 2, θ3 = 1``, ``Ω0 = 6`` (``ξ∞ = 30`` rad ≈ 4.8 turns of the tangent);
 fig. 2 contracting ``B12 = 0.4, B3 = 0.1``, ``v0 = 2`` (``k0 = 1.5``, ``R0 = 0.55``);
 fig. 3 unwinding ``B12 = 0.1, B3 = 0.1``, ``v0 = 0.6`` (``k0 = 5``, ``R0 = 0.2``);
