@@ -581,6 +581,10 @@ def skew(v: Any) -> np.ndarray:
     numpy.ndarray
         Shape ``(..., 3, 3)`` with ``skew(v) @ w == np.cross(v, w)``.
 
+    See Also
+    --------
+    quat_rate : the kinematics, a product with (0, omega).
+
     Examples
     --------
     >>> import numpy as np

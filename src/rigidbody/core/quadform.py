@@ -134,6 +134,10 @@ def leading_minors(H: ArrayLike) -> NDArray[np.float64]:
     --------
     inertia : the numbers of positive, negative and zero eigenvalues.
 
+    References
+    ----------
+    F. R. Gantmacher, The Theory of Matrices, vol. 1 (Chelsea, 1959): Sylvester's criterion.
+
     Examples
     --------
     >>> from rigidbody.core.quadform import leading_minors
@@ -197,6 +201,11 @@ def inertia(
     leading_minors : the minors behind Jacobi's rule.
     null_space_form : the form on the tangent space of constraints, whose inertia decides a constrained
         minimum.
+
+    References
+    ----------
+    F. R. Gantmacher, The Theory of Matrices, vol. 1 (Chelsea, 1959): Sylvester's law of inertia and
+    Jacobi's rule for the signs of the leading minors.
 
     Examples
     --------
@@ -272,6 +281,11 @@ def null_space_form(H: ArrayLike, G: ArrayLike) -> NDArray[np.float64]:
     inertia : the signs of the restricted form.
     rigidbody.gyrostat.constrained_second_variation : the constrained second variation of the gyrostat.
 
+    References
+    ----------
+    F. R. Gantmacher, The Theory of Matrices, vol. 1 (Chelsea, 1959) (quadratic forms on a subspace);
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
+
     Examples
     --------
     The form :math:`x^2 + y^2 - z^2` is indefinite, but positive definite on the plane :math:`z = 0`:
@@ -321,6 +335,11 @@ def hessian_fd(
     See Also
     --------
     gradient_cs : first derivatives by the complex step.
+
+    References
+    ----------
+    B. Fornberg, "Generation of finite difference formulas on arbitrarily spaced grids", Mathematics of
+    Computation 51(184), 699-706 (1988) (the central-difference weights).
 
     Examples
     --------

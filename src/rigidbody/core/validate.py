@@ -137,6 +137,10 @@ def span(value: Any, name: str) -> tuple[float, float]:
     ValueError
         If it is not a pair of finite numbers with ``end >= start``.
 
+    See Also
+    --------
+    real : one finite float.
+
     Examples
     --------
     >>> from rigidbody.core.validate import span

@@ -544,6 +544,10 @@ def normalized_stability_map(
     --------
     rigidbody.plotting.normalized_map_plot : computes and draws it.
 
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5) and the restricted conditions after it.
+
     Examples
     --------
     >>> import numpy as np

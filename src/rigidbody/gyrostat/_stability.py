@@ -560,6 +560,10 @@ def hessian_W1_numerical(sat: Satellite, m: StationaryMotion, *, h: float | None
     --------
     hessian_W1 : the closed forms.
 
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, section 2 (the second derivatives printed after (2.4)).
+
     Examples
     --------
     Round-off ~ eps abs(W1) / h^2 and truncation O(h^8): with ``h = 1e-3`` about 1e-10 next to entries of
@@ -605,6 +609,10 @@ def constraint_gradient(m: StationaryMotion) -> np.ndarray:
     See Also
     --------
     chi : the constraint itself.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eqs. (2.1) and (2.5).
 
     Examples
     --------

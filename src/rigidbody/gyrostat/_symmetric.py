@@ -705,6 +705,10 @@ class SymmetricStabilityMap:
     --------
     symmetric_stability_map : the function that returns it.
 
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4).
+
     Examples
     --------
     >>> from rigidbody import gyrostat

@@ -123,6 +123,10 @@ def hodograph_data(case: int) -> dict[float, Solution]:
     --------
     figure_data : one run.
 
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 3 and figs 1-6.
+
     Examples
     --------
     The orbit-averaged limit and a small eps within the theory (our choices: the paper gives no eps):

@@ -62,6 +62,11 @@ def body(l_over_R: float, ratios: tuple[float, float, float] = BASE) -> gyrostat
     -------
     rigidbody.gyrostat.Satellite
 
+    See Also
+    --------
+    orderings : the proportions of the maps.
+    map_data : a map of such a body.
+
     Examples
     --------
     >>> from rigidbody.paperfigs import gyrostat as figs
@@ -79,6 +84,10 @@ def orderings() -> list[tuple[float, float, float]]:
     Returns
     -------
     list of (float, float, float)
+
+    See Also
+    --------
+    stability_maps : one panel per ordering.
 
     Examples
     --------
@@ -105,6 +114,14 @@ def map_data(l_over_R: float, ratios: tuple[float, float, float]) -> dict:
         ``sat`` (the body), ``code`` (the verdicts), ``b`` (the boundaries of
         :func:`rigidbody.gyrostat.normalized_stability_map`), ``map`` (the :class:`~rigidbody.gyrostat.StabilityMap`).
 
+    See Also
+    --------
+    stability_maps : the figure of the six panels.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
+
     Examples
     --------
     >>> from rigidbody.paperfigs import gyrostat as figs
@@ -123,6 +140,10 @@ def kappa_data() -> dict[float, np.ndarray]:
     Returns
     -------
     dict of float to numpy.ndarray
+
+    See Also
+    --------
+    kappa0 : the figure.
 
     References
     ----------
@@ -158,6 +179,10 @@ def symmetric_map_data() -> gyrostat.SymmetricStabilityMap:
     -------
     rigidbody.gyrostat.SymmetricStabilityMap
 
+    See Also
+    --------
+    symmetric_map : the figure.
+
     References
     ----------
     :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4).
@@ -182,6 +207,10 @@ def dumbbell_data() -> tuple[gyrostat.Satellite, gyrostat.SymmetricMotion]:
     Returns
     -------
     (rigidbody.gyrostat.Satellite, rigidbody.gyrostat.SymmetricMotion)
+
+    See Also
+    --------
+    fig1_dumbbell : the figure.
 
     References
     ----------
@@ -265,6 +294,14 @@ def stability_maps_lr01() -> Any:
     -------
     matplotlib.figure.Figure
 
+    See Also
+    --------
+    stability_maps : the same for any l/R.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
+
     Examples
     --------
     Its panels are the maps of :func:`map_data` for a body of size ``l/R = 0.1`` (the figure itself,
@@ -284,6 +321,14 @@ def stability_maps_lr02() -> Any:
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    stability_maps : the same for any l/R.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
 
     Examples
     --------

@@ -85,6 +85,15 @@ def fig1_case1_theta5(sol: Solution | None = None) -> Any:
     -------
     matplotlib.figure.Figure
 
+    See Also
+    --------
+    case_figure : the same for any case.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    fig. 1.
+
     Examples
     --------
     The paper's case 1, :math:`\\theta_0 = 5` degrees; a shorter run than the paper's (``sol`` is optional):
@@ -110,6 +119,15 @@ def fig2_case2_theta60(sol: Solution | None = None) -> Any:
     -------
     matplotlib.figure.Figure
 
+    See Also
+    --------
+    case_figure : the same for any case.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    fig. 2.
+
     Examples
     --------
     The paper's case 2, :math:`\\theta_0 = 60` degrees; a shorter run than the paper's (``sol`` is optional):
@@ -134,6 +152,15 @@ def fig3_case3_theta170(sol: Solution | None = None) -> Any:
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    case_figure : the same for any case.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    fig. 3.
 
     Examples
     --------

@@ -88,6 +88,10 @@ def paper_cases() -> dict[str, tuple[float, float]]:
     -------
     dict of str to (float, float)
 
+    See Also
+    --------
+    spin_end : the figure that marks them.
+
     References
     ----------
     :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 3 (the body and the two drag tensors).

@@ -60,6 +60,10 @@ def figure_data(name: str, t_max: float = 200.0, num: int = 4000) -> dict[str, n
         ``t``, the path ``n`` (3, num), its end point ``n_inf`` and binormal ``g_inf`` at ``t = inf``, the
         curvature ``k``, the radius ``R`` and the quasi-coordinates ``s, xi, zeta`` at ``t``.
 
+    See Also
+    --------
+    spiral_figure, histories : the figures drawn from it.
+
     References
     ----------
     :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eqs. (3.4), (4.5), (5.1)-(5.2).
@@ -146,6 +150,11 @@ def spiral_figure(name: str, data: dict[str, np.ndarray] | None = None) -> Any:
     -------
     matplotlib.figure.Figure
 
+    See Also
+    --------
+    figure_data : the data.
+    rigidbody.plotting.sphere_path : the drawing.
+
     References
     ----------
     :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, figs 2-3.
@@ -225,6 +234,11 @@ def histories(data: dict[str, dict[str, np.ndarray]] | None = None) -> Any:
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    figure_data : the data.
+    rigidbody.plotting.quasi_coordinate_histories : one column.
 
     References
     ----------

@@ -39,6 +39,10 @@ def get_ax(ax: Any = None, projection: str | None = None, figsize: tuple[float, 
     -------
     matplotlib.axes.Axes
 
+    See Also
+    --------
+    unit_sphere : a 3-D axes with the unit sphere.
+
     Examples
     --------
     >>> from rigidbody.plotting import get_ax
@@ -138,6 +142,10 @@ def time_series(
     Returns
     -------
     numpy.ndarray of Axes
+
+    See Also
+    --------
+    rigidbody.plotting.quasi_coordinate_histories : the histories of the viscous module.
 
     Examples
     --------

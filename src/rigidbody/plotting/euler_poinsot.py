@@ -144,6 +144,11 @@ def hodograph_3d(sol: Any, ax: Any = None, **kw: Any) -> Any:
     -------
     matplotlib.lines.Line2D
 
+    See Also
+    --------
+    hodograph : the points drawn.
+    hodograph_projection, hodograph_side_view : the 2-D views.
+
     References
     ----------
     :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, figs 1 and 4.
@@ -187,6 +192,10 @@ def equal_3d(ax: Any) -> Any:
     -------
     Axes3D
 
+    See Also
+    --------
+    hodograph_3d : calls it.
+
     Examples
     --------
     A segment from the origin to ``(2, 1, 1)``: a box of proportions 2 : 1 : 1:
@@ -226,6 +235,10 @@ def plane_basis(normal: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     (d, e1, e2) : numpy.ndarray
         A right-handed orthonormal triple, ``d`` along ``normal``.
 
+    See Also
+    --------
+    hodograph_projection : projects on the plane.
+
     Examples
     --------
     >>> from rigidbody.plotting import plane_basis
@@ -261,6 +274,11 @@ def hodograph_projection(sol: Any, ax: Any = None, normal: Any = (0.0, 0.0, 1.0)
     Returns
     -------
     matplotlib.lines.Line2D
+
+    See Also
+    --------
+    hodograph_3d : the 3-D view.
+    spiral_axis : the normal of the view along the spiral.
 
     References
     ----------
@@ -317,6 +335,11 @@ def hodograph_side_view(sol: Any, ax: Any = None, axis: Any = (0.0, 0.0, 1.0), *
     Returns
     -------
     matplotlib.lines.Line2D
+
+    See Also
+    --------
+    hodograph_projection : the view along the axis.
+    spiral_axis : the axis of the best-fitting cone.
 
     References
     ----------
@@ -456,6 +479,10 @@ def separatrix_passage(body: Any, full: Any, averaged: Any = None, axes: Any = N
     -------
     numpy.ndarray
         The three axes.
+
+    See Also
+    --------
+    rigidbody.euler_poinsot.separatrix_crossing : the crossing of the averaged motion.
 
     References
     ----------

@@ -51,6 +51,10 @@ def stability_map_plot(
     normalized_map_plot : computes a map and draws it with this function.
     rigidbody.gyrostat.stability_map : the verdict codes.
 
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
+
     Examples
     --------
     >>> from rigidbody.plotting import stability_map_plot
@@ -239,6 +243,10 @@ def plot_satellite_motion(sol: Any, ax: Any = None, **kw: Any) -> Any:
     See Also
     --------
     rigidbody.plotting.plot_solution : ``sol.plot()``, which calls it.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, sections 1-2.
 
     Examples
     --------

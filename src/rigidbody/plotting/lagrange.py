@@ -25,6 +25,15 @@ def slow_time_axis(sol: Any, x: str = "tau") -> tuple[np.ndarray, str]:
     (numpy.ndarray, str)
         The values and the axis label.
 
+    See Also
+    --------
+    plot_roots, plot_integrals : the plots that use it.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    figs 1-2 (the abscissa xi).
+
     Examples
     --------
     >>> import numpy as np
@@ -183,6 +192,11 @@ def plot_averaged(sol: Any, ax: Any = None, x: str = "tau") -> np.ndarray:
     See Also
     --------
     rigidbody.plotting.plot_solution : ``sol.plot()``, which calls it.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    figs 1-3.
 
     Examples
     --------

@@ -56,6 +56,12 @@ def averaging_error_plot(
     scaled_error_map : the same errors divided by ``eps**order``, over the plane.
     rigidbody.studies.fitted_order : the order fitted to the errors.
 
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (9) (order eps^2);
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (3.4)
+    (order eps).
+
     Examples
     --------
     A map whose errors are exactly ``3 eps²`` and ``5 eps²``: the reference line of slope 2 passes through
@@ -132,6 +138,12 @@ def scaled_error_map(ds: Any, order: float, *, var: str = "error", over: str = "
     See Also
     --------
     averaging_error_plot : the errors against eps, one line per value of the other axis.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (9) (order eps^2);
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (3.4)
+    (order eps).
 
     Examples
     --------

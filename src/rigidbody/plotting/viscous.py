@@ -33,6 +33,10 @@ def look_from(ax: Any, direction: Any) -> Any:
     -------
     Axes3D
 
+    See Also
+    --------
+    sphere_path : draws a path seen from a direction.
+
     Examples
     --------
     From the ``y`` axis: azimuth 90 degrees, elevation 0; from the ``z`` axis: elevation 90:
@@ -147,6 +151,11 @@ def turn_solid_angle(turn: Any, ax: Any = None, *, color: str = "C0", fill: str 
     -------
     Axes3D
 
+    See Also
+    --------
+    rigidbody.viscous.turn : the turn drawn.
+    sphere_path : a whole path.
+
     References
     ----------
     :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, section 5, figs 4-5.
@@ -213,6 +222,10 @@ def quasi_coordinate_histories(t: Any, data: dict[str, Any], axes: Any = None, t
     See Also
     --------
     rigidbody.viscous.quasi_coordinates, rigidbody.viscous.curvature : the data.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eqs. (4.5), (5.1)-(5.2).
 
     Examples
     --------
@@ -339,6 +352,10 @@ def plot_axis_path(sol: Any, ax: Any = None, **kw: Any) -> Any:
     See Also
     --------
     rigidbody.plotting.plot_solution : ``sol.plot()``, which calls it.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, figs 2-3.
 
     Examples
     --------
