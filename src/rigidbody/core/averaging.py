@@ -81,7 +81,7 @@ def n_nodes(k: float | None = None, *, mc: float | None = None, period: str = "2
     References
     ----------
     L. N. Trefethen, J. A. C. Weideman, "The exponentially convergent trapezoidal rule", SIAM Review 56(3),
-    385-458 (2014), sec. 3 (periodic integrands analytic in a strip).
+    385-458 (2014) (periodic integrands analytic in a strip).
 
     Examples
     --------
@@ -201,12 +201,13 @@ def jacobi_average(
     References
     ----------
     L. N. Trefethen, J. A. C. Weideman, "The exponentially convergent trapezoidal rule", SIAM Review 56(3),
-    385-458 (2014), sec. 3 (periodic integrands analytic in a strip).
+    385-458 (2014) (periodic integrands analytic in a strip).
 
     Examples
     --------
     The closed forms :math:`\langle\operatorname{sn}^2\rangle = (1 - E/K)/k^2` and
-    :math:`\langle\operatorname{dn}^2\rangle = E/K` (NIST DLMF 22.16.E1 integrated over a period):
+    :math:`\langle\operatorname{dn}^2\rangle = E/K` (:math:`\int_0^K\operatorname{dn}^2 = E`: Jacobi's epsilon function,
+    NIST DLMF §22.16(ii)):
 
     >>> from rigidbody.core.averaging import jacobi_average
     >>> from rigidbody.core.elliptic import E, K
