@@ -61,7 +61,11 @@ nb_ipywidgets_js: dict[str, dict[str, str]] = {}
 autosummary_generate = True
 autosummary_imported_members = True
 autodoc_typehints = "none"  # numpydoc's Parameters sections carry the types
-autodoc_default_options = {"members": False}
+# signatures show defaults as written in the source (``delta0=pi / 4``, not ``delta0=0.7853981633974483``)
+autodoc_preserve_defaults = True
+# a class page documents its methods, properties and fields, so the Methods and Attributes tables of the
+# autosummary class template link to them (the API pages' automodule directives say :no-members:)
+autodoc_default_options = {"members": True, "undoc-members": True}
 numpydoc_show_class_members = False
 numpydoc_class_members_toctree = False
 numpydoc_xref_param_type = False

@@ -73,6 +73,26 @@ def n_nodes(k: float | None = None, *, mc: float | None = None, period: str = "2
     -------
     int
         :math:`n \ge 16`, a multiple of 4, from :math:`e^{-\pi K' n/K} \le 10^{-13}` per :math:`2K`.
+
+    See Also
+    --------
+    phase_grid : the nodes and the Jacobi functions there.
+
+    References
+    ----------
+    L. N. Trefethen, J. A. C. Weideman, "The exponentially convergent trapezoidal rule", SIAM Review 56(3),
+    385-458 (2014) (periodic integrands analytic in a strip).
+
+    Examples
+    --------
+    The count is :math:`40K/(\pi K')` per :math:`2K`, rounded up to a multiple of 4, at least 16. Away from
+    the separatrix that is the floor (:math:`40K/(\pi K') \approx 10` at :math:`k^2 = 1/4`); at
+    :math:`1 - k^2 = 10^{-10}`, :math:`K \approx \ln(4\cdot10^5) = 12.90` and :math:`K' \approx \pi/2`
+    give :math:`104.6 \to 108` (twice as many per :math:`4K`):
+
+    >>> from rigidbody.core.averaging import n_nodes
+    >>> n_nodes(0.5), n_nodes(mc=1e-10), n_nodes(mc=1e-10, period="4K")
+    (16, 108, 212)
     """
     mcf = _scalar_mc(k, mc)
     if mcf == 0.0:
@@ -108,6 +128,21 @@ def phase_grid(
     -------
     s, sn, cn, dn : numpy.ndarray
         Arrays of length ``n``.
+
+    See Also
+    --------
+    jacobi_average : the mean of a function over these nodes.
+    n_nodes : the default number of nodes.
+
+    Examples
+    --------
+    At :math:`k = 0` the period :math:`4K` is :math:`2\pi` and ``sn`` is the sine:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.averaging import phase_grid
+    >>> s, sn, cn, dn = phase_grid(0.0, 8)
+    >>> print(f"{s[1]:.12f} {np.pi / 4:.12f}", np.allclose(sn, np.sin(s), rtol=0, atol=1e-15))
+    0.785398163397 0.785398163397 True
     """
     mcf = _scalar_mc(k, mc)
     if mcf == 0.0:
@@ -156,13 +191,31 @@ def jacobi_average(
     float or numpy.ndarray
         The period mean.
 
+    See Also
+    --------
+    sn2_average : the mean over a motion :math:`u = u_1 + (u_2 - u_1)\operatorname{sn}^2`.
+    phase_grid : the nodes.
+    rigidbody.core.kernel.elliptic_ratios : the means of :math:`\operatorname{sn}^2` and
+        :math:`\operatorname{dn}^2` in closed form.
+
+    References
+    ----------
+    L. N. Trefethen, J. A. C. Weideman, "The exponentially convergent trapezoidal rule", SIAM Review 56(3),
+    385-458 (2014) (periodic integrands analytic in a strip).
+
     Examples
     --------
+    The closed forms :math:`\langle\operatorname{sn}^2\rangle = (1 - E/K)/k^2` and
+    :math:`\langle\operatorname{dn}^2\rangle = E/K` (:math:`\int_0^K\operatorname{dn}^2 = E`: Jacobi's epsilon function,
+    NIST DLMF §22.16(ii)):
+
     >>> from rigidbody.core.averaging import jacobi_average
     >>> from rigidbody.core.elliptic import E, K
     >>> k = 0.8
     >>> abs(jacobi_average(lambda s, c, d: s**2, k) - (1 - E(k) / K(k)) / k**2) < 1e-14
     True
+    >>> print(f"{jacobi_average(lambda s, c, d: d**2, k):.12f} {E(k) / K(k):.12f}")
+    0.639677324894 0.639677324894
     """
     _, snv, cnv, dnv = phase_grid(k, n, mc=mc, period=period)
     vals = np.asarray(f(snv, cnv, dnv), dtype=float)
@@ -200,6 +253,25 @@ def sn2_average(
     -------
     float or numpy.ndarray
         The period mean.
+
+    See Also
+    --------
+    jacobi_average : the mean of any function of sn, cn, dn.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    eqs. (1.3)-(1.4).
+
+    Examples
+    --------
+    The mean of :math:`u` itself is :math:`u_1 + (u_2 - u_1)(1 - E/K)/k^2`:
+
+    >>> from rigidbody.core.averaging import sn2_average
+    >>> from rigidbody.core.elliptic import E, K
+    >>> u1, u2, k = -0.3, 0.6, 0.8
+    >>> print(f"{sn2_average(lambda u: u, u1, u2, k):.12f} {u1 + (u2 - u1) * (1 - E(k) / K(k)) / k**2:.12f}")
+    0.206703761868 0.206703761868
     """
     _, snv, _, _ = phase_grid(k, n, mc=mc, period="2K")
     u = u1 + (u2 - u1) * snv * snv

@@ -128,6 +128,20 @@ def check_modulus(k: ArrayLike, name: str = "k") -> np.ndarray:
         If ``k`` is not numeric.
     ValueError
         If any value is NaN or lies outside [0, 1].
+
+    See Also
+    --------
+    rigidbody.core.validate.finite_array : the check of an array of any real values.
+
+    Examples
+    --------
+    >>> from rigidbody.core.elliptic import check_modulus
+    >>> check_modulus([0.0, 0.5, 1.0])
+    array([0. , 0.5, 1. ])
+    >>> check_modulus(1.2, "k0")
+    Traceback (most recent call last):
+        ...
+    ValueError: k0 must lie in [0, 1] (modulus convention, m = k**2); got ...1.2...
     """
     a = _as_float_array(k, name)
     _range(a, name)
@@ -192,6 +206,35 @@ def K(k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
     -------
     float or numpy.ndarray
         :math:`K`; ``inf`` at :math:`k = 1`.
+
+    See Also
+    --------
+    E : the complete integral of the second kind.
+    F : the incomplete integral, :math:`K(k) = F(\pi/2, k)`.
+    jacobi : the Jacobi functions, of period :math:`4K`.
+
+    References
+    ----------
+    NIST Digital Library of Mathematical Functions, §19.2(ii) (Legendre's integrals) and §19.12 (the
+    asymptotic form :math:`K \approx \ln(4/k')` as :math:`k \to 1`).
+
+    Examples
+    --------
+    >>> import math
+    >>> from rigidbody.core.elliptic import K
+    >>> print(f"{K(0.0):.12f}")  # pi/2
+    1.570796326795
+
+    The lemniscatic case :math:`k^2 = 1/2`, where :math:`K = \Gamma(1/4)^2/(4\sqrt\pi)`:
+
+    >>> print(f"{K(math.sqrt(0.5)):.12f} {math.gamma(0.25)**2 / (4 * math.sqrt(math.pi)):.12f}")
+    1.854074677301 1.854074677301
+
+    Near the separatrix give ``mc = 1 - k**2``: :math:`K = \ln(4/k') + O(m_c\ln m_c)`, here
+    :math:`k' = 10^{-6}`:
+
+    >>> print(f"{K(mc=1e-12):.9f} {math.log(4e6):.9f}")
+    15.201804919 15.201804919
     """
     if mc is None:
         if _is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
@@ -218,6 +261,29 @@ def E(k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
     -------
     float or numpy.ndarray
         :math:`E`, with :math:`E(1) = 1`.
+
+    See Also
+    --------
+    K : the complete integral of the first kind.
+    Einc : the incomplete integral, :math:`E(k) = E(\pi/2, k)`.
+
+    References
+    ----------
+    NIST Digital Library of Mathematical Functions, §19.2(ii) (Legendre's integrals) and §19.7(i)
+    (Legendre's relation :math:`EK' + E'K - KK' = \pi/2`).
+
+    Examples
+    --------
+    >>> import math
+    >>> from rigidbody.core.elliptic import E, K
+    >>> print(f"{E(0.0):.12f} {E(1.0):.12f}")  # pi/2 and 1
+    1.570796326795 1.000000000000
+
+    Legendre's relation at :math:`k = k' = 1/\sqrt2`, :math:`2EK - K^2 = \pi/2`:
+
+    >>> k = math.sqrt(0.5)
+    >>> print(f"{2 * E(k) * K(k) - K(k)**2:.12f} {math.pi / 2:.12f}")
+    1.570796326795 1.570796326795
     """
     # cephes' ellipe(m) is a rational approximation in 1 - m (computed exactly from m = k**2); from mc the
     # rounding of m = 1 - mc costs |dE/dmc| eps/2 ~ K eps/4, at most 3 ulp down to mc = 1e-20 (E is
@@ -255,6 +321,30 @@ def F(phi: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None
     -------
     float or numpy.ndarray
         :math:`F(\phi, k)`; infinite at :math:`k=1`, :math:`|\phi|\ge\pi/2`.
+
+    See Also
+    --------
+    K : the complete integral, :math:`F(\pi/2, k)`.
+    Einc : the incomplete integral of the second kind.
+    am : the inverse function, :math:`\operatorname{am}(F(\phi, k), k) = \phi`.
+
+    References
+    ----------
+    NIST Digital Library of Mathematical Functions, §19.2(ii) (Legendre's integrals) and §19.25(i) (the
+    same in Carlson's :math:`R_F`).
+
+    Examples
+    --------
+    >>> import math
+    >>> from rigidbody.core.elliptic import F, K, am
+    >>> print(f"{F(0.7, 0.0):.12f}")  # k = 0: F = phi
+    0.700000000000
+    >>> print(f"{F(1.0, 1.0):.12f} {math.atanh(math.sin(1.0)):.12f}")  # k = 1: the inverse Gudermannian
+    1.226191170884 1.226191170884
+    >>> print(f"{F(math.pi / 2, 0.6):.12f} {K(0.6):.12f}")  # F(pi/2, k) = K(k)
+    1.750753802916 1.750753802916
+    >>> print(f"{am(F(1.0, 0.6), 0.6):.12f}")
+    1.000000000000
     """
     ph = _as_float_array(phi, "phi")
     _, mca, _ = _moduli(k, mc)
@@ -288,6 +378,27 @@ def Einc(phi: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
     -------
     float or numpy.ndarray
         :math:`E(\phi, k)`.
+
+    See Also
+    --------
+    E : the complete integral, :math:`E(\pi/2, k)`.
+    F : the incomplete integral of the first kind.
+
+    References
+    ----------
+    NIST Digital Library of Mathematical Functions, §19.2(ii) (Legendre's integrals) and §19.25(i) (the
+    same in Carlson's :math:`R_F`, :math:`R_D`).
+
+    Examples
+    --------
+    >>> import math
+    >>> from rigidbody.core.elliptic import E, Einc
+    >>> print(f"{Einc(1.0, 1.0):.12f} {math.sin(1.0):.12f}")  # k = 1: E(phi, 1) = sin(phi)
+    0.841470984808 0.841470984808
+    >>> print(f"{Einc(math.pi / 2, 0.6):.12f} {E(0.6):.12f}")
+    1.418083394449 1.418083394449
+    >>> print(f"{Einc(math.pi + 0.3, 0.6) - Einc(0.3, 0.6):.12f} {2 * E(0.6):.12f}")  # one period: 2E
+    2.836166788897 2.836166788897
     """
     ph = _as_float_array(phi, "phi")
     m, mca, _ = _moduli(k, mc)
@@ -362,12 +473,39 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
         Broadcast to the common shape of the inputs. ``am`` is continuous and increasing in ``u``
         (:math:`\operatorname{am}(u+2K)=\operatorname{am}(u)+\pi`).
 
+    See Also
+    --------
+    sn, cn, dn, am : the four functions one at a time.
+    K : the quarter period.
+    rigidbody.core.averaging.jacobi_average : period means of functions of sn, cn, dn.
+
+    References
+    ----------
+    NIST Digital Library of Mathematical Functions, §22.2 (definitions), §22.5 (special values and the limits
+    :math:`k \to 0, 1`), §22.6(i) (:math:`\operatorname{sn}^2 + \operatorname{cn}^2 = 1`,
+    :math:`k^2\operatorname{sn}^2 + \operatorname{dn}^2 = 1`) and §22.16(i) (the amplitude).
+
     Examples
     --------
-    >>> from rigidbody.core.elliptic import jacobi
+    >>> import math
+    >>> from rigidbody.core.elliptic import K, jacobi
     >>> s, c, d, a = jacobi(0.3, 0.5)
     >>> abs(s**2 + c**2 - 1) < 1e-15 and abs(d**2 + 0.25 * s**2 - 1) < 1e-15
     True
+
+    At the quarter period :math:`\operatorname{sn} = 1`, :math:`\operatorname{dn} = k' = \sqrt{1 - k^2}`,
+    :math:`\operatorname{am} = \pi/2`:
+
+    >>> s, c, d, a = jacobi(K(0.6), 0.6)
+    >>> print(f"{s:.12f} {d:.12f} {a:.12f}")
+    1.000000000000 0.800000000000 1.570796326795
+
+    The limits: circular functions at :math:`k = 0`, hyperbolic at :math:`k = 1`:
+
+    >>> print(*(f"{x:.12f}" for x in jacobi(1.0, 0.0)))  # sin 1, cos 1, 1, 1
+    0.841470984808 0.540302305868 1.000000000000 1.000000000000
+    >>> print(*(f"{x:.12f}" for x in jacobi(1.0, 1.0)[:2]), f"{math.tanh(1.0):.12f} {1 / math.cosh(1.0):.12f}")
+    0.761594155956 0.648054273664 0.761594155956 0.648054273664
     """
     if _is_real_scalar(u) and abs(u) <= _U_HUGE:  # scalar fast path (right-hand sides of integrators)
         mcf, mf, fast = -1.0, 0.0, _MC_JACOBI_FROM_K
@@ -431,38 +569,115 @@ _JACOBI_PARAMS = """
 
 
 def _jacobi_doc(func: Any) -> Any:
-    """Append the shared Parameters/Returns sections to a single-function Jacobi docstring."""
-    func.__doc__ = (func.__doc__ or "").rstrip() + "\n" + _JACOBI_PARAMS
+    """Insert the shared Parameters/Returns sections after the summary line of a single-function Jacobi
+    docstring (before its See Also and Examples)."""
+    summary, _, rest = (func.__doc__ or "").partition("\n\n")
+    func.__doc__ = summary + "\n" + _JACOBI_PARAMS + "\n" + rest
     return func
 
 
 @_jacobi_doc
 def sn(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    """Jacobi ``sn(u, k)`` in the modulus ``k``.
+    r"""Jacobi ``sn(u, k)`` in the modulus ``k``.
 
+    See Also
+    --------
+    cn, dn, am : the other functions of the same argument.
+    jacobi : all four at once (one evaluation).
+
+    References
+    ----------
+    NIST Digital Library of Mathematical Functions, §22.2, §22.5 and §22.6(i).
+
+    Examples
+    --------
+    >>> import math
+    >>> from rigidbody.core.elliptic import K, sn
+    >>> print(f"{sn(K(0.6), 0.6):.12f}")  # sn(K) = 1
+    1.000000000000
+    >>> print(f"{sn(0.5, 0.0):.12f} {math.sin(0.5):.12f}")  # k = 0: sin
+    0.479425538604 0.479425538604
+    >>> print(f"{sn(0.5, 1.0):.12f} {math.tanh(0.5):.12f}")  # k = 1: tanh
+    0.462117157260 0.462117157260
     """
     return jacobi(u, k, mc=mc)[0]
 
 
 @_jacobi_doc
 def cn(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    """Jacobi ``cn(u, k)`` in the modulus ``k``.
+    r"""Jacobi ``cn(u, k)`` in the modulus ``k``.
 
+    See Also
+    --------
+    sn, dn, am : the other functions of the same argument.
+    jacobi : all four at once (one evaluation).
+
+    References
+    ----------
+    NIST Digital Library of Mathematical Functions, §22.2, §22.5 and §22.6(i).
+
+    Examples
+    --------
+    >>> from rigidbody.core.elliptic import K, cn, sn
+    >>> print(f"{cn(2 * K(0.6), 0.6):.12f}")  # cn(2K) = -1
+    -1.000000000000
+    >>> print(f"{sn(0.8, 0.6)**2 + cn(0.8, 0.6)**2:.12f}")
+    1.000000000000
     """
     return jacobi(u, k, mc=mc)[1]
 
 
 @_jacobi_doc
 def dn(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    """Jacobi ``dn(u, k)`` in the modulus ``k``.
+    r"""Jacobi ``dn(u, k)`` in the modulus ``k``.
 
+    See Also
+    --------
+    sn, cn, am : the other functions of the same argument.
+    jacobi : all four at once (one evaluation).
+
+    References
+    ----------
+    NIST Digital Library of Mathematical Functions, §22.2, §22.5 and §22.6(i).
+
+    Examples
+    --------
+    >>> from rigidbody.core.elliptic import K, dn, sn
+    >>> print(f"{dn(K(0.6), 0.6):.12f}")  # dn(K) = k' = sqrt(1 - k**2)
+    0.800000000000
+    >>> print(f"{0.36 * sn(0.8, 0.6)**2 + dn(0.8, 0.6)**2:.12f}")  # k**2 sn**2 + dn**2 = 1
+    1.000000000000
+
+    Near the separatrix give ``mc``: ``dn`` keeps its relative accuracy where it is tiny,
+    :math:`\operatorname{dn}(K) = k' = 10^{-8}` here:
+
+    >>> print(f"{dn(K(mc=1e-16), mc=1e-16):.12e}")
+    1.000000000000e-08
     """
     return jacobi(u, k, mc=mc)[2]
 
 
 @_jacobi_doc
 def am(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    """Jacobi amplitude ``am(u, k)``, continuous and increasing in ``u`` in the modulus ``k``.
+    r"""Jacobi amplitude ``am(u, k)``, continuous and increasing in ``u`` in the modulus ``k``.
 
+    See Also
+    --------
+    F : the inverse function, :math:`F(\operatorname{am}(u, k), k) = u`.
+    sn, cn, dn : :math:`\sin\operatorname{am}`, :math:`\cos\operatorname{am}` and
+        :math:`\sqrt{1 - k^2\sin^2\operatorname{am}}`.
+
+    References
+    ----------
+    NIST Digital Library of Mathematical Functions, §22.16(i).
+
+    Examples
+    --------
+    >>> import math
+    >>> from rigidbody.core.elliptic import K, am
+    >>> print(f"{am(3 * K(0.6), 0.6):.12f} {3 * math.pi / 2:.12f}")  # am(u + 2K) = am(u) + pi
+    4.712388980385 4.712388980385
+    >>> print(f"{am(1.0, 1.0):.12f} {2 * math.atan(math.tanh(0.5)):.12f}")  # k = 1: the Gudermannian
+    0.865769483240 0.865769483240
     """
     return jacobi(u, k, mc=mc)[3]

@@ -78,6 +78,29 @@ def dcm(psi: Any, theta: Any, phi: Any) -> np.ndarray:
     -------
     numpy.ndarray
         Shape ``(..., 3, 3)``; ``x_ref = R @ x_body``.
+
+    See Also
+    --------
+    angles : the inverse, the angles of a matrix.
+    quat_from_euler : the same rotation as a quaternion.
+    dcm_from_quat : the matrix of a quaternion.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody.core.euler import dcm
+    >>> R = dcm(0.3, 0.5, 0.7)
+    >>> np.allclose(R @ R.T, np.eye(3), rtol=0, atol=1e-15)
+    True
+
+    The third column is the body symmetry axis :math:`(\sin\theta\sin\psi, -\sin\theta\cos\psi,
+    \cos\theta)`, and ``R`` is SciPy's intrinsic z-x-z rotation:
+
+    >>> np.allclose(R[:, 2], [np.sin(0.5) * np.sin(0.3), -np.sin(0.5) * np.cos(0.3), np.cos(0.5)], rtol=0, atol=1e-15)
+    True
+    >>> from scipy.spatial.transform import Rotation
+    >>> np.allclose(R, Rotation.from_euler("ZXZ", [0.3, 0.5, 0.7]).as_matrix(), rtol=0, atol=1e-15)
+    True
     """
     ps, th, ph = np.broadcast_arrays(_arr(psi, "psi"), _arr(theta, "theta"), _arr(phi, "phi"))
     c1, s1 = np.cos(ps), np.sin(ps)
@@ -115,6 +138,22 @@ def angles(R: Any) -> tuple[Any, Any, Any]:
     -----
     At :math:`\sin\theta \le 10^{-12}` the degenerate-angle rule applies: :math:`\varphi = 0`,
     :math:`\psi = \operatorname{atan2}(R_{21}, R_{11})`.
+
+    See Also
+    --------
+    dcm : the inverse, the matrix of the angles.
+    euler_from_quat : the angles of a quaternion.
+
+    Examples
+    --------
+    >>> from rigidbody.core.euler import angles, dcm
+    >>> print(*(f"{a:.12f}" for a in angles(dcm(0.3, 0.5, 0.7))))
+    0.300000000000 0.500000000000 0.700000000000
+
+    At :math:`\theta = 0` only :math:`\psi + \varphi` is defined: it is returned as :math:`\psi`:
+
+    >>> angles(dcm(0.3, 0.0, 0.2))
+    (0.5, 0.0, 0.0)
     """
     Ra = _arr(R, "R")
     if Ra.shape[-2:] != (3, 3):
@@ -149,6 +188,26 @@ def body_rates(theta: Any, phi: Any, dpsi: Any, dtheta: Any, dphi: Any) -> tuple
     Returns
     -------
     p, q, r : float or numpy.ndarray
+
+    See Also
+    --------
+    euler_rates : the inverse.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    eq. (1.1) (its kinematic part, inverted).
+
+    Examples
+    --------
+    A pure precession at the rate 2: the angular velocity has the magnitude 2 and the components
+    :math:`(0, 2\sin\theta, 2\cos\theta)` at :math:`\varphi = 0`:
+
+    >>> import math
+    >>> from rigidbody.core.euler import body_rates
+    >>> p, q, r = body_rates(0.5, 0.0, 2.0, 0.0, 0.0)
+    >>> print(p, f"{q:.12f} {2 * math.sin(0.5):.12f} {math.hypot(p, q, r):.12f}")
+    0.0 0.958851077208 0.958851077208 2.000000000000
     """
     th, ph = _arr(theta, "theta"), _arr(phi, "phi")
     a, b, c = _arr(dpsi, "dpsi"), _arr(dtheta, "dtheta"), _arr(dphi, "dphi")
@@ -183,6 +242,27 @@ def euler_rates(theta: Any, phi: Any, p: Any, q: Any, r: Any) -> tuple[Any, Any,
     ValueError
         If :math:`\sin\theta = 0` anywhere (the rates of :math:`\psi` and :math:`\varphi` are undefined
         there; integrate in quaternions instead).
+
+    See Also
+    --------
+    body_rates : the inverse.
+    quat_rate : the kinematics without the singularity at :math:`\sin\theta = 0`.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    eq. (1.1) (its kinematic part).
+
+    Examples
+    --------
+    >>> from rigidbody.core.euler import body_rates, euler_rates
+    >>> p, q, r = body_rates(0.5, 0.7, 0.3, -0.2, 1.1)
+    >>> print(*(f"{x:.12f}" for x in euler_rates(0.5, 0.7, p, q, r)))
+    0.300000000000 -0.200000000000 1.100000000000
+    >>> euler_rates(0.0, 0.7, p, q, r)
+    Traceback (most recent call last):
+        ...
+    ValueError: theta must not be 0 or pi (|sin theta| <= 1e-12): Euler-angle rates are singular there; ...
     """
     th, ph = _arr(theta, "theta"), _arr(phi, "phi")
     pa, qa, ra = _arr(p, "p"), _arr(q, "q"), _arr(r, "r")
@@ -200,7 +280,7 @@ def euler_rates(theta: Any, phi: Any, p: Any, q: Any, r: Any) -> tuple[Any, Any,
 
 
 def quat_multiply(a: Any, b: Any) -> np.ndarray:
-    """Hamilton product ``a ⊗ b`` of scalar-first quaternions.
+    r"""Hamilton product ``a ⊗ b`` of scalar-first quaternions.
 
     Parameters
     ----------
@@ -211,6 +291,20 @@ def quat_multiply(a: Any, b: Any) -> np.ndarray:
     -------
     numpy.ndarray
         Shape ``(..., 4)``. With rotations, ``a ⊗ b`` applies ``b`` first (in the frame of ``a``).
+
+    See Also
+    --------
+    quat_rate : the kinematics :math:`\dot q = \tfrac12 q\otimes(0, \omega)`.
+
+    Examples
+    --------
+    Hamilton's rules :math:`ij = k`, :math:`ji = -k`:
+
+    >>> from rigidbody.core.euler import quat_multiply
+    >>> quat_multiply([0, 1, 0, 0], [0, 0, 1, 0])
+    array([0., 0., 0., 1.])
+    >>> quat_multiply([0, 0, 1, 0], [0, 1, 0, 0])
+    array([ 0.,  0.,  0., -1.])
     """
     qa, qb = np.broadcast_arrays(_arr(a, "a"), _arr(b, "b"))
     w1, x1, y1, z1 = np.moveaxis(qa, -1, 0)
@@ -241,6 +335,20 @@ def quat_rate(q: Any, omega_body: Any) -> np.ndarray:
     numpy.ndarray
         :math:`\dot q`, shape ``(..., 4)``. Integrate it instead of the Euler angles: it has no
         singularity at :math:`\theta = 0, \pi`.
+
+    See Also
+    --------
+    euler_rates : the same kinematics in Euler angles.
+    quat_multiply : the product it uses.
+
+    Examples
+    --------
+    A spin at the rate 2 about the body :math:`z` axis from the identity: :math:`\dot q = (0, 0, 0, 1)`,
+    the derivative of :math:`(\cos t, 0, 0, \sin t)` at :math:`t = 0`:
+
+    >>> from rigidbody.core.euler import quat_rate
+    >>> quat_rate([1, 0, 0, 0], [0, 0, 2])
+    array([0., 0., 0., 1.])
     """
     om = _arr(omega_body, "omega_body")
     zero = np.zeros((*om.shape[:-1], 1))
@@ -248,7 +356,7 @@ def quat_rate(q: Any, omega_body: Any) -> np.ndarray:
 
 
 def quat_from_euler(psi: Any, theta: Any, phi: Any) -> np.ndarray:
-    """Scalar-first unit quaternion of the rotation :func:`dcm`.
+    r"""Scalar-first unit quaternion of the rotation :func:`dcm`.
 
     Parameters
     ----------
@@ -259,6 +367,22 @@ def quat_from_euler(psi: Any, theta: Any, phi: Any) -> np.ndarray:
     -------
     numpy.ndarray
         Shape ``(..., 4)``, ``(w, x, y, z)``; the sign is not normalised (``w`` may be negative).
+
+    See Also
+    --------
+    euler_from_quat : the inverse.
+    dcm : the same rotation as a matrix.
+
+    Examples
+    --------
+    A quarter turn about :math:`Z` is :math:`(\cos\frac\pi4, 0, 0, \sin\frac\pi4)`:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.euler import dcm, dcm_from_quat, quat_from_euler
+    >>> print(np.round(quat_from_euler(np.pi / 2, 0.0, 0.0), 6))
+    [0.707107 0.       0.       0.707107]
+    >>> np.allclose(dcm_from_quat(quat_from_euler(0.3, 0.5, 0.7)), dcm(0.3, 0.5, 0.7), rtol=0, atol=1e-15)
+    True
     """
     ps, th, ph = np.broadcast_arrays(_arr(psi, "psi"), _arr(theta, "theta"), _arr(phi, "phi"))
     ch = np.cos(0.5 * th)
@@ -285,6 +409,19 @@ def dcm_from_quat(q: Any) -> np.ndarray:
     ------
     ValueError
         If the shape is not ``(..., 4)`` or a quaternion is zero.
+
+    See Also
+    --------
+    dcm_from_unit_quat : the same from the components of a unit quaternion, unchecked.
+    quat_from_dcm : the inverse.
+
+    Examples
+    --------
+    >>> from rigidbody.core.euler import dcm_from_quat
+    >>> dcm_from_quat([2.0, 0.0, 0.0, 0.0])  # normalised first: the identity
+    array([[1., 0., 0.],
+           [0., 1., 0.],
+           [0., 0., 1.]])
     """
     qa = _arr(q, "q")
     if qa.shape[-1] != 4:
@@ -310,6 +447,21 @@ def dcm_from_unit_quat(w: Any, x: Any, y: Any, z: Any) -> np.ndarray:
     -------
     numpy.ndarray
         Shape ``(..., 3, 3)``: ``x_ref = R @ x_body``.
+
+    See Also
+    --------
+    dcm_from_quat : the checked version (any shape ``(..., 4)``, normalised).
+
+    Examples
+    --------
+    A quarter turn about :math:`z` takes the body :math:`x` axis to the reference :math:`y` axis:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.euler import dcm_from_unit_quat
+    >>> c = np.sqrt(0.5)
+    >>> R = dcm_from_unit_quat(c, 0.0, 0.0, c)
+    >>> np.allclose(R @ [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], rtol=0, atol=1e-15)
+    True
     """
     R = np.empty((*np.shape(w), 3, 3))
     R[..., 0, 0] = 1 - 2 * (y * y + z * z)
@@ -325,7 +477,7 @@ def dcm_from_unit_quat(w: Any, x: Any, y: Any, z: Any) -> np.ndarray:
 
 
 def quat_from_dcm(R: Any) -> np.ndarray:
-    """Scalar-first unit quaternion of a rotation matrix, by Shepperd's stable method.
+    r"""Scalar-first unit quaternion of a rotation matrix, by Shepperd's stable method.
 
     Parameters
     ----------
@@ -336,6 +488,28 @@ def quat_from_dcm(R: Any) -> np.ndarray:
     -------
     numpy.ndarray
         Shape ``(..., 4)``, normalised, with ``w >= 0``.
+
+    See Also
+    --------
+    dcm_from_quat : the inverse (up to the sign of the quaternion).
+
+    References
+    ----------
+    S. W. Shepperd, "Quaternion from rotation matrix", Journal of Guidance and Control 1(3), 223-224 (1978).
+
+    Examples
+    --------
+    The turn by :math:`2\pi/3` about :math:`(1, 1, 1)/\sqrt3` permutes the axes; its quaternion is
+    :math:`(\cos\frac\pi3, \sin\frac\pi3(1, 1, 1)/\sqrt3) = (1, 1, 1, 1)/2`:
+
+    >>> from rigidbody.core.euler import dcm_from_quat, quat_from_dcm
+    >>> quat_from_dcm([[0, 0, 1], [1, 0, 0], [0, 1, 0]])
+    array([0.5, 0.5, 0.5, 0.5])
+
+    ``q`` and ``-q`` are the same rotation; the one with ``w >= 0`` is returned:
+
+    >>> quat_from_dcm(dcm_from_quat([-0.5, 0.5, 0.5, 0.5]))
+    array([ 0.5, -0.5, -0.5, -0.5])
     """
     Ra = _arr(R, "R")
     if Ra.shape[-2:] != (3, 3):
@@ -380,6 +554,16 @@ def euler_from_quat(q: Any) -> tuple[Any, Any, Any]:
     -------
     psi, theta, phi : float or numpy.ndarray
         As :func:`angles`, including its degenerate-angle rule at :math:`\sin\theta = 0`.
+
+    See Also
+    --------
+    quat_from_euler : the inverse.
+
+    Examples
+    --------
+    >>> from rigidbody.core.euler import euler_from_quat, quat_from_euler
+    >>> print(*(f"{a:.12f}" for a in euler_from_quat(quat_from_euler(0.3, 0.5, 0.7))))
+    0.300000000000 0.500000000000 0.700000000000
     """
     return angles(dcm_from_quat(q))
 
@@ -396,6 +580,21 @@ def skew(v: Any) -> np.ndarray:
     -------
     numpy.ndarray
         Shape ``(..., 3, 3)`` with ``skew(v) @ w == np.cross(v, w)``.
+
+    See Also
+    --------
+    quat_rate : the kinematics, a product with (0, omega).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody.core.euler import skew
+    >>> skew([1.0, 2.0, 3.0])
+    array([[ 0., -3.,  2.],
+           [ 3.,  0., -1.],
+           [-2.,  1.,  0.]])
+    >>> skew([1.0, 2.0, 3.0]) @ [4.0, 5.0, 6.0], np.cross([1.0, 2.0, 3.0], [4.0, 5.0, 6.0])
+    (array([-3.,  6., -3.]), array([-3.,  6., -3.]))
     """
     va = _arr(v, "v")
     if va.shape[-1] != 3:

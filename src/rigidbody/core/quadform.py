@@ -45,7 +45,7 @@ def _as_square_stack(H: ArrayLike, name: str = "H") -> NDArray[np.float64]:
 
 
 def equilibrate(H: ArrayLike, *, iterations: int = 12) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Symmetric Ruiz equilibration ``Hs = diag(d) H diag(d)`` with ``d > 0``.
+    r"""Symmetric Ruiz equilibration ``Hs = diag(d) H diag(d)`` with ``d > 0``.
 
     Each pass divides row and column ``i`` by ``sqrt(max_j abs(H_ij))``; after a few passes every row of
     ``Hs`` has max-norm close to one.  The congruence preserves the inertia and the signs of all
@@ -64,6 +64,30 @@ def equilibrate(H: ArrayLike, *, iterations: int = 12) -> tuple[NDArray[np.float
     Hs : ndarray, shape (..., n, n)
     d : ndarray, shape (..., n)
         The positive scale factors.
+
+    See Also
+    --------
+    inertia : the inertia of a form, equilibrated where its signs are not certain.
+    leading_minors : the minors of the scaled matrix, scaled back.
+
+    References
+    ----------
+    D. Ruiz, "A scaling algorithm to equilibrate both rows and columns norms in matrices", Rutherford Appleton
+    Laboratory report RAL-TR-2001-034 (2001).
+
+    Examples
+    --------
+    Entries over thirty decades become numbers near one; the determinant changes by the positive factor
+    :math:`\prod d_i^2` (Sylvester's law of inertia):
+
+    >>> import numpy as np
+    >>> from rigidbody.core.quadform import equilibrate
+    >>> H = np.array([[4e20, 2e10], [2e10, -1.0]])
+    >>> Hs, d = equilibrate(H)
+    >>> print(np.round(np.abs(Hs).max(axis=1), 2))
+    [1.   0.99]
+    >>> print(f"{np.linalg.det(Hs):.9f} {np.linalg.det(H) * np.prod(d)**2:.9f}")
+    -1.976970532 -1.976970532
     """
     A = _as_square_stack(H).copy()
     d = np.ones(A.shape[:-1])
@@ -105,6 +129,22 @@ def leading_minors(H: ArrayLike) -> NDArray[np.float64]:
     Returns
     -------
     ndarray, shape (..., n)
+
+    See Also
+    --------
+    inertia : the numbers of positive, negative and zero eigenvalues.
+
+    References
+    ----------
+    F. R. Gantmacher, The Theory of Matrices, vol. 1 (Chelsea, 1959): Sylvester's criterion.
+
+    Examples
+    --------
+    >>> from rigidbody.core.quadform import leading_minors
+    >>> print(leading_minors([[2.0, 1.0], [1.0, 2.0]]).round(12))  # 2 and 2*2 - 1*1
+    [2. 3.]
+    >>> print(*(f"{m:.6e}" for m in leading_minors([[4e20, 2e10], [2e10, -1.0]])))  # 4e20, -4e20 - 4e20
+    4.000000e+20 -8.000000e+20
     """
     A = _as_square_stack(H)
     diag = np.abs(np.diagonal(A, axis1=-2, axis2=-1))
@@ -155,6 +195,31 @@ def inertia(
     Returns
     -------
     n_pos, n_neg, n_zero : integer ndarrays of shape ``H.shape[:-2]`` (0-d arrays for one matrix).
+
+    See Also
+    --------
+    leading_minors : the minors behind Jacobi's rule.
+    null_space_form : the form on the tangent space of constraints, whose inertia decides a constrained
+        minimum.
+
+    References
+    ----------
+    F. R. Gantmacher, The Theory of Matrices, vol. 1 (Chelsea, 1959): Sylvester's law of inertia and
+    Jacobi's rule for the signs of the leading minors.
+
+    Examples
+    --------
+    :math:`[[1, 2], [2, 1]]` has the eigenvalues 3 and -1; :math:`[[1, 1], [1, 1]]` has 2 and 0:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.quadform import inertia
+    >>> [tuple(int(n) for n in inertia(H)) for H in ([[1.0, 2.0], [2.0, 1.0]], [[1.0, 1.0], [1.0, 1.0]])]
+    [(1, 1, 0), (1, 0, 1)]
+
+    Entries sixteen decades apart (an orbit radius next to an angle in SI units) keep their signs:
+
+    >>> tuple(int(n) for n in inertia(np.diag([7e6, -3e-9, 2.0])))
+    (2, 1, 0)
     """
     A = _as_square_stack(H)
     if not np.all(np.isfinite(A)):
@@ -210,6 +275,26 @@ def null_space_form(H: ArrayLike, G: ArrayLike) -> NDArray[np.float64]:
     ndarray, shape (n - m, n - m)
         The form in an orthonormal basis ``Z`` of ``ker G`` (its inertia, not its entries, is
         basis-independent).
+
+    See Also
+    --------
+    inertia : the signs of the restricted form.
+    rigidbody.gyrostat.constrained_second_variation : the constrained second variation of the gyrostat.
+
+    References
+    ----------
+    F. R. Gantmacher, The Theory of Matrices, vol. 1 (Chelsea, 1959) (quadratic forms on a subspace);
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
+
+    Examples
+    --------
+    The form :math:`x^2 + y^2 - z^2` is indefinite, but positive definite on the plane :math:`z = 0`:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.quadform import inertia, null_space_form
+    >>> Hz = null_space_form(np.diag([1.0, 1.0, -1.0]), [0.0, 0.0, 1.0])
+    >>> Hz.shape, tuple(int(n) for n in inertia(Hz))
+    ((2, 2), (2, 0, 0))
     """
     from scipy.linalg import null_space
 
@@ -241,6 +326,30 @@ def hessian_fd(
     x : array_like, shape (n,)
     h : float or array_like, shape (n,)
         Step per coordinate.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, n)
+        The symmetric matrix of second derivatives.
+
+    See Also
+    --------
+    gradient_cs : first derivatives by the complex step.
+
+    References
+    ----------
+    B. Fornberg, "Generation of finite difference formulas on arbitrarily spaced grids", Mathematics of
+    Computation 51(184), 699-706 (1988) (the central-difference weights).
+
+    Examples
+    --------
+    A cubic is differentiated exactly (to rounding) by the 8th-order formula:
+    :math:`f = x_0^2x_1 + x_1^3` has the Hessian :math:`[[2x_1, 2x_0], [2x_0, 6x_1]]`:
+
+    >>> from rigidbody.core.quadform import hessian_fd
+    >>> print(hessian_fd(lambda x: x[0]**2 * x[1] + x[1]**3, [1.0, 2.0]).round(8))
+    [[ 4.  2.]
+     [ 2. 12.]]
     """
     x0 = np.asarray(x, dtype=float)
     n = x0.size
@@ -285,6 +394,25 @@ def gradient_cs(
     -------
     numpy.ndarray
         The gradient, shape ``(x.size,)``.
+
+    See Also
+    --------
+    hessian_fd : second derivatives by finite differences.
+
+    References
+    ----------
+    W. Squire, G. Trapp, "Using complex variables to estimate derivatives of real functions", SIAM Review
+    40(1), 110-112 (1998).
+
+    Examples
+    --------
+    :math:`f = x_0^2 e^{x_1}` has the gradient :math:`(2x_0e^{x_1}, x_0^2e^{x_1}) = (3, 2.25)` at
+    :math:`(1.5, 0)`:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.quadform import gradient_cs
+    >>> print(gradient_cs(lambda z: z[0]**2 * np.exp(z[1]), [1.5, 0.0]).round(14))
+    [3.   2.25]
     """
     x0 = np.asarray(x, dtype=float)
     g = np.empty(x0.size)

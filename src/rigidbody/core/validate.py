@@ -51,6 +51,25 @@ def real(value: Any, name: str) -> float:
         If ``value`` is not a real number (``bool`` is rejected too).
     ValueError
         If ``value`` is NaN or infinite.
+
+    See Also
+    --------
+    positive : a finite float > 0.
+    finite_array : an array of finite floats.
+
+    Examples
+    --------
+    >>> from rigidbody.core.validate import real
+    >>> real(3, "theta0")
+    3.0
+    >>> real(float("nan"), "theta0")
+    Traceback (most recent call last):
+        ...
+    ValueError: theta0 must be finite, got nan
+    >>> real(True, "theta0")
+    Traceback (most recent call last):
+        ...
+    TypeError: theta0 must be a real number, got bool
     """
     v = _as_float(value, name)
     if not math.isfinite(v):
@@ -78,6 +97,20 @@ def positive(value: Any, name: str) -> float:
         If ``value`` is not a real number.
     ValueError
         If ``value`` is not finite or not > 0.
+
+    See Also
+    --------
+    real : a finite float of either sign.
+
+    Examples
+    --------
+    >>> from rigidbody.core.validate import positive
+    >>> positive(7e6, "R0")
+    7000000.0
+    >>> positive(0, "R0")
+    Traceback (most recent call last):
+        ...
+    ValueError: R0 must be finite and > 0, got 0
     """
     v = _as_float(value, name)
     if not (math.isfinite(v) and v > 0.0):
@@ -103,6 +136,20 @@ def span(value: Any, name: str) -> tuple[float, float]:
     ------
     ValueError
         If it is not a pair of finite numbers with ``end >= start``.
+
+    See Also
+    --------
+    real : one finite float.
+
+    Examples
+    --------
+    >>> from rigidbody.core.validate import span
+    >>> span((0, 10), "t_span")
+    (0.0, 10.0)
+    >>> span((10, 0), "t_span")
+    Traceback (most recent call last):
+        ...
+    ValueError: t_span must be finite with end >= start, got (10, 0)
     """
     try:
         a, b = (float(x) for x in value)
@@ -133,6 +180,25 @@ def finite_array(value: Any, name: str) -> np.ndarray:
         If ``value`` cannot be read as real numbers (strings, objects, complex numbers).
     ValueError
         If any entry is NaN or infinite.
+
+    See Also
+    --------
+    real : one finite float.
+    returned : the check of what a user's function returned.
+
+    Examples
+    --------
+    >>> from rigidbody.core.validate import finite_array
+    >>> finite_array([1, 0, 0], "n0")
+    array([1., 0., 0.])
+    >>> finite_array([1, 0, float("inf")], "n0")
+    Traceback (most recent call last):
+        ...
+    ValueError: n0 must be finite, got [1, 0, inf]
+    >>> finite_array([1j, 0, 0], "n0")
+    Traceback (most recent call last):
+        ...
+    TypeError: n0 must be real numbers, got [1j, 0, 0]
     """
     if isinstance(value, (str, bytes)) or np.iscomplexobj(value):
         raise TypeError(f"{name} must be real numbers, got {value!r}")
@@ -146,11 +212,51 @@ def finite_array(value: Any, name: str) -> np.ndarray:
 
 
 class ResultTypeError(TypeError):
-    """A user's function returned something that is not real numbers (None, complex numbers, text)."""
+    """A user's function returned something that is not real numbers (None, complex numbers, text).
+
+    See Also
+    --------
+    returned : the check that raises it.
+    ResultValueError : real numbers of the wrong shape, or not finite.
+
+    Examples
+    --------
+    It is a ``TypeError``, so ``except TypeError`` catches it:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.validate import ResultTypeError, returned
+    >>> def torque(t, y):
+    ...     return None
+    >>> try:
+    ...     returned(torque(0.0, np.zeros(3)), torque, (3,), role="the torque")
+    ... except TypeError as exc:
+    ...     print(type(exc).__name__, isinstance(exc, ResultTypeError))
+    ResultTypeError True
+    """
 
 
 class ResultValueError(ValueError):
-    """A user's function returned real numbers of the wrong shape, or NaN or infinite values."""
+    """A user's function returned real numbers of the wrong shape, or NaN or infinite values.
+
+    See Also
+    --------
+    returned : the check that raises it.
+    ResultTypeError : something that is not real numbers.
+
+    Examples
+    --------
+    It is a ``ValueError``, so ``except ValueError`` catches it:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.validate import ResultValueError, returned
+    >>> def torque(t, y):
+    ...     return np.array([0.0, np.nan, 0.0])
+    >>> try:
+    ...     returned(torque(0.0, np.zeros(3)), torque, (3,), role="the torque")
+    ... except ValueError as exc:
+    ...     print(type(exc).__name__, isinstance(exc, ResultValueError))
+    ResultValueError True
+    """
 
 
 #: the errors of :func:`returned` (a run catches them to end with a status where a function misbehaves mid-way)
@@ -191,6 +297,29 @@ def returned(value: Any, fun: Any, shape: tuple[int, ...], *, role: str = "the f
     ResultValueError
         (a ``ValueError``) for a scalar, a shape that does not broadcast to ``shape`` with the same last axis,
         or NaN or infinite values.
+
+    See Also
+    --------
+    result_message : the message of the errors.
+    RESULT_ERRORS : the two error classes, for an ``except`` clause.
+
+    Examples
+    --------
+    A torque of the right shape passes (a list is converted), a constant broadcasts; a scalar is refused with
+    a message that names the function:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.validate import returned
+    >>> def torque(t, y):
+    ...     return [0.0, 0.0, -0.1 * y[2]]
+    >>> returned(torque(0.0, np.ones(3)), torque, (3,), role="the torque")
+    array([ 0. ,  0. , -0.1])
+    >>> returned(np.array([[0.0, 0.0, 1.0]]), torque, (5, 3)).shape
+    (1, 3)
+    >>> returned(1.0, torque, (3,), role="the torque")
+    Traceback (most recent call last):
+        ...
+    rigidbody.core.validate.ResultValueError: the torque <function torque at 0x...> returned a scalar (1.0); ...
     """
     if type(value) is np.ndarray and value.dtype == np.float64 and (value.shape == shape or _fits(value.shape, shape)):
         a = value  # the common cases: the shape itself, or the compact shape a vectorised function returns
@@ -202,7 +331,34 @@ def returned(value: Any, fun: Any, shape: tuple[int, ...], *, role: str = "the f
 
 
 def result_message(fun: Any, shape: tuple[int, ...], problem: str, role: str = "the function") -> str:
-    """The message of :func:`returned`: who returned what, and what was expected."""
+    """The message of :func:`returned`: who returned what, and what was expected.
+
+    Parameters
+    ----------
+    fun : callable
+        The user's function (shown by its repr).
+    shape : tuple of int
+        The shape expected.
+    problem : str
+        What it returned instead.
+    role : str
+        What the function is (``'the torque'``).
+
+    Returns
+    -------
+    str
+
+    See Also
+    --------
+    returned : the check that raises with this message.
+
+    Examples
+    --------
+    >>> from rigidbody.core.validate import result_message
+    >>> print(result_message(abs, (10, 3), "complex numbers", role="the field"))
+    the field <built-in function abs> returned complex numbers; expected finite real numbers of shape (..., 3), here
+    (10, 3) (or broadcasting to it)
+    """
     return (f"{role} {fun!r} returned {problem}; expected finite real numbers of shape (..., {shape[-1]}), here "
             f"{shape} (or broadcasting to it)")
 

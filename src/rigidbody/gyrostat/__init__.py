@@ -85,6 +85,35 @@ def stability(
     -------
     Stability (for (2.3)) or SymmetricStability (for (3.2)); both carry ``degree``, ``nullity``,
     ``verdict``, ``minors``, ``jacobian`` and ``unconditionally_stable``.
+
+    See Also
+    --------
+    stationary_motion, symmetric_stationary_motion : the motions.
+    stability_map, symmetric_stability_map : verdicts over grids.
+    constrained_second_variation : the form whose signs decide.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5) and sections 3-4.
+
+    Examples
+    --------
+    Stable where the restricted problem's inequalities (after (2.5)) hold, for a body with
+    :math:`l = 0.1R_0`; and, by section 4, also under perturbations of the area constant:
+
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02)
+    >>> st = gyrostat.stability(m.satellite, m)
+    >>> st.verdict, st.degree, st.restricted_verdict, st.unconditionally_stable
+    ('stable', 0, True, True)
+
+    With :math:`k_2 = 0` the third restricted inequality fails and the degree of instability is odd:
+
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.0)
+    >>> st = gyrostat.stability(m.satellite, m)
+    >>> st.verdict, st.degree, st.restricted_verdict
+    ('unstable', 1, False)
     """
     if isinstance(motion, StationaryMotion):
         return stability_triaxial(sat, motion, rtol=rtol)

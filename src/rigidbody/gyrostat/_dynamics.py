@@ -80,7 +80,7 @@ def _quat_from_columns(C: np.ndarray) -> np.ndarray:
 
 
 def initial_state(sat: Satellite, motion: StationaryMotion | SymmetricMotion, *, sigma0: float = 0.0) -> np.ndarray:
-    """The 13-state of the stationary motion at orbital angle ``sigma0``.
+    r"""The 13-state of the stationary motion at orbital angle ``sigma0``.
 
     G at ``R0 (cos k sin s, sin k, cos k cos s)``, velocity ``omega0 zeta2 x r``; body axes
     ``x1 = y1``, ``x2 = cos th y2 - sin th y3``, ``x3 = sin th y2 + cos th y3`` (so that beta, gamma are
@@ -105,6 +105,31 @@ def initial_state(sat: Satellite, motion: StationaryMotion | SymmetricMotion, *,
         ``(r, v, q, omega)``: position of G from the attracting centre and its velocity in the inertial
         axes zeta1, zeta2, zeta3 (3 + 3), the unit quaternion body -> inertial, scalar first (4), and the
         body components of the angular velocity (3); in the units of ``sat`` and ``motion``.
+
+    See Also
+    --------
+    simulate : integrates the full equations from it.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.3) and section 5.
+
+    Examples
+    --------
+    G lies at the distance :math:`R_0` at the latitude :math:`\kappa_0` and moves on a circle of radius
+    :math:`R_0\cos\kappa_0` at the rate :math:`\omega_0`:
+
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, math.pi / 4, k2=0.0)
+    >>> y0 = gyrostat.initial_state(m.satellite, m)
+    >>> r, v = y0[:3], y0[3:6]
+    >>> print(f"{np.linalg.norm(r):.12f} {r[1]:.12f} {math.sin(m.kappa0):.12f}")
+    1.000000000000 0.002986547159 0.002986547159
+    >>> print(f"{np.linalg.norm(v):.12f} {m.omega0 * math.cos(m.kappa0):.12f}")
+    1.002247474429 1.002247474429
     """
     R0, kap, th, om = motion.R0, motion.kappa0, motion.theta0, motion.omega0
     ck, sk, cs, ss = math.cos(kap), math.sin(kap), math.cos(sigma0), math.sin(sigma0)
@@ -135,7 +160,7 @@ def simulate(
     rtol: float = 1e-11,
     atol: float = 1e-13,
 ) -> Solution:
-    """Integrate the full equations from a stationary motion (optionally perturbed by ``dy0``).
+    r"""Integrate the full equations from a stationary motion (optionally perturbed by ``dy0``).
 
     Parameters
     ----------
@@ -153,6 +178,32 @@ def simulate(
         Fields ``R``, ``kappa`` (latitude of G above the plane zeta3 zeta1), ``beta`` (3, n), ``gamma``
         (3, n): direction cosines of zeta2 and of OG in the body axes, as in section 2.
         A collision with the attracting centre (r < 1e-3 R0) ends the run (event ``'collision'``).
+
+    See Also
+    --------
+    initial_state : the state of a stationary motion.
+    rigidbody.plotting.plot_satellite_motion : the standard figure (``sol.plot()``).
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, sections 1-2 (the model behind W).
+
+    Examples
+    --------
+    A motion found by Routh's method is a relative equilibrium of the full equations: over one orbit
+    :math:`R`, :math:`\kappa` and the body components of OG stay at their values (2.3) to the integration
+    tolerance:
+
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, math.pi / 4, k2=0.0)
+    >>> sol = gyrostat.simulate(m.satellite, m, (0.0, 2 * math.pi), t_eval=np.linspace(0.0, 2 * math.pi, 9))
+    >>> bool(np.abs(sol.R - 1.0).max() < 1e-9 and np.abs(sol.kappa - m.kappa0).max() < 1e-9)
+    True
+    >>> bool(np.abs(sol.gamma - np.array(m.gamma)[:, None]).max() < 1e-9)
+    True
     """
     y0 = initial_state(sat, motion) if isinstance(motion, (StationaryMotion, SymmetricMotion)) else np.asarray(
         motion, dtype=float)

@@ -50,6 +50,29 @@ class StabilityMap:
     :attr:`verdict` gives the strings.  ``minors`` (the five leading minors of the constrained second
     variation, see :class:`Stability`), ``r1, r2, r3`` (the restricted-problem quantities) and
     ``restricted_stable`` (their conjunction) are computed on first access.
+
+    See Also
+    --------
+    stability_map : the function that returns it.
+    Stability : the same quantities for one motion.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
+
+    Examples
+    --------
+    A 2 x 2 grid over theta0 (rows) and k2 (columns); each point is what :func:`stability` says of it:
+
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> mp = gyrostat.stability_map(sat, 1.0, [0.0, 0.3], k2=[0.0, 0.02])
+    >>> mp.code
+    array([[1, 0],
+           [1, 0]], dtype=int8)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02)
+    >>> gyrostat.stability(m.satellite, m).verdict, str(mp.verdict[1, 1])
+    ('stable', 'stable')
     """
 
     params: dict[str, np.ndarray]
@@ -89,35 +112,104 @@ class StabilityMap:
 
     @property
     def r1(self) -> np.ndarray:
-        """``A1 - A2 sin^2 theta0 - A3 cos^2 theta0`` (see :func:`~rigidbody.gyrostat.restricted_conditions`)."""
+        """``A1 - A2 sin^2 theta0 - A3 cos^2 theta0`` (see :func:`~rigidbody.gyrostat.restricted_conditions`).
+
+        Examples
+        --------
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> mp = gyrostat.stability_map(sat, 1.0, [0.0, 0.3], k2=[0.0, 0.02])
+        >>> print(f"{mp.r1[0, 0]:.12f}")  # A1 - A3 at theta0 = 0
+        0.004000000000
+        """
         return self._restricted[0]
 
     @property
     def r2(self) -> np.ndarray:
-        """``A2 - A3 + k2 / (4 omega0 cos^3 theta0)``."""
+        """``A2 - A3 + k2 / (4 omega0 cos^3 theta0)``.
+
+        Examples
+        --------
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> mp = gyrostat.stability_map(sat, 1.0, [0.0, 0.3], k2=[0.0, 0.02])
+        >>> print(f"{mp.r2[0, 0]:.12f}")  # A2 - A3 at theta0 = 0, k2 = 0
+        0.002000000000
+        """
         return self._restricted[1]
 
     @property
     def r3(self) -> np.ndarray:
-        """``r1 (A2 - A1 + k2 / (omega0 cos theta0)) + 3 (A1 - A2)(A2 - A3) sin^2 theta0``."""
+        """``r1 (A2 - A1 + k2 / (omega0 cos theta0)) + 3 (A1 - A2)(A2 - A3) sin^2 theta0``.
+
+        Examples
+        --------
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> mp = gyrostat.stability_map(sat, 1.0, [0.0, 0.3], k2=[0.0, 0.02])
+        >>> print(f"{mp.r3[0, 0]:.6e}")  # (A1 - A3)(A2 - A1) at theta0 = 0, k2 = 0
+        -8.000000e-06
+        """
         return self._restricted[2]
 
     @property
     def verdict(self) -> np.ndarray:
-        """Verdict strings ('stable', 'unstable', 'undecided', 'invalid')."""
+        """Verdict strings ('stable', 'unstable', 'undecided', 'invalid').
+
+        Examples
+        --------
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> mp = gyrostat.stability_map(sat, 1.0, [0.0, 0.3], k2=[0.0, 0.02])
+        >>> mp.verdict
+        array([['unstable', 'stable'],
+               ['unstable', 'stable']], dtype='<U9')
+        """
         names = np.array([VERDICTS[0], VERDICTS[1], VERDICTS[2], VERDICTS[-1]])
         return names[np.where(self.code < 0, 3, self.code)]
 
     @property
     def theta0(self) -> np.ndarray:
+        """The tilt theta0 at each point of the map (broadcast to its shape).
+
+        Examples
+        --------
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> mp = gyrostat.stability_map(sat, 1.0, [0.0, 0.3], k2=[0.0, 0.02])
+        >>> mp.theta0
+        array([[0. , 0. ],
+               [0.3, 0.3]])
+        """
         return self.params["theta0"]
 
     @property
     def restricted_stable(self) -> np.ndarray:
+        """Where all three restricted-problem inequalities hold (:attr:`r1`, :attr:`r2`, :attr:`r3` > 0).
+
+        Examples
+        --------
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> mp = gyrostat.stability_map(sat, 1.0, [0.0, 0.3], k2=[0.0, 0.02])
+        >>> mp.restricted_stable
+        array([[False,  True],
+               [False,  True]])
+        """
         return (self.r1 > 0) & (self.r2 > 0) & (self.r3 > 0)
 
     @property
     def shape(self) -> tuple[int, ...]:
+        """The shape of the grid.
+
+        Examples
+        --------
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> mp = gyrostat.stability_map(sat, 1.0, [0.0, 0.3], k2=[0.0, 0.02])
+        >>> mp.shape
+        (2, 2)
+        """
         return self.code.shape
 
 
@@ -157,6 +249,17 @@ def stability_map(
     -------
     StabilityMap
 
+    See Also
+    --------
+    stability : one motion, with its second variation.
+    normalized_stability_map : the map in the plane (theta0, k2 / (omega0 Abar)).
+    exact_boundaries : the boundaries of the verdicts as curves k2(theta0).
+    rigidbody.plotting.stability_map_plot : draws the verdicts.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eqs. (2.3)-(2.5).
+
     Examples
     --------
     >>> import numpy as np
@@ -165,6 +268,13 @@ def stability_map(
     >>> mp = gyrostat.stability_map(sat, 1.0, np.linspace(-1.2, 1.2, 5), k2=np.linspace(-0.05, 0.05, 4))
     >>> mp.code.shape
     (5, 4)
+
+    At :math:`\theta_0 = 0`, :math:`k_2 = 0` the degree of instability is odd, as the end of section 2 says
+    when :math:`s_2 < 0 < s_3`:
+
+    >>> mp = gyrostat.stability_map(sat, 1.0, 0.0, k2=0.0)
+    >>> str(mp.verdict), int(mp.degree), bool(mp.s2 < 0 < mp.s3)
+    ('unstable', 1, True)
     """
     if not isinstance(sat, Satellite):
         raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
@@ -324,7 +434,7 @@ def _evaluate(arrs: dict[str, np.ndarray], shape: tuple[int, ...], kname: str, o
 
 
 def exact_boundaries(sat: Satellite, R0: float, theta0: Any, *, omega_sign: int = 1) -> dict[str, np.ndarray]:
-    """The curves s2 = 0, s3 = 0 (exact) and r2 = 0, r3 = 0 (restricted) as k2(theta0).
+    r"""The curves s2 = 0, s3 = 0 (exact) and r2 = 0, r3 = 0 (restricted) as k2(theta0).
 
     For fixed theta0 the motion's kappa0 and omega0 do not depend on k2, and k2 enters only W_b1b1
     (as ``omega0 k2 / cos(theta0 + kappa0)``) and W_b3b3 (as ``omega0 k2 / cos^3(theta0 + kappa0)``), so
@@ -332,9 +442,47 @@ def exact_boundaries(sat: Satellite, R0: float, theta0: Any, *, omega_sign: int 
     do not depend on k2: their zeros are vertical lines, returned as ``s1`` and ``r1`` arrays over
     theta0 for the caller to locate sign changes (``theta_r1``: the closed-form roots of r1).
 
+    Parameters
+    ----------
+    sat : Satellite
+        The body (its ``k2``, ``k3`` are not used).
+    R0 : float
+        Orbit radius.
+    theta0 : array_like
+        Tilts (radians) at which the curves are evaluated.
+    omega_sign : {+1, -1}
+        Sign of omega0.
+
     Returns
     -------
     dict with keys ``theta0, s1, k2_s2, k2_s3, r1, k2_r2, k2_r3, theta_r1, omega0`` (NaN where undefined).
+
+    See Also
+    --------
+    normalized_stability_map : the map with these curves in normalised units.
+    restricted_conditions : the restricted quantities r1, r2, r3.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5) and the restricted conditions after it.
+
+    Examples
+    --------
+    s3 changes sign across the curve ``k2_s3`` at :math:`\theta_0 = 0.3`; the restricted curve
+    :math:`r_2 = 0` is :math:`k_2 = -4\omega_0\cos^3\theta_0(A_2 - A_3)`, at :math:`\theta_0 = 0` with
+    :math:`\omega_0 = \sqrt{1.009}` (see :func:`stationary_motion`):
+
+    >>> import math
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> b = gyrostat.exact_boundaries(sat, 1.0, [0.0, 0.3])
+    >>> for dk in (-1e-4, 1e-4):
+    ...     m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=b["k2_s3"][1] + dk)
+    ...     print(math.copysign(1.0, gyrostat.stability(m.satellite, m).s3))
+    -1.0
+    1.0
+    >>> print(f"{b['k2_r2'][0]:.12f} {-4 * math.sqrt(1.009) * 0.002:.12f}")
+    -0.008035919362 -0.008035919362
     """
     if not isinstance(sat, Satellite):
         raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
@@ -373,11 +521,43 @@ def normalized_stability_map(
 
     omega0 depends on theta0 (not on k2), so ``k2 = u omega0(theta0) Abar`` column by column.
 
+    Parameters
+    ----------
+    sat : Satellite
+        The body.
+    R0 : float
+        Orbit radius.
+    theta0, u : array_like
+        The axes of the grid: tilts (radians) and normalised gyrostatic components.
+    omega_sign : {+1, -1}
+        Sign of omega0.
+    rtol : float
+        Zero-eigenvalue threshold (see :func:`stability_map`).
+
     Returns
     -------
     (StabilityMap, boundaries)
         The map has shape ``(len(theta0), len(u))``; ``boundaries`` is :func:`exact_boundaries` with the
         k2-curves divided by ``omega0 Abar`` (keys ``u_s2, u_s3, u_r2, u_r3`` added).
+
+    See Also
+    --------
+    rigidbody.plotting.normalized_map_plot : computes and draws it.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5) and the restricted conditions after it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> mp, b = gyrostat.normalized_stability_map(sat, 1.0, np.linspace(-1.0, 1.0, 5), [-3.0, -1.0, 1.0, 3.0])
+    >>> mp.shape
+    (5, 4)
+    >>> print(np.round(mp.k2[2] / (mp.omega0[2] * sat.Abar), 12))  # u, recovered from the map's k2
+    [-3. -1.  1.  3.]
     """
     if not isinstance(sat, Satellite):
         raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")

@@ -73,6 +73,31 @@ def amended_potential_W(
     lib : module
         Provides ``sqrt``, ``sin``, ``cos``: ``numpy`` (default; complex input gives the complex-step
         route), ``math`` or ``mpmath`` (extended precision).
+
+    Returns
+    -------
+    scalar or ndarray
+        ``W`` in units of energy, of the type ``lib`` produces.
+
+    See Also
+    --------
+    amended_potential : ``W1 = W + lambda chi``.
+    symmetric_potential : the W of section 3 in Euler angles.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, section 2.
+
+    Examples
+    --------
+    Body axes along the orbital axes (``beta = (0, 1, 0)``, ``gamma = (0, 0, 1)``), the body of
+    :class:`Satellite` at ``R = 1``: ``S = M + A2 = 1.01``, ``U = 1 - 3/2 (A3 - Abar) = 1.003``, so with
+    ``k = 1.01`` the amended potential is ``W = 1.01/2 - 1.003 = -0.498``:
+
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> print(f"{gyrostat.amended_potential_W(sat, (1.0, 0.0, 0.0, 0.0, 0.0, 0.0), k=1.01):.12f}")
+    -0.498000000000
     """
     R, kap, b1, b3, g1, g2 = x
     b2, g3 = _dependent(x, branch, lib)
@@ -115,6 +140,28 @@ def chi(x: Any, *, branch: tuple[int, int] = (1, 1), lib: ModuleType = np) -> An
     ValueError
         If a ``branch`` entry is not +1 or -1, or a real point has ``beta1^2 + beta3^2 > 1`` or
         ``gamma1^2 + gamma2^2 > 1`` (no real ``beta2`` or ``gamma3``).
+
+    See Also
+    --------
+    constraint_gradient : its gradient at a motion (2.3).
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.1).
+
+    Examples
+    --------
+    With ``beta = (0, 1, 0)`` and ``gamma = (0, 0, 1)`` orthogonal, ``chi = -sin(kappa)``; on a motion (2.3) it
+    vanishes:
+
+    >>> import math
+    >>> from rigidbody import gyrostat
+    >>> print(f"{gyrostat.chi((1.0, 0.1, 0.0, 0.0, 0.0, 0.0)):.12f} {-math.sin(0.1):.12f}")
+    -0.099833416647 -0.099833416647
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02)
+    >>> bool(abs(gyrostat.chi(m.point, branch=m.branch)) < 1e-15)
+    True
     """
     _, kap, b1, b3, g1, g2 = x
     b2, g3 = _dependent(x, branch, lib)
@@ -166,6 +213,34 @@ def amended_potential(
     ValueError
         If a ``branch`` entry is not +1 or -1, or a real point has ``beta1^2 + beta3^2 > 1`` or
         ``gamma1^2 + gamma2^2 > 1``.
+
+    See Also
+    --------
+    gradient_W1 : its first derivatives (2.2).
+    hessian_W1 : its second derivatives at a motion.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, section 2, eqs. (2.1)-(2.2).
+
+    Examples
+    --------
+    A motion (2.3) is a stationary point of W1 (its complex-step gradient vanishes), and there ``chi = 0``,
+    so ``W1 = W``:
+
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02)
+    >>> from rigidbody.core.quadform import gradient_cs
+    >>> def W1(x):
+    ...     return gyrostat.amended_potential(m.satellite, x, k=m.k, lam=m.lambda0, branch=m.branch)
+    >>> bool(np.abs(gradient_cs(W1, m.point)).max() < 1e-14)
+    True
+    >>> W = gyrostat.amended_potential_W(m.satellite, m.point, k=m.k, branch=m.branch)
+    >>> print(f"{W1(m.point):.12f} {W:.12f}")
+    -0.493678922608 -0.493678922608
     """
     return amended_potential_W(sat, x, k=k, branch=branch, lib=lib) + lam * chi(x, branch=branch, lib=lib)
 
@@ -175,10 +250,51 @@ def gradient_W1(
 ) -> np.ndarray:
     """The first derivatives (2.2) of ``W1`` (closed form, valid at any point, not only stationary).
 
+    Parameters
+    ----------
+    sat : Satellite
+        Mass properties, ``mu`` and gyrostatic momentum ``k1, k2, k3``.
+    x : sequence of 6
+        ``(R, kappa, beta1, beta3, gamma1, gamma2)``; scalars or broadcastable arrays.
+    k : float
+        Area constant.
+    lam : float
+        Lagrange multiplier of the constraint (2.1).
+    branch : (int, int)
+        Signs of ``beta2`` and ``gamma3``.
+
     Returns
     -------
     ndarray, shape (6, ...)
         ``dW1/dR, dW1/dkappa, dW1/dbeta1, dW1/dbeta3, dW1/dgamma1, dW1/dgamma2``.
+
+    See Also
+    --------
+    amended_potential : ``W1`` itself.
+    hessian_W1 : the second derivatives at a motion (2.3).
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.2).
+
+    Examples
+    --------
+    The closed form agrees with the complex-step derivative of :func:`amended_potential` at any point, and
+    (2.2) vanishes at a motion (2.3):
+
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02)
+    >>> from rigidbody.core.quadform import gradient_cs
+    >>> x = (1.1, 0.05, 0.1, 0.2, 0.1, -0.3)
+    >>> g_cs = gradient_cs(lambda z: gyrostat.amended_potential(sat, z, k=1.0, lam=0.01), x)
+    >>> np.allclose(gyrostat.gradient_W1(sat, x, k=1.0, lam=0.01), g_cs, rtol=0, atol=1e-14)
+    True
+    >>> g = gyrostat.gradient_W1(m.satellite, m.point, k=m.k, lam=m.lambda0, branch=m.branch)
+    >>> bool(np.abs(g).max() < 1e-14)
+    True
     """
     R, kap, b1, b3, g1, g2 = (np.asarray(v, dtype=float) for v in x)
     b2, g3 = _dependent((R, kap, b1, b3, g1, g2), branch, np)

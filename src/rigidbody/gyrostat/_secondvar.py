@@ -227,11 +227,35 @@ def a_matrix(e: dict[str, np.ndarray], theta0: Any, kappa0: Any) -> np.ndarray:
 def restricted_conditions(A1: Any, A2: Any, A3: Any, theta0: Any, k2: Any, omega0: Any) -> tuple:
     """The restricted-problem inequalities printed after (2.5) (Rumyantsev [1]), as quantities > 0.
 
+    Parameters
+    ----------
+    A1, A2, A3 : array_like
+        Principal moments of inertia.
+    theta0, k2, omega0 : array_like
+        Tilt (radians), gyrostatic component and angular velocity of the motion (2.3); all broadcast.
+
     Returns
     -------
     r1 : A1 - A2 sin^2 theta0 - A3 cos^2 theta0                (limit of s1 > 0)
     r2 : A2 - A3 + k2 / (4 omega0 cos^3 theta0)                (limit of s3 > 0, i.e. a33 > 0)
     r3 : r1 (A2 - A1 + k2 / (omega0 cos theta0)) + 3 (A1 - A2)(A2 - A3) sin^2 theta0   (limit of s2 > 0)
+
+    See Also
+    --------
+    stability : the exact conditions (2.5), which these approximate to O(l^2/R^2).
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, after eq. (2.5).
+
+    Examples
+    --------
+    At :math:`\theta_0 = 0`, :math:`k_2 = 0`: :math:`r_1 = A_1 - A_3`, :math:`r_2 = A_2 - A_3`,
+    :math:`r_3 = r_1(A_2 - A_1)`, negative for :math:`A_1 > A_2`:
+
+    >>> from rigidbody import gyrostat
+    >>> print(*(f"{r:.2e}" for r in gyrostat.restricted_conditions(0.012, 0.010, 0.008, 0.0, 0.0, 1.0)))
+    4.00e-03 2.00e-03 -8.00e-06
     """
     A1, A2, A3, th, k2, om = (np.asarray(v, dtype=float) for v in (A1, A2, A3, theta0, k2, omega0))
     st2, ct = np.sin(th) ** 2, np.cos(th)

@@ -60,6 +60,29 @@ def hessian_W1(sat: Satellite, m: StationaryMotion, *, form: str = "stable") -> 
         If ``sat`` is not a :class:`Satellite` or ``m`` not a :class:`StationaryMotion`.
     ValueError
         If ``form`` is unknown or ``sat`` differs from ``m.satellite`` in ``M, A1, A2, A3, mu``.
+
+    See Also
+    --------
+    hessian_W1_numerical : the same by finite differences of W1.
+    constrained_second_variation : the second variation on the constraint (2.1).
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, section 2 (the second derivatives printed after (2.4)).
+
+    Examples
+    --------
+    The closed forms agree with the finite differences of W1, and the printed and the stable forms agree:
+
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02)
+    >>> H = gyrostat.hessian_W1(m.satellite, m)
+    >>> np.allclose(H, gyrostat.hessian_W1_numerical(m.satellite, m), rtol=0, atol=1e-8)
+    True
+    >>> np.allclose(H, gyrostat.hessian_W1(m.satellite, m, form="printed"), rtol=0, atol=1e-14)
+    True
     """
     _check_same_body(sat, m)
     e = hessian_entries(sat.M, sat.A1, sat.A2, sat.A3, sat.mu, m.R0, m.theta0, m.kappa0, m.omega0, m.k2, m.S0,
@@ -100,6 +123,27 @@ def hessian_W1_numerical(sat: Satellite, m: StationaryMotion, *, h: float | None
         If ``sat`` is not a :class:`Satellite` or ``m`` not a :class:`StationaryMotion`.
     ValueError
         If ``sat`` differs from ``m.satellite`` in ``M, A1, A2, A3, mu``.
+
+    See Also
+    --------
+    hessian_W1 : the closed forms.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, section 2 (the second derivatives printed after (2.4)).
+
+    Examples
+    --------
+    Round-off ~ eps abs(W1) / h^2 and truncation O(h^8): with ``h = 1e-3`` about 1e-10 next to entries of
+    order 1:
+
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02)
+    >>> H = gyrostat.hessian_W1_numerical(m.satellite, m)
+    >>> bool(np.abs(H - gyrostat.hessian_W1(m.satellite, m)).max() < 1e-8)
+    True
     """
     from ..core.quadform import hessian_fd
     from ._potential import amended_potential
@@ -129,6 +173,27 @@ def constraint_gradient(m: StationaryMotion) -> np.ndarray:
         ``d chi / dx`` in the order ``(R, kappa, beta1, beta3, gamma1, gamma2)``; the R entry is 0, the
         others are dimensionless (per radian for kappa). The beta3 and gamma2 entries are unbounded as
         ``cos(theta0 + kappa0)`` or ``cos theta0`` tends to 0 (the chart is singular there).
+
+    See Also
+    --------
+    chi : the constraint itself.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eqs. (2.1) and (2.5).
+
+    Examples
+    --------
+    The closed form is the complex-step gradient of :func:`chi` at the motion:
+
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02)
+    >>> from rigidbody.core.quadform import gradient_cs
+    >>> G = gyrostat.constraint_gradient(m)
+    >>> np.allclose(G, gradient_cs(lambda z: gyrostat.chi(z, branch=m.branch), m.point), rtol=0, atol=1e-14)
+    True
     """
     ck = np.cos(m.kappa0)
     return ck * np.array([0.0, -1.0, 0.0, 1.0 / np.cos(m.theta0 + m.kappa0), 0.0, 1.0 / np.cos(m.theta0)])
@@ -156,6 +221,33 @@ def constrained_second_variation(sat: Satellite, m: StationaryMotion) -> np.ndar
         ``cos theta0 = 0`` or ``cos(theta0 + kappa0) = 0``, where entries blow up (:func:`stability`
         refuses such motions).
 
+    See Also
+    --------
+    stability : its signs, the verdict.
+    rigidbody.core.quadform.null_space_form : the same form in an orthonormal basis of the tangent space.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
+
+    Examples
+    --------
+    The Sylvester quantities of :func:`stability` are its minors, and its inertia is that of the
+    Hessian restricted to the tangent space of (2.1) in any other basis:
+
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02)
+    >>> Hc = gyrostat.constrained_second_variation(m.satellite, m)
+    >>> st = gyrostat.stability(m.satellite, m)
+    >>> print(f"{Hc[0, 0]:.9f} {st.s1:.9f} | {np.linalg.det(Hc[2:, 2:]):.9f} {st.s3:.9f}")
+    0.011473161 0.011473161 | 0.029975940 0.029975940
+    >>> from rigidbody.core.quadform import inertia, null_space_form
+    >>> Hz = null_space_form(gyrostat.hessian_W1(m.satellite, m), gyrostat.constraint_gradient(m))
+    >>> [int(n) for n in inertia(Hc)], [int(n) for n in inertia(Hz)]
+    ([5, 0, 0], [5, 0, 0])
+
     Raises
     ------
     TypeError
@@ -174,7 +266,7 @@ def constrained_second_variation(sat: Satellite, m: StationaryMotion) -> np.ndar
 
 @dataclass(frozen=True)
 class Stability:
-    """Stability of a stationary motion (2.3) by Routh's method.
+    r"""Stability of a stationary motion (2.3) by Routh's method.
 
     Attributes
     ----------
@@ -204,6 +296,28 @@ class Stability:
         stable also under perturbations of the area constant k (section 4).
     restricted : tuple (r1, r2, r3)
         The restricted-problem quantities (see :func:`restricted_conditions`).
+
+    See Also
+    --------
+    stability : the function that returns it.
+    StabilityMap : the same quantities over a grid.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5) and section 4.
+
+    Examples
+    --------
+    The Jacobian of section 4 is :math:`-(\cos^2\kappa_0/\cos^2\theta_0)s_2s_3`:
+
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02)
+    >>> st = gyrostat.stability(m.satellite, m)
+    >>> c = np.cos(m.kappa0)**2 / np.cos(m.theta0)**2
+    >>> print(st.verdict, st.degree, f"{st.jacobian:.6e} {-c * st.s2 * st.s3:.6e}")
+    stable 0 -7.268827e-06 -7.268827e-06
     """
 
     s1: float
@@ -220,7 +334,21 @@ class Stability:
 
     @property
     def restricted_verdict(self) -> bool:
-        """True when all three restricted-problem inequalities hold."""
+        r"""True when all three restricted-problem inequalities hold.
+
+        Examples
+        --------
+        For a body with :math:`l \ll R_0` it agrees with the verdict of (2.5) away from the boundaries:
+
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> for k2 in (0.0, 0.02):
+        ...     m = gyrostat.stationary_motion(sat, 1.0, 0.3, k2=k2)
+        ...     st = gyrostat.stability(m.satellite, m)
+        ...     print(k2, st.verdict, st.restricted_verdict)
+        0.0 unstable False
+        0.02 stable True
+        """
         return all(r > 0 for r in self.restricted)
 
 

@@ -416,7 +416,7 @@ def family_arrays(
 
 @dataclass(frozen=True)
 class StationaryMotion:
-    """A stationary motion (2.3) of the family with a displaced orbit plane.
+    r"""A stationary motion (2.3) of the family with a displaced orbit plane.
 
     Attributes
     ----------
@@ -440,6 +440,26 @@ class StationaryMotion:
     classical : bool
         True when kappa0 == 0 (theta0 = 0 or pi, or A2 == A3): the orbit plane passes through the
         attracting centre, the member shared with the kappa = 0 equilibria of Rumyantsev [1].
+
+    See Also
+    --------
+    stationary_motion : the function that returns it.
+    stability : its stability by Routh's method.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eqs. (2.3)-(2.4).
+
+    Examples
+    --------
+    The direction cosines (2.3) satisfy the constraint (2.1), :math:`\beta\cdot\gamma = \sin\kappa_0`:
+
+    >>> import math
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, math.pi / 4, k2=0.0)
+    >>> print(f"{sum(b * g for b, g in zip(m.beta, m.gamma)):.12f} {math.sin(m.kappa0):.12f}")
+    0.002986547159 0.002986547159
     """
 
     satellite: Satellite
@@ -458,22 +478,65 @@ class StationaryMotion:
 
     @property
     def k1(self) -> float:
+        """The gyrostatic component along x1: 0 on the family (2.3).
+
+        Examples
+        --------
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02).k1
+        0.0
+        """
         return 0.0
 
     @property
     def beta(self) -> tuple[float, float, float]:
-        """Direction cosines of zeta2 (orbit normal) in the body axes (2.3)."""
+        """Direction cosines of zeta2 (orbit normal) in the body axes (2.3).
+
+        Examples
+        --------
+        ``(0, cos(theta0 + kappa0), sin(theta0 + kappa0))``, a unit vector:
+
+        >>> import math
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> print(f"{math.hypot(*gyrostat.stationary_motion(sat, 1.0, 0.3, k2=0.02).beta):.12f}")
+        1.000000000000
+        """
         t = self.theta0 + self.kappa0
         return (0.0, math.cos(t), math.sin(t))
 
     @property
     def gamma(self) -> tuple[float, float, float]:
-        """Direction cosines of y3 (radius vector OG) in the body axes (2.3)."""
+        """Direction cosines of y3 (radius vector OG) in the body axes (2.3).
+
+        Examples
+        --------
+        ``(0, -sin theta0, cos theta0)``:
+
+        >>> import math
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> print(*(f"{g:.6f}" for g in gyrostat.stationary_motion(sat, 1.0, math.pi / 4, k2=0.0).gamma))
+        0.000000 -0.707107 0.707107
+        """
         return (0.0, -math.sin(self.theta0), math.cos(self.theta0))
 
     @property
     def displacement(self) -> float:
-        """Distance of the orbit plane from the attracting centre, ``R0 sin kappa0``."""
+        """Distance of the orbit plane from the attracting centre, ``R0 sin kappa0``.
+
+        Examples
+        --------
+        Of order :math:`l^2/R_0` (section 2); here :math:`l = 0.1 R_0`:
+
+        >>> import math
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+        >>> m = gyrostat.stationary_motion(sat, 1.0, math.pi / 4, k2=0.0)
+        >>> print(f"{m.displacement:.9f} {math.sin(m.kappa0):.9f}")
+        0.002986547 0.002986547
+        """
         return self.R0 * math.sin(self.kappa0)
 
 
@@ -486,7 +549,7 @@ def stationary_motion(
     k3: float | None = None,
     omega_sign: int = 1,
 ) -> StationaryMotion:
-    """The stationary motion (2.3) for given R0, theta0 and one gyrostatic component (2.4).
+    r"""The stationary motion (2.3) for given R0, theta0 and one gyrostatic component (2.4).
 
     Closed form, no root finding (see :func:`family_arrays`): ``kappa0`` from ``tan kappa0``,
     ``omega0`` from the second relation (2.4), the missing gyrostatic component from the first.
@@ -505,6 +568,10 @@ def stationary_motion(
     omega_sign : {+1, -1}
         Sign of omega0.
 
+    Returns
+    -------
+    StationaryMotion
+
     Raises
     ------
     ValueError
@@ -519,6 +586,38 @@ def stationary_motion(
     -----
     GyrostatWarning
         Near those places (abs(cos) or abs(sin) < 1e-6): the computed component is ill-conditioned.
+
+    See Also
+    --------
+    stability : the verdict of Routh's method for the motion.
+    stability_map : verdicts over arrays of parameters.
+    symmetric_stationary_motion : the motions (3.2) of a dynamically symmetric satellite.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eqs. (2.3)-(2.4).
+
+    Examples
+    --------
+    The classical member :math:`\theta_0 = 0` (orbit plane through the centre): by the second relation
+    (2.4) :math:`\omega_0^2 = \mu R_0^{-3}\{1 - \frac{9}{2MR_0^2}\frac{2A_3 - A_1 - A_2}{3}\} = 1.009`:
+
+    >>> import math
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, 0.0, k2=0.0)
+    >>> print(m.kappa0, m.classical, f"{m.omega0:.12f} {math.sqrt(1.009):.12f}")
+    0.0 True 1.004489920308 1.004489920308
+
+    Tilted by :math:`\theta_0 = \pi/4` the orbit plane is displaced: the second relation gives
+    :math:`\omega_0^2\cos^2\kappa_0 = 1 - \frac92[\frac{A_2 - A_3}{2} + \frac{2A_3 - A_1 - A_2}{3}] = 1.0045`,
+    the third divided by the second :math:`\tan\kappa_0 = \frac32(A_2 - A_3)\sin2\theta_0/1.0045`:
+
+    >>> m = gyrostat.stationary_motion(sat, 1.0, math.pi / 4, k2=0.0)
+    >>> print(f"{m.kappa0:.12f} {math.atan(1.5 * 0.002 / 1.0045):.12f}")
+    0.002986551598 0.002986551598
+    >>> print(f"{m.omega0 * math.cos(m.kappa0):.12f} {math.sqrt(1.0045):.12f}")
+    1.002247474429 1.002247474429
     """
     if not isinstance(sat, Satellite):
         raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")

@@ -44,7 +44,7 @@ def _check_symmetric(sat: Satellite) -> None:
 def symmetric_potential(
     sat: Satellite, x: Any, *, k: float, c: float, lib: ModuleType = np
 ) -> Any:
-    """Amended potential of section 3, ``W(R, kappa, theta, psi) = K^2 / (2 S1) - U``.
+    r"""Amended potential of section 3, ``W(R, kappa, theta, psi) = K^2 / (2 S1) - U``.
 
     ``K = k - c beta3``, ``S1 = M R^2 cos^2 kappa + A1 (1 - beta3^2)``,
     ``beta3 = cos theta sin kappa - sin theta cos psi cos kappa``,
@@ -74,6 +74,26 @@ def symmetric_potential(
     -------
     scalar or ndarray
         ``W`` in units of energy, of the type ``lib`` produces.
+
+    See Also
+    --------
+    gradient_W_sym, hessian_W_sym : its derivatives in closed form.
+    amended_potential_W : the W of section 2 (any body).
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, section 3.
+
+    Examples
+    --------
+    At :math:`\kappa = \theta = 0` (so :math:`\beta_3 = 0`) with :math:`k = c = 0`:
+    :math:`W = -U = -(\mu M/R + \mu R^{-3}(A_1 - A_3)) = -1.004` for the body below at :math:`R = 1`:
+
+    >>> import math
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+    >>> print(f"{gyrostat.symmetric_potential(sat, (1.0, 0.0, 0.0, math.pi), k=0.0, c=0.0):.12f}")
+    -1.004000000000
     """
     R, kap, th, ps = x
     b = lib.cos(th) * lib.sin(kap) - lib.sin(th) * lib.cos(ps) * lib.cos(kap)
@@ -167,6 +187,32 @@ def gradient_W_sym(sat: Satellite, x: Any, *, k: float, c: float) -> np.ndarray:
     -------
     ndarray, shape (..., 4)
         ``(dW/dR, dW/dkappa, dW/dtheta, dW/dpsi)``: energy per length for R, energy for the angles.
+
+    See Also
+    --------
+    symmetric_potential : W itself.
+    hessian_W_sym : the second derivatives.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.1).
+
+    Examples
+    --------
+    It vanishes at the motion (3.2), and agrees with the complex-step derivative of W anywhere:
+
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+    >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
+    >>> bool(np.abs(gyrostat.gradient_W_sym(sat, ms.point, k=ms.k, c=ms.c)).max() < 1e-14)
+    True
+    >>> from rigidbody.core.quadform import gradient_cs
+    >>> x = (1.1, 0.05, 0.7, 2.0)
+    >>> g_cs = gradient_cs(lambda z: gyrostat.symmetric_potential(sat, z, k=1.0, c=0.01), x)
+    >>> np.allclose(gyrostat.gradient_W_sym(sat, x, k=1.0, c=0.01), g_cs, rtol=0, atol=1e-14)
+    True
     """
     R, kap, th, ps = (np.asarray(v, dtype=float) for v in x)
     return _derivs(sat.M, sat.A1, sat.A3, sat.mu, k, c, R, kap, th, ps)[0]
@@ -196,6 +242,30 @@ def hessian_W_sym(sat: Satellite, x: Any, *, k: float, c: float) -> np.ndarray:
     ndarray, shape (..., 4, 4)
         Symmetric second derivatives of W in the order :data:`SYM_COORDS` ``(R, kappa, theta, psi)``:
         energy/length^2 for ``W_RR``, energy/length for the rest of the R row, energy otherwise.
+
+    See Also
+    --------
+    W_psipsi_34 : the psi-psi entry at (3.2), printed as (3.4).
+    W_thetatheta_stable : the theta-theta entry at (3.2) without cancellation.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eqs. (3.1)-(3.4).
+
+    Examples
+    --------
+    At the motion (3.2) the psi row decouples and its diagonal entry is the paper's (3.4):
+
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+    >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
+    >>> H = gyrostat.hessian_W_sym(sat, ms.point, k=ms.k, c=ms.c)
+    >>> bool(np.abs(H[3, :3]).max() < 1e-15)
+    True
+    >>> print(f"{H[3, 3]:.12f} {gyrostat.W_psipsi_34(sat, 1.0, ms.theta0, ms.kappa0):.12f}")
+    0.006036108325 0.006036108325
     """
     R, kap, th, ps = (np.asarray(v, dtype=float) for v in x)
     return _derivs(sat.M, sat.A1, sat.A3, sat.mu, k, c, R, kap, th, ps)[1]
@@ -243,6 +313,25 @@ class SymmetricMotion:
         Area constant, ``omega0 S10 + c beta3``.
     S10 : float
     point : (R0, kappa0, theta0, pi)
+
+    See Also
+    --------
+    symmetric_stationary_motion : the function that returns it.
+    StationaryMotion : the motions (2.3) of a triaxial satellite.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eqs. (3.2)-(3.3).
+
+    Examples
+    --------
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+    >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
+    >>> ms.point == (ms.R0, ms.kappa0, ms.theta0, math.pi)
+    True
     """
 
     satellite: Satellite
@@ -257,17 +346,41 @@ class SymmetricMotion:
 
     @property
     def psi0(self) -> float:
+        """The precession angle of (3.2), pi.
+
+        Examples
+        --------
+        >>> import math
+        >>> import numpy as np
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+        >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
+        >>> ms.psi0 == math.pi
+        True
+        """
         return math.pi
 
     @property
     def displacement(self) -> float:
+        """Distance of the orbit plane from the attracting centre, ``R0 sin kappa0``.
+
+        Examples
+        --------
+        >>> import math
+        >>> import numpy as np
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+        >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
+        >>> print(f"{ms.displacement:.12f} {math.sin(ms.kappa0):.12f}")
+        0.005981946808 0.005981946808
+        """
         return self.R0 * math.sin(self.kappa0)
 
 
 def symmetric_stationary_motion(
     sat: Satellite, R0: float, theta0: float, *, omega_sign: int = 1
 ) -> SymmetricMotion:
-    """The stationary motion (3.2) with relations (3.3), closed form.
+    r"""The stationary motion (3.2) with relations (3.3), closed form.
 
     Parameters
     ----------
@@ -279,12 +392,41 @@ def symmetric_stationary_motion(
         the radius vector) is the singular line of the Euler chart and is rejected.
     omega_sign : {+1, -1}
 
+    Returns
+    -------
+    SymmetricMotion
+
     Raises
     ------
     ValueError
         Non-symmetric satellite, R0 not above the rms radius of the body (see
-        :func:`rigidbody.gyrostat._stationary.check_fits`), sin theta0 = 0, cos(theta0 + kappa0) = 0
-        (c undefined) or no motion (``omega0^2 cos^2 kappa0 <= 0``).
+        :func:`stationary_motion`), sin theta0 = 0, cos(theta0 + kappa0) = 0 (c undefined) or no motion
+        (``omega0^2 cos^2 kappa0 <= 0``).
+
+    See Also
+    --------
+    stability : its verdict from the full second variation.
+    symmetric_stability_map : verdicts over arrays of parameters.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eqs. (3.2)-(3.3).
+
+    Examples
+    --------
+    The second relation (3.3) at :math:`\theta_0 = \pi/4`:
+    :math:`\omega_0^2\cos^2\kappa_0 = \mu R_0^{-3}[1 + \frac{3(A_1 - A_3)}{MR_0^2}(1 - \frac32\sin^2\theta_0)]
+    = 1.003`, and the third divided by it :math:`\tan\kappa_0 = \frac32(A_1 - A_3)\sin2\theta_0/1.003`:
+
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+    >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
+    >>> print(f"{ms.omega0**2 * math.cos(ms.kappa0)**2:.12f}")
+    1.003000000000
+    >>> print(f"{ms.kappa0:.12f} {math.atan(1.5 * 0.004 / 1.003):.12f}")
+    0.005981982484 0.005981982484
     """
     _check_symmetric(sat)
     R0 = positive(R0, "R0")
@@ -313,7 +455,7 @@ def symmetric_stationary_motion(
 
 def W_thetatheta_stable(M: Any, A1: Any, A3: Any, mu: Any, R0: Any, theta0: Any, kappa0: Any, omega0: Any,
                         c: Any) -> Any:
-    """``d^2 W / d theta^2`` at (3.2) in a form without cancellation (vectorised).
+    r"""``d^2 W / d theta^2`` at (3.2) in a form without cancellation (vectorised).
 
     With ``b = beta3 = sin(theta0 + kappa0)``, ``S10 = M R0^2 cos^2 kappa0 + A1 cos^2(theta0 + kappa0)``:
     ``W_thth = f_bb cos^2(theta0 + kappa0) - f_b b - U_thth`` with ``f_bb = (c - 2 A1 omega0 b)^2 / S10 +
@@ -346,6 +488,27 @@ def W_thetatheta_stable(M: Any, A1: Any, A3: Any, mu: Any, R0: Any, theta0: Any,
     ndarray or numpy scalar
         ``d^2 W / d theta^2`` at (3.2), in units of energy, broadcast over the inputs (``inf``/``nan``
         where ``cos(theta0 + kappa0) = 0``).
+
+    See Also
+    --------
+    hessian_W_sym : the chain-rule Hessian.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eqs. (3.1)-(3.3).
+
+    Examples
+    --------
+    Away from :math:`\theta_0 = \pm\pi/2` (no cancellation) it equals the chain-rule entry:
+
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+    >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
+    >>> Wtt = gyrostat.W_thetatheta_stable(1.0, 0.01, 0.006, 1.0, 1.0, ms.theta0, ms.kappa0, ms.omega0, ms.c)
+    >>> print(f"{Wtt:.12f} {gyrostat.hessian_W_sym(sat, ms.point, k=ms.k, c=ms.c)[2, 2]:.12f}")
+    0.011028359030 0.011028359030
     """
     with np.errstate(divide="ignore", invalid="ignore"):
         M, A1, A3, mu, R0, th, kap, om, c = (
@@ -358,7 +521,7 @@ def W_thetatheta_stable(M: Any, A1: Any, A3: Any, mu: Any, R0: Any, theta0: Any,
 
 
 def W_psipsi_34(sat: Satellite, R0: Any, theta0: Any, kappa0: Any) -> Any:
-    """The paper's (3.4): ``3 mu R0^-3 (A1 - A3) sin^2 theta0 cos theta0 cos kappa0 / cos(theta0 + kappa0)``.
+    r"""The paper's (3.4): ``3 mu R0^-3 (A1 - A3) sin^2 theta0 cos theta0 cos kappa0 / cos(theta0 + kappa0)``.
 
     ``d^2 W / d psi^2`` at the motion (3.2) (``psi = pi``); the paper's sufficient condition is (3.4) > 0.
 
@@ -376,6 +539,28 @@ def W_psipsi_34(sat: Satellite, R0: Any, theta0: Any, kappa0: Any) -> Any:
     ndarray or numpy scalar
         ``W_psipsi`` in units of energy, broadcast over the inputs (``inf``/``nan`` where
         ``cos(theta0 + kappa0) = 0``).
+
+    See Also
+    --------
+    hessian_W_sym : the whole second variation.
+    symmetric_stability_map : the verdicts from it.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4).
+
+    Examples
+    --------
+    For :math:`|\theta_0| < \pi/2` (3.4) > 0 reduces to :math:`A_1 > A_3` (section 3):
+
+    >>> import math
+    >>> from rigidbody import gyrostat
+    >>> for A3 in (0.006, 0.012):
+    ...     sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=A3)
+    ...     ms = gyrostat.symmetric_stationary_motion(sat, 1.0, 0.5)
+    ...     print(A3, bool(gyrostat.W_psipsi_34(sat, 1.0, ms.theta0, ms.kappa0) > 0))
+    0.006 True
+    0.012 False
     """
     with np.errstate(divide="ignore", invalid="ignore"):
         return (3 * sat.mu / np.asarray(R0, dtype=float) ** 3 * (sat.A1 - sat.A3) * np.sin(theta0) ** 2
@@ -384,7 +569,7 @@ def W_psipsi_34(sat: Satellite, R0: Any, theta0: Any, kappa0: Any) -> Any:
 
 @dataclass(frozen=True)
 class SymmetricStability:
-    """Stability of a motion (3.2) from the full 4x4 second variation of W(R, kappa, theta, psi).
+    r"""Stability of a motion (3.2) from the full 4x4 second variation of W(R, kappa, theta, psi).
 
     Attributes
     ----------
@@ -404,6 +589,27 @@ class SymmetricStability:
     jacobian : float
         ``det hessian`` = Jacobian of the system (3.1).
     unconditionally_stable : bool
+
+    See Also
+    --------
+    stability : the function that returns it.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4) and section 4.
+
+    Examples
+    --------
+    The Jacobian of (3.1) is :math:`W_{\psi\psi}\Delta` (section 4):
+
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+    >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
+    >>> st = gyrostat.stability(sat, ms)
+    >>> print(st.verdict, st.paper_condition, f"{st.jacobian:.8e} {st.W_psipsi * st.Delta:.8e}")
+    stable True 6.36976918e-05 6.36976918e-05
     """
 
     hessian: np.ndarray
@@ -419,14 +625,53 @@ class SymmetricStability:
 
     @property
     def s1(self) -> float:
+        """The first leading minor of the second variation, ``W_RR``.
+
+        Examples
+        --------
+        >>> import math
+        >>> import numpy as np
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+        >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
+        >>> st = gyrostat.stability(sat, ms)
+        >>> print(f"{st.s1:.9f} {st.hessian[0, 0]:.9f}")
+        0.977276722 0.977276722
+        """
         return float(self.minors[0])
 
     @property
     def s2(self) -> float:
+        """The second leading minor, the determinant of the (R, kappa) block.
+
+        Examples
+        --------
+        >>> import math
+        >>> import numpy as np
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+        >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
+        >>> st = gyrostat.stability(sat, ms)
+        >>> print(f"{st.s2:.9f} {np.linalg.det(st.hessian[:2, :2]):.9f}")
+        0.990969494 0.990969494
+        """
         return float(self.minors[1])
 
     @property
     def s3(self) -> float:
+        """The third leading minor, the determinant of the (R, kappa, theta) block, :attr:`Delta`.
+
+        Examples
+        --------
+        >>> import math
+        >>> import numpy as np
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+        >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
+        >>> st = gyrostat.stability(sat, ms)
+        >>> print(f"{st.s3:.9f} {st.Delta:.9f}")
+        0.010552775 0.010552775
+        """
         return float(self.minors[2])
 
 
@@ -454,7 +699,25 @@ def stability_symmetric(sat: Satellite, m: SymmetricMotion, *, rtol: float = 1e-
 
 @dataclass(frozen=True)
 class SymmetricStabilityMap:
-    """Verdicts of the motions (3.2) over a grid (codes as in :class:`rigidbody.gyrostat.StabilityMap`)."""
+    """Verdicts of the motions (3.2) over a grid (codes as in :class:`rigidbody.gyrostat.StabilityMap`).
+
+    See Also
+    --------
+    symmetric_stability_map : the function that returns it.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4).
+
+    Examples
+    --------
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+    >>> sm = gyrostat.symmetric_stability_map(sat, 1.0, [0.5, 1.0], A3=[0.006, 0.012])
+    >>> sm.code
+    array([[0, 1],
+           [0, 1]], dtype=int8)
+    """
 
     params: dict[str, np.ndarray]
     kappa0: np.ndarray
@@ -467,12 +730,29 @@ class SymmetricStabilityMap:
 
     @property
     def verdict(self) -> np.ndarray:
+        """Verdict strings ('stable', 'unstable', 'undecided', 'invalid').
+
+        Examples
+        --------
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+        >>> gyrostat.symmetric_stability_map(sat, 1.0, [0.5], A3=[0.006, 0.012]).verdict
+        array(['stable', 'unstable'], dtype='<U9')
+        """
         names = np.array([VERDICTS[0], VERDICTS[1], VERDICTS[2], VERDICTS[-1]])
         return names[np.where(self.code < 0, 3, self.code)]
 
     @property
     def paper_condition(self) -> np.ndarray:
-        """(3.4) > 0."""
+        """(3.4) > 0.
+
+        Examples
+        --------
+        >>> from rigidbody import gyrostat
+        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+        >>> gyrostat.symmetric_stability_map(sat, 1.0, [0.5], A3=[0.006, 0.012]).paper_condition
+        array([ True, False])
+        """
         return self.W_psipsi > 0
 
 
@@ -480,11 +760,37 @@ def symmetric_stability_map(
     sat: Satellite, R0: Any, theta0: Any, *, omega_sign: int = 1, grid: bool = True, rtol: float = 1e-12,
     **overrides: Any,
 ) -> SymmetricStabilityMap:
-    """Vectorised verdicts of the motions (3.2) from the full 4x4 second variation.
+    r"""Vectorised verdicts of the motions (3.2) from the full 4x4 second variation.
 
     Parameters as in :func:`rigidbody.gyrostat.stability_map`; overridable: ``M, A1, A3, mu`` (A2 = A1).
     With ``grid=True`` the 1-D arrays among theta0, R0, M, A1, A3, mu form an outer grid in that order.
     Points with sin theta0 = 0 (Euler chart) or no motion get code -1.
+
+    Returns
+    -------
+    SymmetricStabilityMap
+
+    See Also
+    --------
+    stability : one motion, with its Hessian.
+    stability_map : the motions (2.3) of a triaxial satellite.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4) and the statements after it.
+
+    Examples
+    --------
+    At :math:`\theta_0 = \pi/4`: stable for :math:`A_3 < A_1`; unstable (degree 1) for
+    :math:`A_1 < A_3 < \frac43A_1`, as the paper says of (3.4) reversed; beyond :math:`3A_3 = 4A_1` the degree is 2
+    and the claim fails (:doc:`/gyrostat`):
+
+    >>> import math
+    >>> from rigidbody import gyrostat
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
+    >>> sm = gyrostat.symmetric_stability_map(sat, 1.0, math.pi / 4, A3=[0.006, 0.012, 0.0145])
+    >>> sm.verdict, sm.degree
+    (array(['stable', 'unstable', 'undecided'], dtype='<U9'), array([0, 1, 2]))
     """
     _check_symmetric(sat)
     omega_sign = check_omega_sign(omega_sign)

@@ -61,6 +61,18 @@ class FigureSet:
     figures : dict
         Figure name -> drawing function (returns a Matplotlib figure); empty for a builder registered
         with :func:`register`, which writes its files itself.
+
+    See Also
+    --------
+    registry : all the registered sets.
+    register_figures : registers a set.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import registry
+    >>> fs = registry()["viscous"]
+    >>> fs.name, fs.figures["histories"].__name__
+    ('viscous', 'histories')
     """
 
     name: str
@@ -70,12 +82,29 @@ class FigureSet:
 
     @property
     def paper_figures(self) -> tuple[str, ...]:
-        """Names of the paper's figures (``fig<N>_<slug>``), in the order of registration."""
+        """Names of the paper's figures (``fig<N>_<slug>``), in the order of registration.
+
+        Examples
+        --------
+        Krivtsov's paper has five figures:
+
+        >>> from rigidbody.paperfigs import registry
+        >>> registry()["viscous"].paper_figures
+        ('fig1_ball_and_rod', 'fig2_contracting_spiral', 'fig3_unwinding_spiral', 'fig4_turn_contracting',
+         'fig5_turn_unwinding')
+        """
         return tuple(n for n in self.figures if PAPER_FIGURE.match(n))
 
     @property
     def extra_figures(self) -> tuple[str, ...]:
-        """Names of the figures beyond the paper."""
+        """Names of the figures beyond the paper.
+
+        Examples
+        --------
+        >>> from rigidbody.paperfigs import registry
+        >>> registry()["viscous"].extra_figures
+        ('histories',)
+        """
         return tuple(n for n in self.figures if not PAPER_FIGURE.match(n))
 
 
@@ -87,6 +116,36 @@ def register(name: str, description: str) -> Callable[[Callable[[Path], list[Pat
 
     For a builder that writes its own files; :func:`register_figures` is the form for one function per
     figure.
+
+    Parameters
+    ----------
+    name : str
+        The set's name, also the output sub-folder.
+    description : str
+        One line for ``python -m rigidbody figures --list``.
+
+    Returns
+    -------
+    callable
+        The decorator: it registers ``build`` and returns it unchanged.
+
+    See Also
+    --------
+    register_figures : the form for one function per figure.
+
+    Examples
+    --------
+    Calling ``register`` registers nothing yet; its result does, applied to the builder::
+
+        @register("my_set", "Figures written by their own builder")
+        def build(outdir):
+            ...                 # write the files into outdir
+            return paths        # the paths written
+
+    >>> from rigidbody.paperfigs import register, registry
+    >>> deco = register("my_set", "Figures written by their own builder")
+    >>> callable(deco), "my_set" in registry()
+    (True, False)
     """
 
     def deco(func: Callable[[Path], list[Path]]) -> Callable[[Path], list[Path]]:
@@ -118,6 +177,31 @@ def register_figures(name: str, description: str, figures: Mapping[str, Callable
     ------
     ValueError
         If a name is not lower case with underscores, or a paper figure number is used twice.
+
+    See Also
+    --------
+    registry : the registered sets.
+    PAPER_FIGURE : the pattern of a paper's figure name.
+
+    Examples
+    --------
+    A figure module ends with its table (see the module's docstring). The names are checked before
+    anything is registered:
+
+    >>> from rigidbody.paperfigs import register_figures, registry
+    >>> def draw():
+    ...     import matplotlib.pyplot as plt
+    ...     return plt.figure()
+    >>> register_figures("my_set", "One figure", {"Fig1_bad": draw})
+    Traceback (most recent call last):
+        ...
+    ValueError: figure name must be lower case with underscores, got 'Fig1_bad'
+    >>> register_figures("my_set", "Two figures 2", {"fig2_a": draw, "fig2_b": draw})
+    Traceback (most recent call last):
+        ...
+    ValueError: figure 2 of 'my_set' is registered twice: 'fig2_a' and 'fig2_b'
+    >>> "my_set" in registry()
+    False
     """
     numbers: dict[str, str] = {}
     for fname in figures:
@@ -153,12 +237,43 @@ def register_figures(name: str, description: str, figures: Mapping[str, Callable
 
 
 def discover() -> None:
-    """Import every builder module in this package (each registers itself)."""
+    """Import every builder module in this package (each registers itself).
+
+    See Also
+    --------
+    registry : calls it, then lists the sets.
+
+    Examples
+    --------
+    >>> import sys
+    >>> from rigidbody.paperfigs import discover
+    >>> discover()
+    >>> "rigidbody.paperfigs.gyrostat" in sys.modules
+    True
+    """
     for info in pkgutil.iter_modules(__path__):
         importlib.import_module(f"{__name__}.{info.name}")
 
 
 def registry() -> dict[str, FigureSet]:
-    """All registered figure sets, sorted by name (after :func:`discover`)."""
+    """All registered figure sets, sorted by name (after :func:`discover`).
+
+    Returns
+    -------
+    dict of str to FigureSet
+
+    See Also
+    --------
+    FigureSet : one set.
+
+    Examples
+    --------
+    The four papers' figures: Stepanov's one, Akulenko et al.'s three, Rachinskaya's six and Krivtsov's five;
+    the studies' figures go beyond the papers:
+
+    >>> from rigidbody.paperfigs import registry
+    >>> {name: len(fs.paper_figures) for name, fs in registry().items()}
+    {'euler_poinsot': 6, 'gyrostat': 1, 'lagrange': 3, 'studies': 0, 'viscous': 5}
+    """
     discover()
     return dict(sorted(_REGISTRY.items()))

@@ -5,7 +5,7 @@ I = diag(2.322, 1.31, 1.425) (case 1, χ < 0: figs 1-3) and diag(0.919, 5.228, 1
 figs 4-6). Fig. 1 (4) is the 3-D hodograph in the orbital axes Ox1x2x3, fig. 2 (5) its projection on the
 orbit plane Ox1x2, fig. 3 (6) the view along the spiral axis; figs 2, 3, 5, 6 are "at a larger scale".
 
-The paper states neither ε, ν0 nor the end time. Our choices (also in docs/euler_poinsot.md): ν0 = 0,
+The paper states neither ε, ν0 nor the end time. Our choices (also in :doc:`/euler_poinsot`): ν0 = 0,
 τ ∈ [0, 6]; the hodographs show the orbit-averaged limit ε = 0 and ε = 0.005 (ν kept; in case 1 that run
 ends at τ = 4.77 when the decaying rotation is no longer fast, spin ratio = 1; in case 2 it stays fast to
 τ = 6). "Larger scale" is an inset magnifying the inner turns. "Along the spiral axis" is read both ways:
@@ -65,6 +65,42 @@ def figure_data(I: np.ndarray, eps: float, num: int = 3001) -> Solution:
 
     For an ``eps`` above the theory's range at the start (spin ratio <= 1) the validity check is switched
     off (``min_spin_ratio=0``) so that the figure shows what the equations do there.
+
+    Parameters
+    ----------
+    I : numpy.ndarray
+        The drag tensor (:data:`CASES`).
+    eps : float
+        The small parameter (0: the orbit-averaged limit).
+    num : int
+        Output points on :data:`TAU`.
+
+    Returns
+    -------
+    Solution
+        A run of :func:`rigidbody.euler_poinsot.averaged`.
+
+    See Also
+    --------
+    hodograph_data : the runs of the paper's figures.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 3 (the initial state and the two drag tensors).
+
+    Examples
+    --------
+    The paper's initial state, :math:`G = 1`, :math:`k^2 = 0.99`, :math:`\\delta = \\lambda = \\pi/4`; in the
+    orbit-averaged limit of case 1 the decaying :math:`\\mathbf G` keeps its angle :math:`\\delta` to the
+    orbit normal:
+
+    >>> import math
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sol = figs.figure_data(figs.CASES[1], 0.0, num=61)
+    >>> print(sol.G[0], sol.k2[0], sol.delta[0] == sol.lam[0] == math.pi / 4)
+    1.0 0.99 True
+    >>> print(f"{sol.tau[-1]:.1f} {sol.delta[-1]:.12f} {sol.n[2, -1]:.12f} {math.cos(math.pi / 4):.12f}")
+    6.0 0.785398163397 0.707106781187 0.707106781187
     """
     tau_eval = np.linspace(*TAU, num)
     big = eps > 0 and ep.spin_ratio(BODY, eps, SETUP["G0"], SETUP["k2_0"]) <= 1.0
@@ -72,7 +108,34 @@ def figure_data(I: np.ndarray, eps: float, num: int = 3001) -> Solution:
 
 
 def hodograph_data(case: int) -> dict[float, Solution]:
-    """The runs of figures 1-3 (``case=1``) or 4-6 (``case=2``): ``{eps: Solution}`` for :data:`EPS_MAIN`."""
+    """The runs of figures 1-3 (``case=1``) or 4-6 (``case=2``): ``{eps: Solution}`` for :data:`EPS_MAIN`.
+
+    Parameters
+    ----------
+    case : {1, 2}
+        The paper's drag case.
+
+    Returns
+    -------
+    dict of float to Solution
+
+    See Also
+    --------
+    figure_data : one run.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 3 and figs 1-6.
+
+    Examples
+    --------
+    The orbit-averaged limit and a small eps within the theory (our choices: the paper gives no eps):
+
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> runs = figs.hodograph_data(2)
+    >>> sorted(runs), runs[0.005].status  # case 2 stays fast to tau = 6
+    ([0.0, 0.005], 0)
+    """
     return {eps: figure_data(_drag(case), eps) for eps in EPS_MAIN}
 
 
@@ -107,6 +170,31 @@ def hodograph_figure(case: int, sols: dict[float, Solution] | None = None) -> An
 
     The orbit normal :math:`x_3` is drawn grey; the axes have equal scales. ``sols`` defaults to
     :func:`hodograph_data`.
+
+    Parameters
+    ----------
+    case : {1, 2}
+    sols : dict of float to Solution, optional
+        ``{eps: run}``.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.plotting.hodograph_3d : draws one run.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, figs 1 and 4; :math:`\\chi` (9) printed -4.477 and 3.853
+    (see :doc:`/errata`).
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> figs.hodograph_figure(2, {0.0: figs.figure_data(figs.CASES[2], 0.0, num=61)}).axes[0].get_title()
+    'Fig. 4: hodograph of G, case 2 (χ = 3.852)'
     """
     import matplotlib.pyplot as plt
 
@@ -158,7 +246,34 @@ def _zoom(sols: dict[float, Solution], normal: Any) -> float:
 
 def projection_figure(case: int, sols: dict[float, Solution] | None = None) -> Any:
     """Figure 2 (case 1) or 5 (case 2): the hodograph projected on the orbit plane Ox1x2; right, the
-    turns after the first one at a larger scale (the square on the left)."""
+    turns after the first one at a larger scale (the square on the left).
+
+    Parameters
+    ----------
+    case : {1, 2}
+    sols : dict of float to Solution, optional
+        ``{eps: run}`` (default :func:`hodograph_data`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.plotting.hodograph_projection : draws one run.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, figs 2 and 5.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sols = {0.0: figs.figure_data(figs.CASES[1], 0.0, num=61)}  # the orbit-averaged run only, 61 points
+    >>> fig = figs.projection_figure(1, sols)
+    >>> [ax.get_title() for ax in fig.axes]
+    ['the whole path', 'the square, enlarged']
+    """
     import matplotlib.pyplot as plt
     from matplotlib.patches import Rectangle
 
@@ -184,6 +299,34 @@ def spiral_axis_figure(case: int, sols: dict[float, Solution] | None = None) -> 
     one at a larger scale. Right: the spiral laid along its axis, distance from the axis against the
     height along it; a spiral on a cone about a straight axis is a straight line through the origin. The
     axis is that of the ``eps > 0`` run (:func:`rigidbody.plotting.spiral_axis`), printed in the title.
+
+    Parameters
+    ----------
+    case : {1, 2}
+    sols : dict of float to Solution, optional
+        ``{eps: run}`` (default :func:`hodograph_data`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.plotting.hodograph_side_view : the right panel.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, figs 3 and 6.
+
+    Examples
+    --------
+    In the orbit-averaged limit :math:`\\delta` is constant, the hodograph lies on a circular cone about the
+    orbit normal :math:`x_3`, and that is the axis found:
+
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sols = {0.0: figs.figure_data(figs.CASES[1], 0.0, num=61)}  # the orbit-averaged run only, 61 points
+    >>> figs.spiral_axis_figure(1, sols).get_suptitle()
+    'Fig. 3: view along the spiral axis (0.0000, 0.0000, 1.0000), case 1 (χ = -4.474)'
     """
     import matplotlib.pyplot as plt
 
@@ -212,7 +355,44 @@ def spiral_axis_figure(case: int, sols: dict[float, Solution] | None = None) -> 
 
 def slow_variables_figure(case: int, sols: dict[float, Solution] | None = None) -> Any:
     """G, T, k², δ, λ against τ for the runs of figures 1-3 (case 1) or 4-6 (case 2); the dotted line is
-    the stable equilibrium of k² of (8)."""
+    the stable equilibrium of k² of (8).
+
+    Parameters
+    ----------
+    case : {1, 2}
+    sols : dict of float to Solution, optional
+        ``{eps: run}`` (default :func:`hodograph_data`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.plotting.slow_variables : the five panels.
+    rigidbody.euler_poinsot.k2_equilibria : the dotted line.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (8)-(9).
+
+    Examples
+    --------
+    Case 1 (:math:`\\chi < -3`) has a stable equilibrium :math:`k_*^2` of (8) inside (0, 1), the dotted line: a
+    zero of the right-hand side of (8), :math:`(1 - \\chi)(1 - k^2) - [(1 - \\chi) + (1 + \\chi)k^2]E/K`:
+
+    >>> from scipy.special import ellipe, ellipk
+    >>> from rigidbody import euler_poinsot as ep
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sols = {0.0: figs.figure_data(figs.CASES[1], 0.0, num=61)}  # the orbit-averaged run only, 61 points
+    >>> fig = figs.slow_variables_figure(1, sols)
+    >>> len(fig.axes), len(fig.axes[2].lines)
+    (5, 2)
+    >>> k2, chi = fig.axes[2].lines[1].get_ydata()[0], ep.chi(figs.BODY, figs.CASES[1])
+    >>> rhs = (1 - chi) * (1 - k2) - ((1 - chi) + (1 + chi) * k2) * ellipe(k2) / ellipk(k2)
+    >>> print(f"{k2:.6f}", bool(abs(rhs) < 1e-12))
+    0.520638 True
+    """
     import matplotlib.pyplot as plt
 
     from rigidbody.plotting import euler_poinsot as epp
@@ -239,6 +419,28 @@ def eps_dependence(sols: dict[int, dict[float, Solution]] | None = None) -> Any:
 
     ``sols``: ``{case: {eps: Solution}}`` for the cases 1, 2 (default: :func:`figure_data` for each eps of
     :data:`EPS_SCAN`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    figure_data : the runs.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, figs 1-6 and the text after them.
+
+    Examples
+    --------
+    Its runs start outside the theory for :math:`\\varepsilon = 0.1` and 0.3 (spin ratio below 1):
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> [bool(ep.spin_ratio(figs.BODY, eps, 1.0, 0.99) > 1) for eps in figs.EPS_SCAN[1:]]
+    [True, False, False]
+    >>> fig = figs.eps_dependence()  # doctest: +SKIP
     """
     import matplotlib.pyplot as plt
 
@@ -269,42 +471,250 @@ def eps_dependence(sols: dict[int, dict[float, Solution]] | None = None) -> Any:
 
 
 def fig1_hodograph_case1(sols: dict[float, Solution] | None = None) -> Any:
-    """Fig. 1: the hodograph of G, case 1 (:func:`hodograph_figure`)."""
+    """Fig. 1: the hodograph of G, case 1 (:func:`hodograph_figure`).
+
+    Parameters
+    ----------
+    sols : dict of float to Solution, optional
+        ``{eps: run}`` (default :func:`hodograph_data` of case 1).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    hodograph_figure : the same for either case.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, fig. 1.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sols = {0.0: figs.figure_data(figs.CASES[1], 0.0, num=61)}  # the orbit-averaged run only, 61 points
+    >>> fig = figs.fig1_hodograph_case1(sols)
+    >>> fig.axes[0].get_title()  # chi: printed -4.477, see the errata page
+    'Fig. 1: hodograph of G, case 1 (χ = -4.474)'
+    """
     return hodograph_figure(1, sols)
 
 
 def fig2_projection_case1(sols: dict[float, Solution] | None = None) -> Any:
-    """Fig. 2: its projection on the orbit plane Ox1x2 (:func:`projection_figure`)."""
+    """Fig. 2: its projection on the orbit plane Ox1x2 (:func:`projection_figure`).
+
+    Parameters
+    ----------
+    sols : dict of float to Solution, optional
+        ``{eps: run}`` (default :func:`hodograph_data` of case 1).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    projection_figure : the same for either case.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, fig. 2.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sols = {0.0: figs.figure_data(figs.CASES[1], 0.0, num=61)}  # the orbit-averaged run only, 61 points
+    >>> fig = figs.fig2_projection_case1(sols)
+    >>> fig.get_suptitle()
+    'Fig. 2: projection on the orbit plane $Ox_1x_2$, case 1 (χ = -4.474)'
+    """
     return projection_figure(1, sols)
 
 
 def fig3_spiral_axis_case1(sols: dict[float, Solution] | None = None) -> Any:
-    """Fig. 3: the view along the spiral axis, case 1 (:func:`spiral_axis_figure`)."""
+    """Fig. 3: the view along the spiral axis, case 1 (:func:`spiral_axis_figure`).
+
+    Parameters
+    ----------
+    sols : dict of float to Solution, optional
+        ``{eps: run}`` (default :func:`hodograph_data` of case 1).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    spiral_axis_figure : the same for either case.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, fig. 3.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sols = {0.0: figs.figure_data(figs.CASES[1], 0.0, num=61)}  # the orbit-averaged run only, 61 points
+    >>> fig = figs.fig3_spiral_axis_case1(sols)
+    >>> fig.get_suptitle()[:43]
+    'Fig. 3: view along the spiral axis (0.0000,'
+    """
     return spiral_axis_figure(1, sols)
 
 
 def fig4_hodograph_case2(sols: dict[float, Solution] | None = None) -> Any:
-    """Fig. 4: the hodograph of G, case 2 (:func:`hodograph_figure`)."""
+    """Fig. 4: the hodograph of G, case 2 (:func:`hodograph_figure`).
+
+    Parameters
+    ----------
+    sols : dict of float to Solution, optional
+        ``{eps: run}`` (default :func:`hodograph_data` of case 2).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    hodograph_figure : the same for either case.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, fig. 4.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sols = {0.0: figs.figure_data(figs.CASES[2], 0.0, num=61)}  # the orbit-averaged run only, 61 points
+    >>> fig = figs.fig4_hodograph_case2(sols)
+    >>> fig.axes[0].get_title()  # chi: printed 3.853
+    'Fig. 4: hodograph of G, case 2 (χ = 3.852)'
+    """
     return hodograph_figure(2, sols)
 
 
 def fig5_projection_case2(sols: dict[float, Solution] | None = None) -> Any:
-    """Fig. 5: its projection on the orbit plane Ox1x2 (:func:`projection_figure`)."""
+    """Fig. 5: its projection on the orbit plane Ox1x2 (:func:`projection_figure`).
+
+    Parameters
+    ----------
+    sols : dict of float to Solution, optional
+        ``{eps: run}`` (default :func:`hodograph_data` of case 2).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    projection_figure : the same for either case.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, fig. 5.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sols = {0.0: figs.figure_data(figs.CASES[2], 0.0, num=61)}  # the orbit-averaged run only, 61 points
+    >>> fig = figs.fig5_projection_case2(sols)
+    >>> fig.get_suptitle()
+    'Fig. 5: projection on the orbit plane $Ox_1x_2$, case 2 (χ = 3.852)'
+    """
     return projection_figure(2, sols)
 
 
 def fig6_spiral_axis_case2(sols: dict[float, Solution] | None = None) -> Any:
-    """Fig. 6: the view along the spiral axis, case 2 (:func:`spiral_axis_figure`)."""
+    """Fig. 6: the view along the spiral axis, case 2 (:func:`spiral_axis_figure`).
+
+    Parameters
+    ----------
+    sols : dict of float to Solution, optional
+        ``{eps: run}`` (default :func:`hodograph_data` of case 2).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    spiral_axis_figure : the same for either case.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, fig. 6.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sols = {0.0: figs.figure_data(figs.CASES[2], 0.0, num=61)}  # the orbit-averaged run only, 61 points
+    >>> fig = figs.fig6_spiral_axis_case2(sols)
+    >>> fig.get_suptitle()[:43]
+    'Fig. 6: view along the spiral axis (0.0000,'
+    """
     return spiral_axis_figure(2, sols)
 
 
 def slow_variables_case1(sols: dict[float, Solution] | None = None) -> Any:
-    """Beyond the paper: G, T, k², δ, λ against τ, case 1 (:func:`slow_variables_figure`)."""
+    """Beyond the paper: G, T, k², δ, λ against τ, case 1 (:func:`slow_variables_figure`).
+
+    Parameters
+    ----------
+    sols : dict of float to Solution, optional
+        ``{eps: run}`` (default :func:`hodograph_data` of case 1).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    slow_variables_figure : the same for either case.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, fig. 1-3.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sols = {0.0: figs.figure_data(figs.CASES[1], 0.0, num=61)}  # the orbit-averaged run only, 61 points
+    >>> fig = figs.slow_variables_case1(sols)
+    >>> len(fig.axes)
+    5
+    """
     return slow_variables_figure(1, sols)
 
 
 def slow_variables_case2(sols: dict[float, Solution] | None = None) -> Any:
-    """Beyond the paper: G, T, k², δ, λ against τ, case 2 (:func:`slow_variables_figure`)."""
+    """Beyond the paper: G, T, k², δ, λ against τ, case 2 (:func:`slow_variables_figure`).
+
+    Parameters
+    ----------
+    sols : dict of float to Solution, optional
+        ``{eps: run}`` (default :func:`hodograph_data` of case 2).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    slow_variables_figure : the same for either case.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, fig. 4-6.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import euler_poinsot as figs
+    >>> sols = {0.0: figs.figure_data(figs.CASES[2], 0.0, num=61)}  # the orbit-averaged run only, 61 points
+    >>> fig = figs.slow_variables_case2(sols)
+    >>> len(fig.axes)
+    5
+    """
     return slow_variables_figure(2, sols)
 
 

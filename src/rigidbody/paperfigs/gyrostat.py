@@ -1,6 +1,6 @@
 """Stepanov (1968): the paper's figure (the dumbbell), and stability maps and kappa0(theta0) beyond it.
 
-Choices the paper leaves open (stated here and in docs/gyrostat.md):
+Choices the paper leaves open (stated here and in :doc:`/gyrostat`):
 
 - nondimensional units M = mu = R0 = 1; bodies with principal moments proportional to the six orderings
   of (1.2, 1.0, 0.8), scaled so that l = sqrt(Abar/M) = l/R;
@@ -49,25 +49,117 @@ THETA_DUMBBELL = math.pi / 4
 
 
 def body(l_over_R: float, ratios: tuple[float, float, float] = BASE) -> gyrostat.Satellite:
-    """Nondimensional body with moments proportional to ``ratios`` and sqrt(Abar/M) = l_over_R."""
+    """Nondimensional body with moments proportional to ``ratios`` and sqrt(Abar/M) = l_over_R.
+
+    Parameters
+    ----------
+    l_over_R : float
+        Size of the body over the orbit radius (``M = mu = R0 = 1``).
+    ratios : (float, float, float)
+        Proportions of ``A1, A2, A3``.
+
+    Returns
+    -------
+    rigidbody.gyrostat.Satellite
+
+    See Also
+    --------
+    orderings : the proportions of the maps.
+    map_data : a map of such a body.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> sat = figs.body(0.1)
+    >>> print(f"{sat.l:.12f} {sat.A1 / sat.A3:.12f}")
+    0.100000000000 1.500000000000
+    """
     s = l_over_R**2 * 3 / sum(ratios)
     return gyrostat.Satellite(M=1.0, A1=ratios[0] * s, A2=ratios[1] * s, A3=ratios[2] * s)
 
 
 def orderings() -> list[tuple[float, float, float]]:
-    """The six orderings of BASE, A1 > A2 > A3 first."""
+    """The six orderings of BASE, A1 > A2 > A3 first.
+
+    Returns
+    -------
+    list of (float, float, float)
+
+    See Also
+    --------
+    stability_maps : one panel per ordering.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> figs.orderings()
+    [(1.2, 1.0, 0.8), (1.2, 0.8, 1.0), (1.0, 1.2, 0.8), (1.0, 0.8, 1.2), (0.8, 1.2, 1.0), (0.8, 1.0, 1.2)]
+    """
     return sorted({(a, b, c) for a, b, c in itertools.permutations(BASE)}, reverse=True)
 
 
 def map_data(l_over_R: float, ratios: tuple[float, float, float]) -> dict:
-    """Arrays behind one map panel: codes on (THETA x U) and the boundary curves u(theta0)."""
+    """Arrays behind one map panel: codes on (THETA x U) and the boundary curves u(theta0).
+
+    Parameters
+    ----------
+    l_over_R : float
+        Size of the body over the orbit radius.
+    ratios : (float, float, float)
+        Proportions of ``A1, A2, A3``.
+
+    Returns
+    -------
+    dict
+        ``sat`` (the body), ``code`` (the verdicts), ``b`` (the boundaries of
+        :func:`rigidbody.gyrostat.normalized_stability_map`), ``map`` (the :class:`~rigidbody.gyrostat.StabilityMap`).
+
+    See Also
+    --------
+    stability_maps : the figure of the six panels.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> d = figs.map_data(0.1, (1.2, 1.0, 0.8))
+    >>> d["code"].shape, sorted(d)
+    ((301, 301), ['b', 'code', 'map', 'sat'])
+    """
     sat = body(l_over_R, ratios)
     mp, b = gyrostat.normalized_stability_map(sat, 1.0, THETA, U)
     return {"sat": sat, "code": mp.code, "b": b, "map": mp}
 
 
 def kappa_data() -> dict[float, np.ndarray]:
-    """kappa0(theta0) on THETA for each l/R (k2 = 0; kappa0 does not depend on k2)."""
+    """kappa0(theta0) on THETA for each l/R (k2 = 0; kappa0 does not depend on k2).
+
+    Returns
+    -------
+    dict of float to numpy.ndarray
+
+    See Also
+    --------
+    kappa0 : the figure.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, section 2 (kappa0 is of order l^2/R^2 and maximal
+    at theta0 = pi/4).
+
+    Examples
+    --------
+    The maximum sits at the grid point next to :math:`\\pi/4` for the smallest body:
+
+    >>> import numpy as np
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> kd = figs.kappa_data()
+    >>> sorted(kd), float(figs.THETA[np.argmax(kd[0.05])])
+    ([0.05, 0.1, 0.2, 0.3], 0.79)
+    """
     out = {}
     for lR in L_OVER_R_KAPPA:
         sat = body(lR)
@@ -81,14 +173,61 @@ SYM_L_OVER_R = 0.1
 
 
 def symmetric_map_data() -> gyrostat.SymmetricStabilityMap:
-    """Verdicts of (3.2) on SYM_THETA x SYM_RATIO (A3/A1), l/R = SYM_L_OVER_R (A1 fixed, A3 varied)."""
+    """Verdicts of (3.2) on SYM_THETA x SYM_RATIO (A3/A1), l/R = SYM_L_OVER_R (A1 fixed, A3 varied).
+
+    Returns
+    -------
+    rigidbody.gyrostat.SymmetricStabilityMap
+
+    See Also
+    --------
+    symmetric_map : the figure.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4).
+
+    Examples
+    --------
+    Near :math:`\\theta_0 = \\pi/4`: stable for :math:`A_3/A_1 = 0.5`, unstable for 1.2, undecided beyond 4/3:
+
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> sm = figs.symmetric_map_data()
+    >>> print(round(float(figs.SYM_THETA[194]), 2), figs.SYM_RATIO[[45, 115, 145]], sm.verdict[194, [45, 115, 145]])
+    0.78 [0.5 1.2 1.5] ['stable' 'unstable' 'undecided']
+    """
     A1 = SYM_L_OVER_R**2
     sat = gyrostat.Satellite(M=1.0, A1=A1, A2=A1, A3=A1)
     return gyrostat.symmetric_stability_map(sat, 1.0, SYM_THETA, A3=SYM_RATIO * A1)
 
 
 def dumbbell_data() -> tuple[gyrostat.Satellite, gyrostat.SymmetricMotion]:
-    """The dumbbell of the paper's figure: the satellite and its stationary motion (3.2)-(3.3)."""
+    """The dumbbell of the paper's figure: the satellite and its stationary motion (3.2)-(3.3).
+
+    Returns
+    -------
+    (rigidbody.gyrostat.Satellite, rigidbody.gyrostat.SymmetricMotion)
+
+    See Also
+    --------
+    fig1_dumbbell : the figure.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, section 5 and its figure.
+
+    Examples
+    --------
+    By (3.3) at :math:`\\theta_0 = \\pi/4`: :math:`\\tan\\kappa_0 = \\frac32(A_1 - A_3)/(1 + \\frac34(A_1 - A_3))`
+    (``M = mu = R0 = 1``):
+
+    >>> import math
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> sat, ms = figs.dumbbell_data()
+    >>> d = sat.A1 - sat.A3
+    >>> print(f"{ms.kappa0:.12f} {math.atan(1.5 * d / (1 + 0.75 * d)):.12f}")
+    0.124628982946 0.124628982946
+    """
     A1 = 1.0 * ARM**2
     sat = gyrostat.Satellite(M=1.0, A1=A1, A2=A1, A3=0.01 * A1)
     return sat, gyrostat.symmetric_stationary_motion(sat, 1.0, THETA_DUMBBELL)
@@ -108,11 +247,34 @@ def stability_maps(l_over_R: float, maps: dict[tuple[float, float, float], Any] 
     Parameters
     ----------
     l_over_R : float
-        ``sqrt(Abar / M) / R0``.
+        Size of the body over the orbit radius, ``sqrt(Abar / M) / R0``.
     maps : dict, optional
         ``{ratios: (StabilityMap, boundaries)}`` for the six :func:`orderings`, each the result of
         :func:`rigidbody.gyrostat.normalized_stability_map` for ``body(l_over_R, ratios)`` with ``R0 = 1`` on
         :data:`THETA` x :data:`U` (default: computed here).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    map_data : one panel's data.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5) and the restricted conditions after it.
+
+    Examples
+    --------
+    One panel per ordering of the principal moments, each the map of :func:`map_data` (the figure itself takes
+    about a second: the gallery and ``python -m rigidbody figures`` draw it):
+
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> panels = [figs.map_data(0.1, r)["code"] for r in figs.orderings()]
+    >>> len(panels), panels[0].shape
+    (6, (301, 301))
+    >>> fig = figs.stability_maps(0.1)  # doctest: +SKIP
     """
     import matplotlib.pyplot as plt
 
@@ -131,12 +293,58 @@ def stability_maps(l_over_R: float, maps: dict[tuple[float, float, float], Any] 
 
 
 def stability_maps_lr01(maps: dict[tuple[float, float, float], Any] | None = None) -> Any:
-    """Beyond the paper: :func:`stability_maps` for l/R = 0.1."""
+    """Beyond the paper: :func:`stability_maps` for l/R = 0.1.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    stability_maps : the same for any l/R.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
+
+    Examples
+    --------
+    Its panels are the maps of :func:`map_data` for a body of size ``l/R = 0.1`` (the figure itself,
+    ``stability_maps_lr01()``, is drawn by the gallery and ``python -m rigidbody figures``):
+
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> figs.L_OVER_R_MAPS[0], figs.map_data(0.1, figs.orderings()[0])["sat"].l
+    (0.1, 0.1)
+    >>> fig = figs.stability_maps_lr01()  # doctest: +SKIP
+    """
     return stability_maps(L_OVER_R_MAPS[0], maps)
 
 
 def stability_maps_lr02(maps: dict[tuple[float, float, float], Any] | None = None) -> Any:
-    """Beyond the paper: :func:`stability_maps` for l/R = 0.2."""
+    """Beyond the paper: :func:`stability_maps` for l/R = 0.2.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    stability_maps : the same for any l/R.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
+
+    Examples
+    --------
+    Its panels are the maps of :func:`map_data` for a body of size ``l/R = 0.2`` (the figure itself,
+    ``stability_maps_lr02()``, is drawn by the gallery and ``python -m rigidbody figures``):
+
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> figs.L_OVER_R_MAPS[1], figs.map_data(0.2, figs.orderings()[0])["sat"].l
+    (0.2, 0.2)
+    >>> fig = figs.stability_maps_lr02()  # doctest: +SKIP
+    """
     return stability_maps(L_OVER_R_MAPS[1], maps)
 
 
@@ -145,6 +353,25 @@ def kappa0(data: dict[float, np.ndarray] | None = None) -> Any:
     (l/R)^2 (the curves collapse, extremal near theta0 = +-pi/4).
 
     ``data``: ``{l/R: kappa0 on THETA}`` (default :func:`kappa_data`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    kappa_data : the curves.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.4) and section 2.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> fig = figs.kappa0()
+    >>> [len(ax.get_legend().get_texts()) for ax in fig.axes]  # one curve per l/R
+    [4, 4]
     """
     import matplotlib.pyplot as plt
 
@@ -173,6 +400,28 @@ def symmetric_map(sm: gyrostat.SymmetricStabilityMap | None = None) -> Any:
     (theta0, A3/A1), with the paper's boundary A3 = A1 of (3.4) and the line 3 A3 = 4 A1.
 
     ``sm``: the map over SYM_THETA x SYM_RATIO (default :func:`symmetric_map_data`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    symmetric_map_data : the verdicts.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4).
+
+    Examples
+    --------
+    Its verdicts are those of :func:`symmetric_map_data` (drawn by the gallery and
+    ``python -m rigidbody figures``):
+
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> figs.symmetric_map_data().code.shape == (figs.SYM_THETA.size, figs.SYM_RATIO.size)
+    True
+    >>> fig = figs.symmetric_map()  # doctest: +SKIP
     """
     import matplotlib.pyplot as plt
 
@@ -196,6 +445,27 @@ def fig1_dumbbell(sat: gyrostat.Satellite | None = None, motion: gyrostat.Symmet
 
     ``sat`` and ``motion``: a dumbbell (two equal balls on a light rod, ``A1 = A2 = M arm^2``) and its
     stationary motion (3.2)-(3.3), both or neither (default :func:`dumbbell_data`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    dumbbell_data : the dumbbell and its motion.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, section 5 and its figure.
+
+    Examples
+    --------
+    :math:`\\kappa_0 = 0.12463` rad (see :func:`dumbbell_data`) and, the dumbbell being prolate
+    (:math:`A_1 > A_3`), stable by (3.4):
+
+    >>> from rigidbody.paperfigs import gyrostat as figs
+    >>> figs.fig1_dumbbell().axes[0].get_title()
+    'Spinning dumbbell, arm = 0.3 R0, θ0 = 45°: κ0 = 7.14°, verdict: stable'
     """
     import matplotlib.pyplot as plt
 

@@ -33,6 +33,26 @@ def case_figure(case: int, sol: Solution | None = None) -> Any:
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.lagrange.paper_solution : the data.
+    rigidbody.plotting.plot_roots, rigidbody.plotting.plot_integrals : the panels.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, figs 1-3 and eq. (3.4).
+
+    Examples
+    --------
+    Case 3 of the paper (:math:`\\theta_0 = 170` degrees) on a shorter run than the paper's: one row (case 3 has
+    no ``xi`` panels), its title the paper's parameters:
+
+    >>> from rigidbody import lagrange
+    >>> from rigidbody.paperfigs.lagrange import case_figure
+    >>> fig = case_figure(3, lagrange.paper_solution(3, n_out=100, tau_end=5.0))
+    >>> len(fig.axes), fig.get_suptitle()
+    (2, 'Fig. 3: theta0 = 170 deg, r0 = sqrt(3), A = 1.5, C = 1, mgl = 0.5, a = 0.125, b = 0.1 (averaged system (3.4))')
     """
     import matplotlib.pyplot as plt
 
@@ -54,17 +74,104 @@ def case_figure(case: int, sol: Solution | None = None) -> Any:
 
 
 def fig1_case1_theta5(sol: Solution | None = None) -> Any:
-    """Fig. 1: case 1, the top tilted by 5 degrees (see :func:`case_figure`)."""
+    """Fig. 1: case 1, the top tilted by 5 degrees (see :func:`case_figure`).
+
+    Parameters
+    ----------
+    sol : Solution, optional
+        The averaged run (default: the paper's, :func:`rigidbody.lagrange.paper_solution`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    case_figure : the same for any case.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    fig. 1.
+
+    Examples
+    --------
+    The paper's case 1, :math:`\\theta_0 = 5` degrees; a shorter run than the paper's (``sol`` is optional):
+
+    >>> from rigidbody import lagrange
+    >>> from rigidbody.paperfigs.lagrange import fig1_case1_theta5
+    >>> fig = fig1_case1_theta5(lagrange.paper_solution(1, n_out=100, tau_end=5.0))
+    >>> lagrange.PAPER_CASES[1], len(fig.axes)  # theta0 in degrees; 2 rows of two panels
+    (5.0, 4)
+    """
     return case_figure(1, sol)
 
 
 def fig2_case2_theta60(sol: Solution | None = None) -> Any:
-    """Fig. 2: case 2, the top tilted by 60 degrees (see :func:`case_figure`)."""
+    """Fig. 2: case 2, the top tilted by 60 degrees (see :func:`case_figure`).
+
+    Parameters
+    ----------
+    sol : Solution, optional
+        The averaged run (default: the paper's, :func:`rigidbody.lagrange.paper_solution`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    case_figure : the same for any case.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    fig. 2.
+
+    Examples
+    --------
+    The paper's case 2, :math:`\\theta_0 = 60` degrees; a shorter run than the paper's (``sol`` is optional):
+
+    >>> from rigidbody import lagrange
+    >>> from rigidbody.paperfigs.lagrange import fig2_case2_theta60
+    >>> fig = fig2_case2_theta60(lagrange.paper_solution(2, n_out=100, tau_end=5.0))
+    >>> lagrange.PAPER_CASES[2], len(fig.axes)  # theta0 in degrees; 2 rows of two panels
+    (60.0, 4)
+    """
     return case_figure(2, sol)
 
 
 def fig3_case3_theta170(sol: Solution | None = None) -> Any:
-    """Fig. 3: case 3, the top tilted by 170 degrees, nearly hanging (see :func:`case_figure`)."""
+    """Fig. 3: case 3, the top tilted by 170 degrees, nearly hanging (see :func:`case_figure`).
+
+    Parameters
+    ----------
+    sol : Solution, optional
+        The averaged run (default: the paper's, :func:`rigidbody.lagrange.paper_solution`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    case_figure : the same for any case.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    fig. 3.
+
+    Examples
+    --------
+    The paper's case 3, :math:`\\theta_0 = 170` degrees; a shorter run than the paper's (``sol`` is optional):
+
+    >>> from rigidbody import lagrange
+    >>> from rigidbody.paperfigs.lagrange import fig3_case3_theta170
+    >>> fig = fig3_case3_theta170(lagrange.paper_solution(3, n_out=100, tau_end=5.0))
+    >>> lagrange.PAPER_CASES[3], len(fig.axes)  # theta0 in degrees; 1 rows of two panels
+    (170.0, 2)
+    """
     return case_figure(3, sol)
 
 

@@ -7,7 +7,7 @@ Euler--Poinsot module (order eps^2) and over (eps, theta0) for the Lagrange top 
 Each figure function takes the study's map (from :func:`study_data`) or computes it on the study's quick
 grid in this process with :func:`rigidbody.studies.evaluate` (batch integrations, seconds; the base install
 suffices). The full grids (``rigidbody.studies.GRIDS[...]['full']``) are for a sweep on a cluster
-(docs/sweeps.md): pass its Dataset.
+(:doc:`/sweeps`): pass its Dataset.
 """
 
 from __future__ import annotations
@@ -47,6 +47,19 @@ def study_data(name: str, size: str = "quick", **sweep_kw: Any) -> Any:
     -------
     rigidbody.studies.StudyMap or xarray.Dataset
         A :class:`~rigidbody.studies.StudyMap` without keyword arguments, else the sweep's Dataset.
+
+    See Also
+    --------
+    rigidbody.studies.evaluate : the in-process evaluation.
+    rigidbody.sweep.sweep : the same on workers.
+
+    Examples
+    --------
+    The quick grid of the spin-end study, 13 x 13 drag tensors, in this process:
+
+    >>> from rigidbody.paperfigs import studies as figs
+    >>> figs.study_data("spin_end")
+    StudyMap(r1: 13, r3: 13; outputs ['regime', 'k2_end', 'tau_end', 'chi']; 0 failed)
     """
     from rigidbody import studies
 
@@ -69,7 +82,29 @@ def study_data(name: str, size: str = "quick", **sweep_kw: Any) -> Any:
 
 
 def paper_cases() -> dict[str, tuple[float, float]]:
-    """Rachinskaya's drag cases 1 and 2 in the plane (r1, r3) of decay-rate ratios a_i = I_ii / A_i."""
+    """Rachinskaya's drag cases 1 and 2 in the plane (r1, r3) of decay-rate ratios a_i = I_ii / A_i.
+
+    Returns
+    -------
+    dict of str to (float, float)
+
+    See Also
+    --------
+    spin_end : the figure that marks them.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 3 (the body and the two drag tensors).
+
+    Examples
+    --------
+    Case 1: :math:`a = (2.322/3.2, 1.31/2.6, 1.425/1.67)`:
+
+    >>> from rigidbody.paperfigs import studies as figs
+    >>> r1, r3 = figs.paper_cases()["case 1"]
+    >>> print(f"{r1:.9f} {(2.322 / 3.2) / (1.31 / 2.6):.9f} {r3:.9f} {(1.425 / 1.67) / (1.31 / 2.6):.9f}")
+    1.440171756 1.440171756 1.693559446 1.693559446
+    """
     from rigidbody import studies
 
     A = np.array([studies.PAPER_BODY.A1, studies.PAPER_BODY.A2, studies.PAPER_BODY.A3])
@@ -124,6 +159,28 @@ def where_averaging_holds_euler_poinsot(ds: Any = None) -> Any:
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.plotting.averaging_error_plot, rigidbody.plotting.scaled_error_map : the two panels.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (9) (an approximation of order eps^2).
+
+    Examples
+    --------
+    Any map over ``eps`` and ``k2_0`` with an ``error`` will do (here errors exactly ``eps²``, which the
+    right panel shows flat at 0); the default is the study's quick grid:
+
+    >>> import numpy as np
+    >>> from rigidbody.studies import StudyMap
+    >>> from rigidbody.paperfigs import studies as figs
+    >>> eps = np.array([0.01, 0.02, 0.04])
+    >>> m = StudyMap({"eps": eps, "k2_0": np.array([0.5, 0.9])}, {"error": np.outer(eps**2, [1.0, 1.0])})
+    >>> fig = figs.where_averaging_holds_euler_poinsot(m)
+    >>> print(np.round(np.asarray(fig.axes[1].collections[0].get_array()).ravel(), 12) + 0.0)
+    [0. 0. 0. 0. 0. 0.]
     """
     return _averaging_figure("averaging_euler_poinsot", ds)
 
@@ -140,6 +197,29 @@ def where_averaging_holds_lagrange(ds: Any = None) -> Any:
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.plotting.averaging_error_plot, rigidbody.plotting.scaled_error_map : the two panels.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (1.1) and
+    (3.4).
+
+    Examples
+    --------
+    Any map over ``eps`` and ``theta0`` (radians, shown in degrees) with an ``error`` will do; the default is
+    the study's quick grid:
+
+    >>> import numpy as np
+    >>> from rigidbody.studies import StudyMap
+    >>> from rigidbody.paperfigs import studies as figs
+    >>> eps = np.array([0.01, 0.02, 0.04])
+    >>> m = StudyMap({"eps": eps, "theta0": np.radians([30.0, 60.0])}, {"error": np.outer(eps, [1.0, 2.0])})
+    >>> fig = figs.where_averaging_holds_lagrange(m)
+    >>> [line.get_label() for line in fig.axes[0].lines[:2]]
+    ['theta0 (deg) = 30', 'theta0 (deg) = 60']
     """
     return _averaging_figure("averaging_lagrange", ds)
 
@@ -157,6 +237,35 @@ def spin_end(ds: Any = None) -> Any:
     Returns
     -------
     matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.plotting.spin_end_map : the left panel.
+    study_data : the map.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (7)-(8).
+
+    Examples
+    --------
+    The paper's two drag cases are marked: case 1 (:math:`\\chi < -3`) ends at an interior :math:`k_*^2`,
+    case 2 (:math:`\\chi > 0`) at :math:`k^2 = 0`, as the studies find at those points:
+
+    >>> import numpy as np
+    >>> from rigidbody import studies
+    >>> from rigidbody.paperfigs import studies as figs
+    >>> [int(studies.spin_end(*rr)["regime"]) for rr in figs.paper_cases().values()]
+    [1, 0]
+
+    Any map over ``r1`` and ``r3`` with ``regime`` and ``k2_end`` will do (by default the study's quick grid,
+    :func:`study_data`):
+
+    >>> r = np.array([0.5, 1.0, 1.5])
+    >>> m = studies.StudyMap({"r1": r, "r3": r}, {"regime": np.ones((3, 3)), "k2_end": np.full((3, 3), 0.5)})
+    >>> fig = figs.spin_end(m)
+    >>> sorted(t.get_text() for t in fig.axes[0].texts)
+    ['case 1', 'case 2']
     """
     import matplotlib.pyplot as plt
 

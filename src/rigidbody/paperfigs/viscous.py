@@ -2,7 +2,7 @@
 
 Fig. 1 is the model: the ball-and-rod structure of section 2, drawn for ``N = 4`` balls on a circle of
 radius ``a = 1``, rod half-length ``b = 1.5``, ball radius 0.3 (our choice; the paper draws it without
-numbers). The paper prints no parameters for figs 2-5 either; we choose (stated here and in docs/viscous.md):
+numbers). The paper prints no parameters for figs 2-5 either; we choose (stated here and in :doc:`/viscous`):
 ``θ12 = 2, θ3 = 1``, ``Ω0 = 6`` (``ξ∞ = 30`` rad ≈ 4.8 turns of the tangent);
 fig. 2 contracting ``B12 = 0.4, B3 = 0.1``, ``v0 = 2`` (``k0 = 1.5``, ``R0 = 0.55``);
 fig. 3 unwinding ``B12 = 0.1, B3 = 0.1``, ``v0 = 0.6`` (``k0 = 5``, ``R0 = 0.2``);
@@ -46,7 +46,40 @@ T_HISTORIES = np.linspace(0.0, 80.0, 801)
 
 def figure_data(name: str, t_max: float = 200.0, num: int = 4000) -> dict[str, np.ndarray]:
     """The arrays behind the spiral figures ('contracting' or 'unwinding'): path n(t) from (v, k) and
-    the closed-form histories."""
+    the closed-form histories.
+
+    Parameters
+    ----------
+    name : {'contracting', 'unwinding'}
+    t_max : float
+        The last time of the histories.
+    num : int
+        Number of times.
+
+    Returns
+    -------
+    dict
+        ``t``, the path ``n`` (3, num), its end point ``n_inf`` and binormal ``g_inf`` at ``t = inf``, the
+        curvature ``k``, the radius ``R`` and the quasi-coordinates ``s, xi, zeta`` at ``t``.
+
+    See Also
+    --------
+    spiral_figure, histories : the figures drawn from it.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eqs. (3.4), (4.5), (5.1)-(5.2).
+
+    Examples
+    --------
+    The contracting spiral: ``k0 = (1 · 6)/(2 · 2) = 1.5``, and the tangent turns by ``ξ∞ = θ3² Ω0/(θ12 B3) = 30``
+    rad in all:
+
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> d = figs.figure_data("contracting", num=50)
+    >>> print(f"{d['k'][0]:.12f} {d['xi'][-1]:.6f}")
+    1.500000000000 30.000000
+    """
     medium = MEDIA[name]
     ndot0 = NDOT0[name]
     v0 = float(np.linalg.norm(ndot0))
@@ -70,6 +103,28 @@ def fig1_ball_and_rod(N: int = SKETCH_N, a: float = SKETCH_A, b: float = SKETCH_
 
     The parameters are those of :func:`rigidbody.viscous.ball_and_rod`; the defaults are the structure as
     drawn: 4 balls on a circle of radius 1, a rod of half-length 1.5, balls of radius 0.3.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.plotting.ball_and_rod_sketch : the drawing.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, section 2, fig. 1.
+
+    Examples
+    --------
+    Four balls of radius 0.3 on a circle of radius 1, two on the rod at ``±1.5``: ``θ12 = 2 + 4.5 + 6 · 0.4 · 0.09``,
+    ``θ3 = 4 + 0.216``, ``B12 = 0.1 (2 + 4.5)``, ``B3 = 0.4``; ``B12/θ12 > B3/θ3``, so the spiral contracts:
+
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> print(figs.fig1_ball_and_rod().get_suptitle())
+    Fig. 1: N = 4 balls on a circle of radius a = 1, rod AB of length 2b = 3
+    θ12 = 6.716, θ3 = 4.216, B12 = 0.65, B3 = 0.4: contracting spiral
     """
     import matplotlib.pyplot as plt
 
@@ -92,6 +147,35 @@ def spiral_figure(name: str, n: np.ndarray | None = None, view: np.ndarray | Non
     circle it tends to; the far side of the sphere is dashed. ``n`` (shape (3, m)) is the path from
     ``t = 0`` to its end point at ``t = inf`` (:func:`rigidbody.viscous.axis_path`) and ``view`` the
     direction it is seen from (default: its end point); without them both come from :func:`figure_data`.
+
+    Parameters
+    ----------
+    name : {'contracting', 'unwinding'}
+    n : ndarray, optional
+        The path of the axis, shape (3, m), ending at its limit point.
+    view : ndarray, optional
+        The direction the sphere is seen from.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    figure_data : the data.
+    rigidbody.plotting.sphere_path : the drawing.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, figs 2-3.
+
+    Examples
+    --------
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> d = figs.figure_data("unwinding", num=50)
+    >>> fig = figs.spiral_figure("unwinding", np.column_stack([d["n"], d["n_inf"]]), d["g_inf"])
+    >>> fig.axes[0].get_title()
+    'Fig. 3: unwinding spiral (B12=0.1, B3=0.1, θ12=2, θ3=1)'
     """
     import matplotlib.pyplot as plt
 
@@ -115,7 +199,31 @@ def turn_figure(name: str, tr: vs.Turn | None = None) -> Any:
     """Fig. 4 (``'contracting'``) or 5 (``'unwinding'``): one turn of the spiral from ``t1 = 0`` and the solid
     angle χ it bounds (:func:`rigidbody.viscous.turn`), seen from the turn's centre.
 
-    ``tr``: the turn to draw (default: the one from ``t1 = 0`` of the spiral of figure 2 or 3).
+    Parameters
+    ----------
+    name : {'contracting', 'unwinding'}
+    tr : rigidbody.viscous.Turn, optional
+        The turn to draw (default: the one from ``t1 = 0`` of the spiral of figure 2 or 3).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    rigidbody.plotting.turn_solid_angle : the drawing.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, section 5, figs 4-5.
+
+    Examples
+    --------
+    The panel's title gives χ and the paper's cap approximation ``2π(1 - sqrt(1 - R²))`` at mid-turn:
+
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> figs.turn_figure("contracting").axes[0].get_title()[:2]
+    'χ '
     """
     import matplotlib.pyplot as plt
 
@@ -144,6 +252,34 @@ def histories(data: dict[str, dict[str, np.ndarray]] | None = None) -> Any:
 
     ``data``: ``{'contracting': d, 'unwinding': d}``, each ``d`` with the arrays ``t, k, R, s, xi, zeta``
     (default: the closed forms on :data:`T_HISTORIES` for the spirals of figures 2 and 3).
+
+    Parameters
+    ----------
+    data : dict, optional
+        ``{'contracting': figure_data(...), 'unwinding': figure_data(...)}`` (computed if not given).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    figure_data : the data.
+    rigidbody.plotting.quasi_coordinate_histories : one column.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eqs. (4.5), (5.1)-(5.2).
+
+    Examples
+    --------
+    Five panels a spiral, one column each:
+
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> data = {name: figs.figure_data(name, num=50) for name in ("contracting", "unwinding")}
+    >>> fig = figs.histories(data)
+    >>> [ax.get_title() for ax in fig.axes[:2]], [ax.get_ylabel() for ax in fig.axes[::2]]
+    (['contracting', 'unwinding'], ['k', 'R', 's', 'ξ', 'ζ'])
     """
     import matplotlib.pyplot as plt
 
@@ -162,22 +298,148 @@ def histories(data: dict[str, dict[str, np.ndarray]] | None = None) -> Any:
 
 
 def fig2_contracting_spiral(n: np.ndarray | None = None, view: np.ndarray | None = None) -> Any:
-    """Fig. 2: the contracting spiral (:func:`spiral_figure`)."""
+    """Fig. 2: the contracting spiral (:func:`spiral_figure`).
+
+    Parameters
+    ----------
+    n, view : ndarray, optional
+        The path of the axis and the direction it is seen from (:func:`spiral_figure`; computed from
+        :func:`figure_data` of ``'contracting'`` if not given).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    spiral_figure : the same for either spiral.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, fig. 2.
+
+    Examples
+    --------
+    Our parameters (the paper gives none) start the path with the curvature ``k0 = 1.5`` and the radius
+    ``R0 = 1/sqrt(1 + k0²)``:
+
+    >>> import math
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> data = figs.figure_data("contracting", num=50)
+    >>> print(f"{data['k'][0]:.12f} {data['R'][0]:.12f} {1 / math.sqrt(1 + 1.5**2):.12f}")
+    1.500000000000 0.554700196225 0.554700196225
+    >>> figs.fig2_contracting_spiral().axes[0].get_title()[:26]
+    'Fig. 2: contracting spiral'
+    """
     return spiral_figure("contracting", n, view)
 
 
 def fig3_unwinding_spiral(n: np.ndarray | None = None, view: np.ndarray | None = None) -> Any:
-    """Fig. 3: the unwinding spiral (:func:`spiral_figure`)."""
+    """Fig. 3: the unwinding spiral (:func:`spiral_figure`).
+
+    Parameters
+    ----------
+    n, view : ndarray, optional
+        The path of the axis and the direction it is seen from (:func:`spiral_figure`; computed from
+        :func:`figure_data` of ``'unwinding'`` if not given).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    spiral_figure : the same for either spiral.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, fig. 3.
+
+    Examples
+    --------
+    Our parameters (the paper gives none) start the path with the curvature ``k0 = 5.0`` and the radius
+    ``R0 = 1/sqrt(1 + k0²)``:
+
+    >>> import math
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> data = figs.figure_data("unwinding", num=50)
+    >>> print(f"{data['k'][0]:.12f} {data['R'][0]:.12f} {1 / math.sqrt(1 + 5.0**2):.12f}")
+    5.000000000000 0.196116135138 0.196116135138
+    >>> figs.fig3_unwinding_spiral().axes[0].get_title()[:24]
+    'Fig. 3: unwinding spiral'
+    """
     return spiral_figure("unwinding", n, view)
 
 
 def fig4_turn_contracting(tr: vs.Turn | None = None) -> Any:
-    """Fig. 4: one turn of the contracting spiral and its solid angle (:func:`turn_figure`)."""
+    """Fig. 4: one turn of the contracting spiral and its solid angle (:func:`turn_figure`).
+
+    Parameters
+    ----------
+    tr : rigidbody.viscous.Turn, optional
+        The turn to draw (:func:`turn_figure`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    turn_figure : the same for either spiral.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, fig. 4.
+
+    Examples
+    --------
+    The spiral radius (5.2) shrinks over the turn:
+
+    >>> from rigidbody import viscous
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> tr = viscous.turn(figs.BODY, figs.MEDIA["contracting"], figs.N0, figs.NDOT0["contracting"], figs.OMEGA0)
+    >>> bool(tr.R2 < tr.R1)
+    True
+    >>> fig = figs.fig4_turn_contracting()
+    >>> fig.get_suptitle() == f"Fig. 4: one turn of the contracting spiral, t in [0, {tr.t2:.3f}]"
+    True
+    """
     return turn_figure("contracting", tr)
 
 
 def fig5_turn_unwinding(tr: vs.Turn | None = None) -> Any:
-    """Fig. 5: one turn of the unwinding spiral and its solid angle (:func:`turn_figure`)."""
+    """Fig. 5: one turn of the unwinding spiral and its solid angle (:func:`turn_figure`).
+
+    Parameters
+    ----------
+    tr : rigidbody.viscous.Turn, optional
+        The turn to draw (:func:`turn_figure`).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    See Also
+    --------
+    turn_figure : the same for either spiral.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, fig. 5.
+
+    Examples
+    --------
+    The spiral radius (5.2) grows over the turn:
+
+    >>> from rigidbody import viscous
+    >>> from rigidbody.paperfigs import viscous as figs
+    >>> tr = viscous.turn(figs.BODY, figs.MEDIA["unwinding"], figs.N0, figs.NDOT0["unwinding"], figs.OMEGA0)
+    >>> bool(tr.R2 > tr.R1)
+    True
+    >>> fig = figs.fig5_turn_unwinding()
+    >>> fig.get_suptitle() == f"Fig. 5: one turn of the unwinding spiral, t in [0, {tr.t2:.3f}]"
+    True
+    """
     return turn_figure("unwinding", tr)
 
 

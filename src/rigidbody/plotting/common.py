@@ -24,7 +24,32 @@ STANDARD_PLOTS: tuple[tuple[frozenset[str], str], ...] = (
 
 
 def get_ax(ax: Any = None, projection: str | None = None, figsize: tuple[float, float] = (6.0, 4.5)) -> Any:
-    """Return ``ax`` or a new ``Axes`` (``projection='3d'`` for 3-D) on a new figure."""
+    """Return ``ax`` or a new ``Axes`` (``projection='3d'`` for 3-D) on a new figure.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes, optional
+        Returned as it is when given.
+    projection : str, optional
+        ``'3d'`` for a 3-D axes.
+    figsize : (float, float)
+        Size of the new figure (inches).
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    See Also
+    --------
+    unit_sphere : a 3-D axes with the unit sphere.
+
+    Examples
+    --------
+    >>> from rigidbody.plotting import get_ax
+    >>> ax = get_ax()
+    >>> get_ax(ax) is ax, get_ax(projection="3d").name
+    (True, '3d')
+    """
     if ax is not None:
         return ax
     import matplotlib.pyplot as plt
@@ -58,6 +83,17 @@ def unit_sphere(
     Returns
     -------
     Axes3D
+
+    See Also
+    --------
+    rigidbody.plotting.sphere_path : a path drawn on this sphere.
+
+    Examples
+    --------
+    >>> from rigidbody.plotting import unit_sphere
+    >>> ax = unit_sphere()
+    >>> print(*(f"{x:.2f}" for x in ax.get_xlim()), *(f"{z:.2f}" for z in ax.get_zlim()))
+    -1.05 1.05 -1.05 1.05
     """
     ax = get_ax(ax, projection="3d")
     u = np.linspace(0.0, 2.0 * np.pi, resolution)
@@ -88,7 +124,38 @@ def unit_sphere(
 def time_series(
     t: Any, series: dict[str, Any], *, xlabel: str = "t", axes: Any = None, title: str | None = None
 ) -> Any:
-    """Plot named arrays against ``t``, one panel each; return the array of axes."""
+    """Plot named arrays against ``t``, one panel each; return the array of axes.
+
+    Parameters
+    ----------
+    t : array_like
+        The abscissa.
+    series : dict of str to array_like
+        Name (the panel's label) to the values at ``t``.
+    xlabel : str
+        Label of the shared abscissa.
+    axes : sequence of Axes, optional
+        One per series (new ones, sharing the abscissa, by default).
+    title : str, optional
+        Title of a new figure.
+
+    Returns
+    -------
+    numpy.ndarray of Axes
+
+    See Also
+    --------
+    rigidbody.plotting.quasi_coordinate_histories : the histories of the viscous module.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody.plotting import time_series
+    >>> t = np.linspace(0.0, 10.0, 101)
+    >>> axes = time_series(t, {"v": np.exp(-0.2 * t), "Ω": 6 * np.exp(-0.1 * t)})
+    >>> len(axes), [ax.get_ylabel() for ax in axes], axes[-1].get_xlabel()
+    (2, ['v', 'Ω'], 't')
+    """
     import matplotlib.pyplot as plt
 
     n = len(series)
@@ -108,10 +175,34 @@ def time_series(
 def standard_plot(sol: Any) -> Callable[..., Any]:
     """The function that draws the standard figure of ``sol`` (a row of :data:`STANDARD_PLOTS`).
 
+    Parameters
+    ----------
+    sol : rigidbody.core.ode.Solution
+        A result (its ``fields`` select the row).
+
+    Returns
+    -------
+    callable
+        ``func(sol, ax=None, **kwargs)``.
+
     Raises
     ------
     ValueError
         If no row matches the fields of ``sol``.
+
+    See Also
+    --------
+    plot_solution : calls it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody import viscous
+    >>> body, medium = viscous.Body(theta12=2.0, theta3=1.0), viscous.Medium(B12=0.4, B3=0.1)
+    >>> sim = viscous.simulate(body, medium, [1, 0, 0], [0, 2, 0], 6.0, (0.0, 10.0), t_eval=np.linspace(0, 10, 51))
+    >>> from rigidbody.plotting import standard_plot
+    >>> standard_plot(sim).__name__
+    'plot_axis_path'
     """
     fields = set(getattr(sol, "fields", ()))
     for needed, target in STANDARD_PLOTS:
@@ -140,6 +231,25 @@ def plot_solution(sol: Any, ax: Any = None, **kwargs: Any) -> Any:
     -------
     Axes or numpy.ndarray of Axes
         What was drawn on.
+
+    See Also
+    --------
+    standard_plot : the function it calls.
+    STANDARD_PLOTS : the table of standard figures.
+
+    Examples
+    --------
+    The standard figure of :func:`rigidbody.viscous.simulate` is the axis path on the unit sphere; a second
+    result can be drawn on the same Axes:
+
+    >>> import numpy as np
+    >>> from rigidbody import viscous
+    >>> body, medium = viscous.Body(theta12=2.0, theta3=1.0), viscous.Medium(B12=0.4, B3=0.1)
+    >>> sim = viscous.simulate(body, medium, [1, 0, 0], [0, 2, 0], 6.0, (0.0, 10.0), t_eval=np.linspace(0, 10, 51))
+    >>> from rigidbody.plotting import plot_solution
+    >>> ax = plot_solution(sim)
+    >>> ax.name, plot_solution(sim, ax, color="C0") is ax
+    ('3d', True)
     """
     func = standard_plot(sol)
     batch_shape = tuple(getattr(sol, "batch_shape", ()))

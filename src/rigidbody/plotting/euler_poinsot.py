@@ -23,7 +23,42 @@ __all__ = [
 
 
 def hodograph(sol: Any) -> np.ndarray:
-    """The points of the hodograph, :math:`\\mathbf G = G\\mathbf n` in the orbital axes, shape (3, n)."""
+    """The points of the hodograph, :math:`\\mathbf G = G\\mathbf n` in the orbital axes, shape (3, n).
+
+    Parameters
+    ----------
+    sol : Solution
+        A run with the fields ``G`` (magnitude) and ``n`` (unit direction, shape (3, n)).
+
+    Returns
+    -------
+    numpy.ndarray
+
+    See Also
+    --------
+    hodograph_3d, hodograph_projection, hodograph_side_view : draw it.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, figs 1-6.
+
+    Examples
+    --------
+    A third of a turn on the cone of half-angle 0.3 about ``a = (0, 0.6, 0.8)``, with a decaying ``G`` (any object
+    with the fields ``G`` and ``n`` will do, such as a result of :func:`rigidbody.euler_poinsot.averaged`):
+
+    >>> import numpy as np
+    >>> from types import SimpleNamespace
+    >>> a, e1 = np.array([0.0, 0.6, 0.8]), np.array([1.0, 0.0, 0.0])
+    >>> e2 = np.cross(a, e1)
+    >>> t, delta = np.linspace(0.0, 2.0, 40), 0.3
+    >>> n = np.cos(delta) * a[:, None] + np.sin(delta) * (np.cos(t) * e1[:, None] + np.sin(t) * e2[:, None])
+    >>> sol = SimpleNamespace(G=np.exp(-0.1 * t), n=n)
+    >>> from rigidbody.plotting import hodograph
+    >>> h = hodograph(sol)
+    >>> h.shape, np.allclose(np.linalg.norm(h, axis=0), sol.G, rtol=1e-15, atol=0)
+    ((3, 40), True)
+    """
     return np.asarray(sol.G) * np.asarray(sol.n)
 
 
@@ -38,6 +73,39 @@ def spiral_axis(sol: Any) -> np.ndarray:
     (:math:`\delta` constant) it is :math:`x_3`; with :math:`\nu` kept it wobbles by :math:`O(\varepsilon)`.
     Oriented so that the mean of :math:`\mathbf a\cdot\mathbf n` is positive; :math:`x_3` if the path is
     too short to define a cone.
+
+    Parameters
+    ----------
+    sol : Solution
+        A run with the field ``n`` (shape (3, n)).
+
+    Returns
+    -------
+    numpy.ndarray, shape (3,)
+
+    See Also
+    --------
+    hodograph_projection, hodograph_side_view : views along and beside the axis.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, figs 3 and 6.
+
+    Examples
+    --------
+    Only a third of a turn on the cone of half-angle 0.3 about ``a = (0, 0.6, 0.8)``, with a decaying ``G`` (any object
+    with the fields ``G`` and ``n`` will do, such as a result of :func:`rigidbody.euler_poinsot.averaged`):
+
+    >>> import numpy as np
+    >>> from types import SimpleNamespace
+    >>> a, e1 = np.array([0.0, 0.6, 0.8]), np.array([1.0, 0.0, 0.0])
+    >>> e2 = np.cross(a, e1)
+    >>> t, delta = np.linspace(0.0, 2.0, 40), 0.3
+    >>> n = np.cos(delta) * a[:, None] + np.sin(delta) * (np.cos(t) * e1[:, None] + np.sin(t) * e2[:, None])
+    >>> sol = SimpleNamespace(G=np.exp(-0.1 * t), n=n)
+    >>> from rigidbody.plotting import spiral_axis
+    >>> print(np.round(spiral_axis(sol), 9) + 0.0)  # + 0.0: no -0.0
+    [0.  0.6 0.8]
     """
     n = np.asarray(sol.n, dtype=float)
     if n.ndim != 2 or n.shape[1] < 3:
@@ -63,6 +131,44 @@ def hodograph_3d(sol: Any, ax: Any = None, **kw: Any) -> Any:
 
     The start is marked by a dot; the axes get equal scales (:func:`equal_3d`) so that the cone on which the
     hodograph lies is not distorted.
+
+    Parameters
+    ----------
+    sol : Solution
+        A run with the fields ``G`` and ``n``.
+    ax : Axes3D, optional
+    **kw
+        Line style.
+
+    Returns
+    -------
+    matplotlib.lines.Line2D
+
+    See Also
+    --------
+    hodograph : the points drawn.
+    hodograph_projection, hodograph_side_view : the 2-D views.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, figs 1 and 4.
+
+    Examples
+    --------
+    A third of a turn on the cone of half-angle 0.3 about ``a = (0, 0.6, 0.8)``, with a decaying ``G`` (any object
+    with the fields ``G`` and ``n`` will do, such as a result of :func:`rigidbody.euler_poinsot.averaged`):
+
+    >>> import numpy as np
+    >>> from types import SimpleNamespace
+    >>> a, e1 = np.array([0.0, 0.6, 0.8]), np.array([1.0, 0.0, 0.0])
+    >>> e2 = np.cross(a, e1)
+    >>> t, delta = np.linspace(0.0, 2.0, 40), 0.3
+    >>> n = np.cos(delta) * a[:, None] + np.sin(delta) * (np.cos(t) * e1[:, None] + np.sin(t) * e2[:, None])
+    >>> sol = SimpleNamespace(G=np.exp(-0.1 * t), n=n)
+    >>> from rigidbody.plotting import hodograph, hodograph_3d
+    >>> line = hodograph_3d(sol)
+    >>> np.allclose(line.get_data_3d()[2], hodograph(sol)[2], rtol=0, atol=0)
+    True
     """
     ax = get_ax(ax, projection="3d")
     h = hodograph(sol)
@@ -76,7 +182,32 @@ def hodograph_3d(sol: Any, ax: Any = None, **kw: Any) -> Any:
 
 
 def equal_3d(ax: Any) -> Any:
-    """Give a 3-D axes equal scales on its three axes (a box around everything drawn so far)."""
+    """Give a 3-D axes equal scales on its three axes (a box around everything drawn so far).
+
+    Parameters
+    ----------
+    ax : Axes3D
+
+    Returns
+    -------
+    Axes3D
+
+    See Also
+    --------
+    hodograph_3d : calls it.
+
+    Examples
+    --------
+    A segment from the origin to ``(2, 1, 1)``: a box of proportions 2 : 1 : 1:
+
+    >>> import numpy as np
+    >>> from rigidbody.plotting import equal_3d, get_ax
+    >>> ax = get_ax(projection="3d")
+    >>> lines = ax.plot([0.0, 2.0], [0.0, 1.0], [0.0, 1.0])
+    >>> aspect = np.asarray(equal_3d(ax).get_box_aspect())
+    >>> print(np.round(aspect / aspect[0], 12))
+    [1.  0.5 0.5]
+    """
     pts = [np.asarray(line.get_data_3d(), dtype=float) for line in ax.lines]
     if not pts:
         return ax
@@ -92,7 +223,28 @@ def equal_3d(ax: Any) -> Any:
 
 def plane_basis(normal: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Unit ``normal`` and an in-plane basis ``(e1, e2)``: ``e1`` is :math:`x_1` projected on the plane (or
-    :math:`x_2` when the normal is close to :math:`x_1`), ``e2 = normal x e1``."""
+    :math:`x_2` when the normal is close to :math:`x_1`), ``e2 = normal x e1``.
+
+    Parameters
+    ----------
+    normal : array_like, shape (3,)
+        Any finite nonzero vector.
+
+    Returns
+    -------
+    (d, e1, e2) : numpy.ndarray
+        A right-handed orthonormal triple, ``d`` along ``normal``.
+
+    See Also
+    --------
+    hodograph_projection : projects on the plane.
+
+    Examples
+    --------
+    >>> from rigidbody.plotting import plane_basis
+    >>> plane_basis([0.0, 0.0, 2.0])
+    (array([0., 0., 1.]), array([1., 0., 0.]), array([0., 1., 0.]))
+    """
     d = np.asarray(normal, dtype=float)
     if d.shape != (3,) or not np.all(np.isfinite(d)) or np.linalg.norm(d) == 0:
         raise ValueError(f"normal must be a finite nonzero 3-vector, got {normal!r}")
@@ -108,6 +260,46 @@ def hodograph_projection(sol: Any, ax: Any = None, normal: Any = (0.0, 0.0, 1.0)
     fig. 2; :func:`spiral_axis`: the view along the spiral, fig. 3). Returns the line.
 
     The in-plane coordinates are those of :func:`plane_basis`; the start is marked by a dot.
+
+    Parameters
+    ----------
+    sol : Solution
+        A run with the fields ``G`` and ``n``.
+    ax : matplotlib.axes.Axes, optional
+    normal : array_like, shape (3,)
+        The normal of the plane of projection.
+    **kw
+        Line style.
+
+    Returns
+    -------
+    matplotlib.lines.Line2D
+
+    See Also
+    --------
+    hodograph_3d : the 3-D view.
+    spiral_axis : the normal of the view along the spiral.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, figs 2-3 and 5-6.
+
+    Examples
+    --------
+    A third of a turn on the cone of half-angle 0.3 about ``a = (0, 0.6, 0.8)``, with a decaying ``G`` (any object
+    with the fields ``G`` and ``n`` will do, such as a result of :func:`rigidbody.euler_poinsot.averaged`):
+
+    >>> import numpy as np
+    >>> from types import SimpleNamespace
+    >>> a, e1 = np.array([0.0, 0.6, 0.8]), np.array([1.0, 0.0, 0.0])
+    >>> e2 = np.cross(a, e1)
+    >>> t, delta = np.linspace(0.0, 2.0, 40), 0.3
+    >>> n = np.cos(delta) * a[:, None] + np.sin(delta) * (np.cos(t) * e1[:, None] + np.sin(t) * e2[:, None])
+    >>> sol = SimpleNamespace(G=np.exp(-0.1 * t), n=n)
+    >>> from rigidbody.plotting import hodograph, hodograph_projection
+    >>> line = hodograph_projection(sol)  # on the plane Ox1x2: the coordinates G n1, G n2
+    >>> np.allclose(line.get_xdata(), hodograph(sol)[0], rtol=0, atol=0), line.axes.get_xlabel()
+    (True, '$x_1$')
     """
     ax = get_ax(ax)
     d, e1, e2 = plane_basis(normal)
@@ -129,6 +321,45 @@ def hodograph_side_view(sol: Any, ax: Any = None, axis: Any = (0.0, 0.0, 1.0), *
 
     A hodograph on a cone about ``axis`` (constant angle :math:`\\delta` to it) is a straight line through
     the origin here, so a bent spiral axis shows as a curved line. Returns the line.
+
+    Parameters
+    ----------
+    sol : Solution
+        A run with the fields ``G`` and ``n``.
+    ax : matplotlib.axes.Axes, optional
+    axis : array_like, shape (3,)
+        The axis (e.g. :func:`spiral_axis`).
+    **kw
+        Line style.
+
+    Returns
+    -------
+    matplotlib.lines.Line2D
+
+    See Also
+    --------
+    hodograph_projection : the view along the axis.
+    spiral_axis : the axis of the best-fitting cone.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, figs 3 and 6.
+
+    Examples
+    --------
+    On the cone about its axis the slope distance/height is :math:`\\tan\\delta` everywhere:
+
+    >>> import numpy as np
+    >>> from types import SimpleNamespace
+    >>> a, e1 = np.array([0.0, 0.6, 0.8]), np.array([1.0, 0.0, 0.0])
+    >>> e2 = np.cross(a, e1)
+    >>> t, delta = np.linspace(0.0, 2.0, 40), 0.3
+    >>> n = np.cos(delta) * a[:, None] + np.sin(delta) * (np.cos(t) * e1[:, None] + np.sin(t) * e2[:, None])
+    >>> sol = SimpleNamespace(G=np.exp(-0.1 * t), n=n)
+    >>> from rigidbody.plotting import hodograph_side_view
+    >>> line = hodograph_side_view(sol, axis=a)
+    >>> np.allclose(line.get_xdata() / line.get_ydata(), np.tan(delta), rtol=1e-12, atol=0)
+    True
     """
     ax = get_ax(ax)
     d, _, _ = plane_basis(axis)
@@ -142,7 +373,46 @@ def hodograph_side_view(sol: Any, ax: Any = None, axis: Any = (0.0, 0.0, 1.0), *
 
 
 def slow_variables(sol: Any, axes: Any = None, label: str | None = None, **kw: Any) -> Any:
-    """Plot G, T, k², δ, λ against τ on five axes (created when ``axes`` is None); returns the axes."""
+    """Plot G, T, k², δ, λ against τ on five axes (created when ``axes`` is None); returns the axes.
+
+    Parameters
+    ----------
+    sol : Solution
+        A run of :func:`rigidbody.euler_poinsot.averaged` (or of its ``simulate``).
+    axes : sequence of five Axes, optional
+    label : str, optional
+        Legend label of the run.
+    **kw
+        Line style.
+
+    Returns
+    -------
+    sequence of Axes
+
+    See Also
+    --------
+    rigidbody.plotting.plot_solution : ``sol.plot()``, which calls it.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (8)-(9).
+
+    Examples
+    --------
+    Case 2 of the paper, orbit-averaged (:math:`\\varepsilon = 0`):
+
+    >>> import numpy as np
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body, I = ep.Body(3.2, 2.6, 1.67), np.diag([0.919, 5.228, 1.666])
+    >>> sol = ep.averaged(body, I, 0.0, G0=1.0, k2_0=0.99, tau_span=(0.0, 6.0), tau_eval=np.linspace(0.0, 6.0, 61))
+    >>> import matplotlib.pyplot as plt
+    >>> from rigidbody.plotting import slow_variables
+    >>> axes = slow_variables(sol, plt.subplots(5, 1, sharex=True)[1])  # on given Axes (else a new figure)
+    >>> print(*(ax.get_ylabel() for ax in axes))
+    $G$ $T$ $k^2$ $\\delta$ $\\lambda$
+    >>> np.array_equal(axes[0].lines[0].get_ydata(), sol.G)
+    True
+    """
     new = axes is None
     if new:
         import matplotlib.pyplot as plt
@@ -209,6 +479,35 @@ def separatrix_passage(body: Any, full: Any, averaged: Any = None, axes: Any = N
     -------
     numpy.ndarray
         The three axes.
+
+    See Also
+    --------
+    rigidbody.euler_poinsot.separatrix_crossing : the crossing of the averaged motion.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 1 (the Euler--Poinsot motion and its separatrix).
+
+    Examples
+    --------
+    A minor-axis spin losing energy at constant :math:`G` (the gallery's ``explorer1``, shortened); panel
+    (a) starts at :math:`2T_0A_2/G_0^2` and carries the levels :math:`A_2/A_3`, 1 and :math:`A_2/A_1`:
+
+    >>> import numpy as np
+    >>> from rigidbody import euler_poinsot as ep
+    >>> from rigidbody.plotting import separatrix_passage
+    >>> body = ep.Body(A1=3.2, A2=2.6, A3=1.67)
+    >>> def dissipation(omega, C, nu):
+    ...     g = omega * body.A
+    ...     return -3.0 * (omega - (omega * g).sum(-1, keepdims=True) * g / (g * g).sum(-1, keepdims=True))
+    >>> full = ep.simulate(body, dissipation, 0.05, kind="min", k2_0=0.05, delta0=1.0, lam0=0.3, tau_span=(0.0, 0.5),
+    ...                    tau_eval=np.linspace(0.0, 0.5, 201), k2_max=None)
+    >>> axes = separatrix_passage(body, full)
+    >>> levels = [line.get_ydata()[0] for line in axes[0].lines]
+    >>> print(*(f"{x:.9f}" for x in levels))
+    1.460636079 1.556886228 1.000000000 0.812500000
+    >>> print(f"{2 * full.T[0] * body.A2 / full.G[0]**2:.9f} {body.A2 / body.A3:.9f} {body.A2 / body.A1:.9f}")
+    1.460636079 1.556886228 0.812500000
     """
     if axes is None:
         import matplotlib.pyplot as plt

@@ -45,6 +45,23 @@ def stability_map_plot(
     Returns
     -------
     Axes
+
+    See Also
+    --------
+    normalized_map_plot : computes a map and draws it with this function.
+    rigidbody.gyrostat.stability_map : the verdict codes.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5).
+
+    Examples
+    --------
+    >>> from rigidbody.plotting import stability_map_plot
+    >>> code = [[0, 1], [1, 2], [2, -1]]
+    >>> ax = stability_map_plot([0.0, 1.0, 2.0], [0.0, 1.0], code, boundaries={"s2 = 0": ([0.0, 2.0], [0.5, 0.5])})
+    >>> [t.get_text() for t in ax.get_legend().get_texts()]
+    ['stable', 'unstable', 'undecided', 's2 = 0']
     """
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from matplotlib.patches import Patch
@@ -99,6 +116,24 @@ def normalized_map_plot(
     Returns
     -------
     (Axes, StabilityMap, boundaries dict)
+
+    See Also
+    --------
+    rigidbody.gyrostat.normalized_stability_map : the map and the curves drawn.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (2.5) and the restricted conditions after it.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> from rigidbody.plotting import normalized_map_plot
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> ax, mp, b = normalized_map_plot(sat, 1.0, np.linspace(-1.2, 1.2, 25), np.linspace(-6.0, 6.0, 25))
+    >>> mp.shape, ax.get_xlabel(), ax.get_ylabel()
+    ((25, 25), 'θ0 (rad)', 'k2 / (ω0 Ā)')
     """
     from rigidbody import gyrostat
 
@@ -122,12 +157,48 @@ def normalized_map_plot(
 def dumbbell_side_view(
     R0: float, kappa0: float, theta0: float, arm: float, ax: Any = None, *, elevation_deg: float = 12.0
 ) -> Any:
-    """The paper's figure, to scale: a dumbbell satellite whose circular orbit plane misses the centre.
+    r"""The paper's figure, to scale: a dumbbell satellite whose circular orbit plane misses the centre.
 
     The view is the plane through the orbit normal zeta2 (vertical) and the radius vector OG.  The
     orbit (radius ``R0 cos kappa0``, in the horizontal plane at height ``R0 sin kappa0``) is drawn as an
     ellipse seen from ``elevation_deg`` above its plane; the dumbbell axis x3 makes the angle
     ``theta0`` with OG (y3) in the plane y2 y3, its balls at distance ``arm`` from G.
+
+    Parameters
+    ----------
+    R0, kappa0, theta0 : float
+        The motion (orbit radius, latitude of G, tilt of x3 from OG), e.g. of
+        :func:`rigidbody.gyrostat.symmetric_stationary_motion`.
+    arm : float
+        Distance of each ball from G.
+    ax : matplotlib.axes.Axes, optional
+    elevation_deg : float
+        Elevation of the view above the orbit plane.
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    See Also
+    --------
+    rigidbody.paperfigs.gyrostat.fig1_dumbbell : the paper's figure drawn with it.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, section 5 and its figure.
+
+    Examples
+    --------
+    The displacement of the orbit plane is marked with its value :math:`R_0\sin\kappa_0`:
+
+    >>> import math
+    >>> from rigidbody import gyrostat
+    >>> from rigidbody.plotting import dumbbell_side_view
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, math.pi / 4, k2=0.0)
+    >>> ax = dumbbell_side_view(m.R0, m.kappa0, m.theta0, 0.3)
+    >>> [t.get_text() for t in ax.texts if t.get_text().startswith("R0")], f"{m.R0 * math.sin(m.kappa0):.3g}"
+    (['R0 sin κ0 = 0.00299'], '0.00299')
     """
     from matplotlib.patches import Circle
 
@@ -170,6 +241,39 @@ def plot_satellite_motion(sol: Any, ax: Any = None, **kw: Any) -> Any:
     from the attracting centre, the latitude ``kappa`` of G and the direction cosines ``gamma`` of OG in the
     body axes against ``t`` (three Axes, created when ``ax`` is None; a stationary motion keeps all
     constant). Returns the Axes.
+
+    Parameters
+    ----------
+    sol : Solution
+        A run of :func:`rigidbody.gyrostat.simulate`.
+    ax : sequence of three Axes, optional
+    **kw
+        Line style of the ``gamma`` curves.
+
+    Returns
+    -------
+    numpy.ndarray of Axes
+
+    See Also
+    --------
+    rigidbody.plotting.plot_solution : ``sol.plot()``, which calls it.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, sections 1-2.
+
+    Examples
+    --------
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import gyrostat
+    >>> from rigidbody.plotting import plot_satellite_motion
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> m = gyrostat.stationary_motion(sat, 1.0, math.pi / 4, k2=0.0)
+    >>> sol = gyrostat.simulate(m.satellite, m, (0.0, 2 * math.pi), t_eval=np.linspace(0.0, 2 * math.pi, 50))
+    >>> import matplotlib.pyplot as plt
+    >>> [ax.get_ylabel() for ax in plot_satellite_motion(sol, plt.subplots(3, 1, sharex=True)[1])]
+    ['R', 'κ', 'γ (OG in body axes)']
     """
     import matplotlib.pyplot as plt
 

@@ -12,7 +12,38 @@ __all__ = ["plot_averaged", "plot_integrals", "plot_roots", "plot_top_motion", "
 
 
 def slow_time_axis(sol: Any, x: str = "tau") -> tuple[np.ndarray, str]:
-    """The abscissa of a slow-variable plot: ``'tau'`` or ``'xi'`` (``xi = ln(1 + tau)``, as the paper)."""
+    r"""The abscissa of a slow-variable plot: ``'tau'`` or ``'xi'`` (``xi = ln(1 + tau)``, as the paper).
+
+    Parameters
+    ----------
+    sol : Solution
+        An averaged run (its ``tau``).
+    x : {'tau', 'xi'}
+
+    Returns
+    -------
+    (numpy.ndarray, str)
+        The values and the axis label.
+
+    See Also
+    --------
+    plot_roots, plot_integrals : the plots that use it.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    figs 1-2 (the abscissa xi).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody.plotting import slow_time_axis
+    >>> from rigidbody import lagrange
+    >>> sol = lagrange.paper_solution(3, n_out=50, tau_end=5.0)
+    >>> xi, label = slow_time_axis(sol, "xi")
+    >>> print(np.allclose(xi, np.log1p(sol.tau), rtol=0, atol=1e-15), label)
+    True $\xi = \ln(1 + \tau)$
+    """
     if x == "tau":
         return np.asarray(sol.tau), r"$\tau = \varepsilon t$"
     if x == "xi":
@@ -21,7 +52,46 @@ def slow_time_axis(sol: Any, x: str = "tau") -> tuple[np.ndarray, str]:
 
 
 def plot_roots(sol: Any, ax: Any = None, x: str = "tau") -> list:
-    """Draw u1, u2, u3 of an averaged solution against tau or xi; mark sign switches of delta1."""
+    r"""Draw u1, u2, u3 of an averaged solution against tau or xi; mark sign switches of delta1.
+
+    Parameters
+    ----------
+    sol : Solution
+        A run of :func:`rigidbody.lagrange.averaged`.
+    ax : matplotlib.axes.Axes, optional
+    x : {'tau', 'xi'}
+        The abscissa (:func:`slow_time_axis`).
+
+    Returns
+    -------
+    list
+        The artists drawn (the three roots first).
+
+    See Also
+    --------
+    plot_integrals : the slow variables Gz, H, r.
+    plot_averaged : both side by side.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    eqs. (1.5) and (3.4), figs 1-3.
+
+    Examples
+    --------
+    Case 3 of the paper starts at rest relative to its nutation (``p = q = 0``), so :math:`\cos\theta_0` is a
+    turning point, the root :math:`u_2`:
+
+    >>> import math
+    >>> from rigidbody.plotting import plot_roots
+    >>> from rigidbody import lagrange
+    >>> sol = lagrange.paper_solution(3, n_out=50, tau_end=5.0)
+    >>> lines = plot_roots(sol)
+    >>> [ln.get_label() for ln in lines[:3]]
+    ['$u_1$', '$u_2$', '$u_3$']
+    >>> print(f"{lines[1].get_ydata()[0]:.12f} {math.cos(math.radians(170)):.12f}")
+    -0.984807753012 -0.984807753012
+    """
     ax = get_ax(ax)
     xs, label = slow_time_axis(sol, x)
     arts = []
@@ -40,7 +110,41 @@ def plot_roots(sol: Any, ax: Any = None, x: str = "tau") -> list:
 
 
 def plot_integrals(sol: Any, ax: Any = None, x: str = "tau", mgl: float | None = None) -> list:
-    """Draw Gz, H, r of an averaged solution against tau or xi (and the limit H = -mgl if given)."""
+    """Draw Gz, H, r of an averaged solution against tau or xi (and the limit H = -mgl if given).
+
+    Parameters
+    ----------
+    sol : Solution
+        A run of :func:`rigidbody.lagrange.averaged`.
+    ax : matplotlib.axes.Axes, optional
+    x : {'tau', 'xi'}
+        The abscissa (:func:`slow_time_axis`).
+    mgl : float, optional
+        Draw the level ``H = -mgl`` (the top hanging at rest).
+
+    Returns
+    -------
+    list
+        The artists drawn.
+
+    See Also
+    --------
+    plot_roots : the roots u1, u2, u3.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    eqs. (1.2) and (3.4), figs 1-3.
+
+    Examples
+    --------
+    >>> from rigidbody.plotting import plot_integrals
+    >>> from rigidbody import lagrange
+    >>> sol = lagrange.paper_solution(3, n_out=50, tau_end=5.0)
+    >>> arts = plot_integrals(sol, mgl=lagrange.PAPER_TOP.mgl)
+    >>> [a.get_label() for a in arts[:3]], list(arts[3].get_ydata())
+    (['$G_z$', '$H$', '$r$'], [-0.5, -0.5])
+    """
     ax = get_ax(ax)
     xs, label = slow_time_axis(sol, x)
     arts = []
@@ -71,7 +175,38 @@ def _panels(ax: Any, n: int, figsize: tuple[float, float]) -> np.ndarray:
 
 def plot_averaged(sol: Any, ax: Any = None, x: str = "tau") -> np.ndarray:
     """The standard figure of :func:`rigidbody.lagrange.averaged`: :func:`plot_roots` and
-    :func:`plot_integrals` side by side (two Axes, created when ``ax`` is None); returns the Axes."""
+    :func:`plot_integrals` side by side (two Axes, created when ``ax`` is None); returns the Axes.
+
+    Parameters
+    ----------
+    sol : Solution
+        A run of :func:`rigidbody.lagrange.averaged`.
+    ax : sequence of two Axes, optional
+    x : {'tau', 'xi'}
+        The abscissa (:func:`slow_time_axis`).
+
+    Returns
+    -------
+    numpy.ndarray of Axes
+
+    See Also
+    --------
+    rigidbody.plotting.plot_solution : ``sol.plot()``, which calls it.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    figs 1-3.
+
+    Examples
+    --------
+    >>> from rigidbody.plotting import plot_averaged
+    >>> from rigidbody import lagrange
+    >>> sol = lagrange.paper_solution(3, n_out=50, tau_end=5.0)
+    >>> import matplotlib.pyplot as plt
+    >>> [ax.get_ylabel() for ax in plot_averaged(sol, plt.subplots(1, 2)[1])]
+    ['roots of Q(u)', 'slow variables']
+    """
     axes = _panels(ax, 2, (11.0, 4.0))
     plot_roots(sol, axes[0], x=x)
     plot_integrals(sol, axes[1], x=x)
@@ -87,6 +222,38 @@ def plot_top_motion(sol: Any, ax: Any = None, **kw: Any) -> np.ndarray:
 
     ``u`` moves between the roots ``u1`` and ``u2`` of the unperturbed motion; ``Gz, H, r`` are its
     integrals, constant without a torque and slowly changing under one.
+
+    Parameters
+    ----------
+    sol : Solution
+        A full motion.
+    ax : sequence of two Axes, optional
+    **kw
+        Line style of ``u``.
+
+    Returns
+    -------
+    numpy.ndarray of Axes
+
+    See Also
+    --------
+    plot_averaged : the averaged counterpart.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (1.1)-(1.3).
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt
+    >>> import numpy as np
+    >>> from rigidbody import lagrange
+    >>> from rigidbody.plotting import plot_top_motion
+    >>> m = lagrange.lagrange_motion(lagrange.PAPER_TOP, lagrange.paper_initial_state(3), np.linspace(0, 10, 101))
+    >>> axes = plot_top_motion(m, plt.subplots(1, 2)[1])  # on given Axes (without them: a new figure)
+    >>> u = axes[0].lines[0].get_ydata()
+    >>> bool(m.u1 - 1e-9 <= u.min() and u.max() <= m.u2 + 1e-9)
+    True
     """
     axes = _panels(ax, 2, (11.0, 4.0))
     t = np.asarray(sol.time)

@@ -50,6 +50,31 @@ def averaging_error_plot(
     -------
     list
         The lines drawn (the reference line last).
+
+    See Also
+    --------
+    scaled_error_map : the same errors divided by ``eps**order``, over the plane.
+    rigidbody.studies.fitted_order : the order fitted to the errors.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (9) (order eps^2);
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (3.4)
+    (order eps).
+
+    Examples
+    --------
+    A map whose errors are exactly ``3 eps²`` and ``5 eps²``: the reference line of slope 2 passes through
+    the median ratio, 4:
+
+    >>> import numpy as np
+    >>> from rigidbody.studies import StudyMap
+    >>> eps = np.array([0.001, 0.002, 0.004])
+    >>> m = StudyMap({"k2_0": np.array([0.3, 0.6]), "eps": eps}, {"error": np.outer([3.0, 5.0], eps**2)})
+    >>> from rigidbody.plotting import averaging_error_plot
+    >>> lines = averaging_error_plot(m, 2.0)
+    >>> [ln.get_label() for ln in lines[:2]], np.allclose(lines[-1].get_ydata(), 4 * lines[-1].get_xdata()**2)
+    (['k2_0 = 0.3', 'k2_0 = 0.6'], True)
     """
     import matplotlib.pyplot as plt
 
@@ -109,6 +134,30 @@ def scaled_error_map(ds: Any, order: float, *, var: str = "error", over: str = "
     Returns
     -------
     matplotlib.collections.QuadMesh
+
+    See Also
+    --------
+    averaging_error_plot : the errors against eps, one line per value of the other axis.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (9) (order eps^2);
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (3.4)
+    (order eps).
+
+    Examples
+    --------
+    Errors exactly ``3 eps²`` and ``5 eps²``: the map is flat along eps, at ``log10 3`` and ``log10 5``:
+
+    >>> import numpy as np
+    >>> from rigidbody.studies import StudyMap
+    >>> eps = np.array([0.001, 0.002, 0.004])
+    >>> m = StudyMap({"k2_0": np.array([0.3, 0.6]), "eps": eps}, {"error": np.outer([3.0, 5.0], eps**2)})
+    >>> from rigidbody.plotting import scaled_error_map
+    >>> z = scaled_error_map(m, 2.0).get_array()
+    >>> print(np.round(z, 9), f"{np.log10(3):.9f} {np.log10(5):.9f}")
+    [[0.477121255 0.477121255 0.477121255]
+     [0.698970004 0.698970004 0.698970004]] 0.477121255 0.698970004
     """
     from matplotlib.ticker import NullFormatter
 
@@ -158,6 +207,27 @@ def spin_end_map(ds: Any, *, k2_0: float = 0.5, ax: Any = None, cases: dict[str,
     -------
     list
         The mesh and the lines drawn.
+
+    See Also
+    --------
+    rigidbody.paperfigs.studies.spin_end : the figure drawn with it.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (7)-(8).
+
+    Examples
+    --------
+    On any map over ``r1`` and ``r3`` the line :math:`\chi = -3` is :math:`r_3 = 2r_1 - 1`:
+
+    >>> import numpy as np
+    >>> from rigidbody.studies import StudyMap
+    >>> from rigidbody.plotting import spin_end_map
+    >>> r1, r3 = np.linspace(0.2, 1.8, 5), np.linspace(0.2, 1.8, 4)
+    >>> out = spin_end_map(StudyMap({"r1": r1, "r3": r3}, {"regime": np.zeros((5, 4))}))
+    >>> chi3 = out[1]
+    >>> print(chi3.get_label(), np.allclose(chi3.get_ydata(), 2 * chi3.get_xdata() - 1, rtol=0, atol=1e-15))
+    $\chi=-3$: $r_3 = 2r_1 - 1$ True
     """
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from matplotlib.patches import Patch

@@ -21,7 +21,33 @@ __all__ = [
 
 
 def look_from(ax: Any, direction: Any) -> Any:
-    """Turn a 3-D axes so that the viewer looks at the sphere from ``direction`` (a 3-vector)."""
+    """Turn a 3-D axes so that the viewer looks at the sphere from ``direction`` (a 3-vector).
+
+    Parameters
+    ----------
+    ax : Axes3D
+    direction : array_like, shape (3,)
+        Where the viewer stands (any length).
+
+    Returns
+    -------
+    Axes3D
+
+    See Also
+    --------
+    sphere_path : draws a path seen from a direction.
+
+    Examples
+    --------
+    From the ``y`` axis: azimuth 90 degrees, elevation 0; from the ``z`` axis: elevation 90:
+
+    >>> from rigidbody.plotting import get_ax, look_from
+    >>> ax = look_from(get_ax(projection="3d"), [0.0, 2.0, 0.0])
+    >>> print(f"{ax.azim:.1f} {ax.elev:.1f}")
+    90.0 0.0
+    >>> print(f"{look_from(ax, [0.0, 0.0, 1.0]).elev:.1f}")
+    90.0
+    """
     d = np.asarray(direction, dtype=float)
     d = d / np.linalg.norm(d)
     ax.view_init(elev=math.degrees(math.asin(max(-1.0, min(1.0, d[2])))), azim=math.degrees(math.atan2(d[1], d[0])))
@@ -64,6 +90,27 @@ def sphere_path(
     Returns
     -------
     Axes3D
+
+    See Also
+    --------
+    plot_axis_path : the standard figure of :func:`rigidbody.viscous.simulate`.
+    rigidbody.viscous.axis_path : a path to draw.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, figs 2-3.
+
+    Examples
+    --------
+    By default the view is from the mean of the path; a quarter of the equator is seen from azimuth 45
+    degrees:
+
+    >>> import numpy as np
+    >>> from rigidbody.plotting import sphere_path
+    >>> t = np.linspace(0.0, np.pi / 2, 50)
+    >>> ax = sphere_path(np.array([np.cos(t), np.sin(t), 0 * t]))
+    >>> print(f"{ax.azim:.1f} {ax.elev:.1f}")
+    45.0 0.0
     """
     n = np.asarray(n, dtype=float)
     if n.ndim != 2 or n.shape[0] != 3:
@@ -89,7 +136,41 @@ def sphere_path(
 
 def turn_solid_angle(turn: Any, ax: Any = None, *, color: str = "C0", fill: str = "C1", view: Any = None) -> Any:
     """Draw one turn of the spiral (:func:`rigidbody.viscous.turn`), the closing meridian arc and the
-    enclosed solid angle χ (filled), seen from the turn's centre (figs 4-5)."""
+    enclosed solid angle χ (filled), seen from the turn's centre (figs 4-5).
+
+    Parameters
+    ----------
+    turn : rigidbody.viscous.Turn
+    ax : Axes3D, optional
+    color, fill : str
+        Colours of the path and of the solid angle.
+    view : array_like (3,), optional
+        Direction to look from (default: the turn's centre).
+
+    Returns
+    -------
+    Axes3D
+
+    See Also
+    --------
+    rigidbody.viscous.turn : the turn drawn.
+    sphere_path : a whole path.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, section 5, figs 4-5.
+
+    Examples
+    --------
+    The title gives the solid angle and its cap approximation (equal on Routh's circle):
+
+    >>> from rigidbody import viscous
+    >>> body, medium = viscous.Body(theta12=2.0, theta3=1.0), viscous.Medium(B12=0.4, B3=0.1)
+    >>> from rigidbody.plotting import turn_solid_angle
+    >>> tr = viscous.turn(body, viscous.Medium(B12=0.2, B3=0.1), [1, 0, 0], [0, 2, 0], 6.0)
+    >>> print(turn_solid_angle(tr).get_title())
+    χ = 1.055 (cap approx. 1.055),  Δζ = 10.46
+    """
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
     n = np.asarray(turn.n)
@@ -123,7 +204,43 @@ def turn_solid_angle(turn: Any, ax: Any = None, *, color: str = "C0", fill: str 
 
 
 def quasi_coordinate_histories(t: Any, data: dict[str, Any], axes: Any = None, title: str | None = None) -> Any:
-    """Time histories (one panel each) of e.g. ``{'k': k, 'R': R, 's': s, 'ξ': xi, 'ζ': zeta}``."""
+    """Time histories (one panel each) of e.g. ``{'k': k, 'R': R, 's': s, 'ξ': xi, 'ζ': zeta}``.
+
+    A curvature ``k`` that grows by more than a factor 100 gets a logarithmic axis.
+
+    Parameters
+    ----------
+    t : array_like
+    data : dict of str to array_like
+    axes : sequence of Axes, optional
+    title : str, optional
+
+    Returns
+    -------
+    numpy.ndarray of Axes
+
+    See Also
+    --------
+    rigidbody.viscous.quasi_coordinates, rigidbody.viscous.curvature : the data.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eqs. (4.5), (5.1)-(5.2).
+
+    Examples
+    --------
+    The curvature of the contracting spiral grows like ``exp(0.1 t)``, a factor ``e^8`` by ``t = 80``:
+
+    >>> import numpy as np
+    >>> from rigidbody import viscous
+    >>> body, medium = viscous.Body(theta12=2.0, theta3=1.0), viscous.Medium(B12=0.4, B3=0.1)
+    >>> from rigidbody.plotting import quasi_coordinate_histories
+    >>> t = np.linspace(0.0, 80.0, 161)
+    >>> s, xi, zeta = viscous.quasi_coordinates(body, medium, 6.0, 2.0, t)
+    >>> axes = quasi_coordinate_histories(t, {"k": viscous.curvature(body, medium, 6.0, 2.0, t), "s": s})
+    >>> axes[0].get_yscale(), axes[1].get_yscale()
+    ('log', 'linear')
+    """
     axes = time_series(t, data, axes=axes, title=title)
     if "k" in data:
         k = np.asarray(data["k"])
@@ -156,6 +273,23 @@ def ball_and_rod_sketch(
     Returns
     -------
     Axes3D
+
+    See Also
+    --------
+    rigidbody.viscous.ball_and_rod : the body and medium of this structure.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, section 2, fig. 1.
+
+    Examples
+    --------
+    The balls on the circle are numbered 1 to N, the rod's ends are A and B:
+
+    >>> from rigidbody.plotting import ball_and_rod_sketch
+    >>> ax = ball_and_rod_sketch(4, 1.0, 1.5, 0.3)
+    >>> sorted(t.get_text() for t in ax.texts)
+    ['1', '2', '3', '4', 'A', 'B', 'C', 'n']
     """
     if N < 3:
         raise ValueError(f"N must be >= 3, got {N!r}")
@@ -201,6 +335,38 @@ def ball_and_rod_sketch(
 
 def plot_axis_path(sol: Any, ax: Any = None, **kw: Any) -> Any:
     """The standard figure of :func:`rigidbody.viscous.simulate`: the path of the symmetry axis ``sol.n`` on
-    the unit sphere (:func:`sphere_path`; the sphere is drawn once, on an empty Axes). Returns the Axes3D."""
+    the unit sphere (:func:`sphere_path`; the sphere is drawn once, on an empty Axes). Returns the Axes3D.
+
+    Parameters
+    ----------
+    sol : Solution
+        A run of :func:`rigidbody.viscous.simulate`.
+    ax : Axes3D, optional
+    **kw
+        Passed to :func:`sphere_path`.
+
+    Returns
+    -------
+    Axes3D
+
+    See Also
+    --------
+    rigidbody.plotting.plot_solution : ``sol.plot()``, which calls it.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, figs 2-3.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody import viscous
+    >>> body, medium = viscous.Body(theta12=2.0, theta3=1.0), viscous.Medium(B12=0.4, B3=0.1)
+    >>> from rigidbody.plotting import plot_axis_path
+    >>> sim = viscous.simulate(body, medium, [1, 0, 0], [0, 2, 0], 6.0, (0.0, 20.0), t_eval=np.linspace(0, 20, 201))
+    >>> ax = plot_axis_path(sim)
+    >>> ax is plot_axis_path(sim, ax, color="C0")
+    True
+    """
     sphere = ax is None or not ax.collections
     return sphere_path(sol.n, ax, sphere=sphere, **kw)

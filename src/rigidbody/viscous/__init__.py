@@ -14,7 +14,7 @@ Paths
 Simulation
     :func:`simulate` — the full equations with a quaternion attitude; :func:`axial_rotation`.
 
-See ``docs/viscous.md`` for the equations, conventions (sign of k) and errata.
+See :doc:`/viscous` for the equations, conventions (sign of k) and :doc:`/errata` for the misprints.
 """
 
 from ._closed import F4, Omega, curvature, f3, limits, omega2, quasi_coordinates, spiral_radius, v

@@ -27,6 +27,25 @@ class Body:
     theta3 : float
         Polar moment of inertia (about the symmetry axis ``n``), ``0 < θ3 <= 2 θ12``
         (triangle inequality of the principal moments; equality is a flat body).
+
+    See Also
+    --------
+    Medium : the viscous torque.
+    ball_and_rod : the body and medium of the paper's model (fig. 1).
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eq. (1.2).
+
+    Examples
+    --------
+    >>> from rigidbody import viscous
+    >>> viscous.Body(theta12=2.0, theta3=1.0)
+    Body(theta12=2.0, theta3=1.0)
+    >>> viscous.Body(theta12=1.0, theta3=3.0)
+    Traceback (most recent call last):
+        ...
+    ValueError: theta3 must satisfy theta3 <= 2*theta12 (triangle inequality), got theta3=3.0, theta12=1.0: ...
     """
 
     theta12: float
@@ -54,6 +73,25 @@ class Medium:
         Equatorial viscosity coefficient, > 0.
     B3 : float
         Axial viscosity coefficient, > 0.
+
+    See Also
+    --------
+    Body : the moments of inertia.
+    regime : the kind of path the pair gives.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eq. (1.1).
+
+    Examples
+    --------
+    >>> from rigidbody import viscous
+    >>> viscous.Medium(B12=0.4, B3=0.1)
+    Medium(B12=0.4, B3=0.1)
+    >>> viscous.Medium(B12=0.4, B3=-0.1)
+    Traceback (most recent call last):
+        ...
+    ValueError: B3 must be finite and > 0, got -0.1
     """
 
     B12: float
@@ -73,7 +111,32 @@ def check_body_medium(body: Body, medium: Medium) -> None:
 
 
 def decay_rates(body: Body, medium: Medium) -> tuple[float, float]:
-    """Return ``(B12/θ12, B3/θ3)``: the decay rates of ``v`` and ``Ω``, eq. (3.3)."""
+    """Return ``(B12/θ12, B3/θ3)``: the decay rates of ``v`` and ``Ω``, eq. (3.3).
+
+    Parameters
+    ----------
+    body, medium : Body, Medium
+
+    Returns
+    -------
+    (float, float)
+
+    See Also
+    --------
+    v, Omega : the decays themselves.
+    regime : the comparison of the two rates.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eqs. (3.3)-(3.4).
+
+    Examples
+    --------
+    >>> from rigidbody import viscous
+    >>> body, medium = viscous.Body(theta12=2.0, theta3=1.0), viscous.Medium(B12=0.4, B3=0.1)
+    >>> viscous.decay_rates(body, medium)
+    (0.2, 0.1)
+    """
     check_body_medium(body, medium)
     return medium.B12 / body.theta12, medium.B3 / body.theta3
 
@@ -93,6 +156,22 @@ def regime(body: Body, medium: Medium, rtol: float = 1e-12) -> Regime:
         ``B12/θ12 > B3/θ3``: k → ∞, a spiral contracting to a point (fig. 2);
         ``B12/θ12 < B3/θ3``: k → 0, a spiral unwinding to a great circle (fig. 3);
         equal within ``rtol``: a circle, ``K = K0 exp(-αt)``.
+
+    See Also
+    --------
+    decay_rates : the two rates compared.
+    curvature : the curvature (4.5), whose exponent is their difference.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eqs. (1.3), (4.5) and section 4.
+
+    Examples
+    --------
+    >>> from rigidbody import viscous
+    >>> body = viscous.Body(theta12=2.0, theta3=1.0)
+    >>> [viscous.regime(body, viscous.Medium(B12=b12, B3=0.1)) for b12 in (0.4, 0.1, 0.2)]
+    ['contracting', 'unwinding', 'circle']
     """
     if not (isinstance(rtol, numbers.Real) and 0.0 <= rtol < 1.0):
         raise ValueError(f"rtol must be in [0, 1), got {rtol!r}")
@@ -148,7 +227,29 @@ def ball_and_rod(
     With point balls and massless rods ``B = (β/m) θ`` exactly: Routh's circle. With ball radius
     only, the spiral contracts iff ``b² > N a²/4``; rod mass pushes towards unwinding. This verdict
     depends on the paper's drag model: adding the Stokes rotational drag of each ball,
-    ``(4/3) β r²`` to ``B12`` and ``B3``, reverses it (see docs/viscous.md).
+    ``(4/3) β r²`` to ``B12`` and ``B3``, reverses it (see :doc:`/viscous`).
+
+    See Also
+    --------
+    regime : the kind of path of the body in the medium.
+    rigidbody.plotting.ball_and_rod_sketch : draws the structure.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, section 2, eq. (2.2).
+
+    Examples
+    --------
+    ``N = 4`` point balls on a circle of radius 1, rod half-length 0.5: ``B12 = 0.1 (4/2 + 2 0.25) = 0.25``,
+    ``B3 = 0.1 4 = 0.4``, and ``θ = (m/β) B``: Routh's circle. Solid balls of radius 0.3 tip the balance, by
+    ``b² > N a²/4``:
+
+    >>> from rigidbody import viscous
+    >>> body, medium = viscous.ball_and_rod(4, 1.0, 0.5, beta=0.1, mass=1.0)
+    >>> body, medium, viscous.regime(body, medium)
+    (Body(theta12=2.5, theta3=4.0), Medium(B12=0.25, B3=0.4), 'circle')
+    >>> [viscous.regime(*viscous.ball_and_rod(4, 1.0, b, ball_radius=0.3)) for b in (1.5, 0.5)]
+    ['contracting', 'unwinding']
     """
     if isinstance(N, bool) or not isinstance(N, numbers.Integral):
         raise TypeError(f"N must be an int >= 3, got {type(N).__name__}")

@@ -113,6 +113,31 @@ def axis_path(
     -------
     n : ndarray, shape (3, len(t_eval))
         Or ``(n, tau, g)`` if ``frame``. ``v0 = 0``: the axis is fixed, ``n = n0`` (``τ, g`` are NaN).
+
+    See Also
+    --------
+    simulate : the same path from the full equations of motion.
+    turn : one turn of the spiral.
+    rigidbody.plotting.sphere_path : draws the path on the unit sphere.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eqs. (3.4), (4.3)-(4.5).
+
+    Examples
+    --------
+    Without spin (``Ω0 = 0``, ``k = 0``) the axis runs along a great circle and stops after the arc
+    ``s∞ = θ12 v0/B12``, here ``π/2``; half of it is run by ``t = ln 2 θ12/B12``:
+
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import viscous
+    >>> body, medium = viscous.Body(theta12=2.0, theta3=1.0), viscous.Medium(B12=0.4, B3=0.1)
+    >>> n = viscous.axis_path(body, medium, [1, 0, 0], [0, 0.1 * math.pi, 0], 0.0, [5 * math.log(2), np.inf])
+    >>> print(np.round(n, 8) + 0.0)  # + 0.0: no -0.0
+    [[0.70710678 0.        ]
+     [0.70710678 1.        ]
+     [0.         0.        ]]
     """
     check_body_medium(body, medium)
     n, nd, v0, Om0 = initial_state(n0, ndot0, Omega0)
@@ -168,6 +193,29 @@ class Turn:
         ``χ + Δζ``: the body's axial turn over the turn (not reduced modulo 2π).
     n : ndarray (3, m)
         Samples of the axis path over the turn (for plots).
+
+    See Also
+    --------
+    turn : the function that returns it.
+    rigidbody.plotting.turn_solid_angle : draws it.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, section 5, eq. (5.2).
+
+    Examples
+    --------
+    The solid-angle theorem ``Δφ = χ + Δζ``: the body's turn about its axis in absolute space, which
+    :func:`axial_rotation` measures on the attitudes of the full simulation (modulo 2π):
+
+    >>> import math
+    >>> from rigidbody import viscous
+    >>> body, medium = viscous.Body(theta12=2.0, theta3=1.0), viscous.Medium(B12=0.4, B3=0.1)
+    >>> tr = viscous.turn(body, medium, [1, 0, 0], [0, 2, 0], 6.0)
+    >>> sim = viscous.simulate(body, medium, [1, 0, 0], [0, 2, 0], 6.0, (0.0, tr.t2), t_eval=[0.0, tr.t2])
+    >>> dphi = viscous.axial_rotation(sim.attitude[:, 0], sim.attitude[:, -1])
+    >>> print(f"{dphi:.9f} {math.remainder(tr.chi + tr.dzeta, 2 * math.pi):.9f}")
+    -0.906193936 -0.906193936
     """
 
     t1: float
@@ -232,6 +280,32 @@ def turn(
         If the path has no complete turn after ``t1`` (``Ω0 = 0``, ``v0 = 0``, or the remaining total
         turning of the spiral is too small), or the turn is too small to resolve (``R(t1) < 1e-7``: its
         relative accuracy would be ~``rtol/R``; use the cap formula).
+
+    See Also
+    --------
+    Turn : the result.
+    axis_path : the path itself.
+    spiral_radius : the radius (5.2) in the cap formula.
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, section 5, eqs. (5.1)-(5.2).
+
+    Examples
+    --------
+    In Routh's case ``B12/θ12 = B3/θ3`` the path is a small circle of chordal radius ``R = 1/sqrt(1 + k²)``,
+    ``k = 1.5``: a turn is the arc ``s = 2πR``, run in ``t2 = -(θ12/B12) ln(1 - 2πR B12/(θ12 v0))``, and its solid
+    angle is the cap ``2π(1 - sqrt(1 - R²))`` exactly:
+
+    >>> import math
+    >>> from rigidbody import viscous
+    >>> body, medium = viscous.Body(theta12=2.0, theta3=1.0), viscous.Medium(B12=0.2, B3=0.1)
+    >>> tr = viscous.turn(body, medium, [1, 0, 0], [0, 2, 0], 6.0)
+    >>> R = 1 / math.sqrt(1 + 1.5**2)
+    >>> print(f"{tr.t2:.9f} {-10 * math.log(1 - 2 * math.pi * R * 0.1 / 2):.9f}")
+    1.914804188 1.914804188
+    >>> print(f"{tr.chi:.9f} {tr.chi_approx:.9f} {2 * math.pi * (1 - math.sqrt(1 - R**2)):.9f}")
+    1.055259123 1.055259123 1.055259123
     """
     check_body_medium(body, medium)
     n, nd, v0, Om0 = initial_state(n0, ndot0, Omega0)

@@ -121,6 +121,31 @@ def simulate(
         ``sim.v = |ṅ|``; ``sim.k = (θ3/θ12) Ω/v`` (``±inf`` where ``v = 0``; NaN only for a body
         at rest, ``v0 = Ω0 = 0``, whose path has no curvature); ``sim.zeta``, the
         body's turning angle about ``n`` (∫ ω·n dt, the quasi-coordinate ζ); ``sim.quat_norm_error``.
+
+    See Also
+    --------
+    axis_path : the axis path from the closed forms alone.
+    v, curvature, quasi_coordinates : the closed forms the result obeys.
+    rigidbody.plotting.plot_axis_path : the standard figure (``sim.plot()``).
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, eqs. (1.1)-(1.2).
+
+    Examples
+    --------
+    The full equations reproduce the closed forms (3.4), (4.5) and (5.1):
+
+    >>> import numpy as np
+    >>> from rigidbody import viscous
+    >>> body, medium = viscous.Body(theta12=2.0, theta3=1.0), viscous.Medium(B12=0.4, B3=0.1)
+    >>> sim = viscous.simulate(body, medium, [1, 0, 0], [0, 2, 0], 6.0, (0.0, 10.0), t_eval=np.linspace(0, 10, 11))
+    >>> np.allclose(sim.v, viscous.v(body, medium, 2.0, sim.t), rtol=1e-10, atol=0)
+    True
+    >>> np.allclose(sim.k, viscous.curvature(body, medium, 6.0, 2.0, sim.t), rtol=1e-10, atol=0)
+    True
+    >>> np.allclose(sim.zeta, viscous.quasi_coordinates(body, medium, 6.0, 2.0, sim.t)[2], rtol=0, atol=1e-10)
+    True
     """
     check_body_medium(body, medium)
     n, nd, v0, Om0 = initial_state(n0, ndot0, Omega0)
@@ -238,6 +263,24 @@ def axial_rotation(q1: Any, q2: Any) -> float:
     -------
     float
         ``Δφ`` modulo ``2π``. Equal to ``χ + Δζ`` (mod 2π) by the solid-angle theorem.
+
+    See Also
+    --------
+    turn : ``χ`` and ``Δζ`` of one turn of the spiral (see :class:`Turn` for the theorem checked).
+
+    References
+    ----------
+    :ref:`A. M. Krivtsov, PMM 64 (2000) <ref-krivtsov-2000>`, section 5.
+
+    Examples
+    --------
+    Two attitudes with the same axis, turned by 0.5 rad about it:
+
+    >>> import math
+    >>> from rigidbody import viscous
+    >>> q2 = [math.cos(0.25), 0.0, 0.0, math.sin(0.25)]
+    >>> print(f"{viscous.axial_rotation([1.0, 0.0, 0.0, 0.0], q2):.12f}")
+    0.500000000000
     """
     qs = []
     for name, q in (("q1", q1), ("q2", q2)):
