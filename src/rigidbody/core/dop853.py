@@ -63,7 +63,7 @@ def _frozen(a: Any) -> np.ndarray:
 
 #: number of stages of a step (the 13th evaluation, at the step's end, is the first stage of the next)
 N_STAGES: int = DOP853.n_stages
-#: Runge-Kutta matrix, shape (12, 12) (row ``s``: the weights of stages ``0 .. s-1``)
+#: Runge-Kutta matrix, shape (12, 12) (row ``s``: the weights of stages ``0`` to ``s - 1``)
 A: np.ndarray = _frozen(DOP853.A)
 #: weights of the 8th-order solution, shape (12,)
 B: np.ndarray = _frozen(DOP853.B)
