@@ -11,7 +11,7 @@ import pytest
 
 from rigidbody import gyrostat
 from rigidbody.gyrostat import _maps
-from rigidbody.gyrostat._stationary import sin_cos
+from rigidbody.gyrostat._family import sin_cos
 
 SAT = gyrostat.Satellite(M=1.0, A1=0.03, A2=0.02, A3=0.012)
 
@@ -92,8 +92,8 @@ def test_closed_form_a_ij_equal_the_elimination_of_the_printed_entries():
     """second_variation_side writes a22, a23, a33 of (2.5) in closed form (W_g2g2 and W_b3g2 combined
     through the third relation (2.4)); a_matrix builds them from the entries one by one, as printed.  Equal
     to rounding, over random bodies, tilts in all four quadrants and both signs of omega0."""
+    from rigidbody.gyrostat._family import family_side
     from rigidbody.gyrostat._secondvar import a_matrix, hessian_entries, second_variation_side
-    from rigidbody.gyrostat._stationary import family_side
 
     rng = np.random.default_rng(8)
     n = 400

@@ -55,17 +55,13 @@ from ._stationary import StationaryMotion, stationary_motion
 from ._symmetric import (
     SYM_COORDS,
     SymmetricMotion,
-    SymmetricStability,
-    SymmetricStabilityMap,
-    W_psipsi_34,
-    W_thetatheta_stable,
     gradient_W_sym,
     hessian_W_sym,
-    stability_symmetric,
     symmetric_potential,
-    symmetric_stability_map,
     symmetric_stationary_motion,
 )
+from ._symmetric_map import SymmetricStabilityMap, symmetric_stability_map
+from ._symmetric_stability import SymmetricStability, W_psipsi_34, W_thetatheta_stable, stability_symmetric
 
 
 def stability(

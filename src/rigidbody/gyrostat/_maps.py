@@ -10,17 +10,7 @@ from typing import Any
 import numpy as np
 
 from ..core.validate import positive
-from ._model import Satellite
-from ._secondvar import (
-    VERDICTS,
-    a_matrix,
-    entry_constants,
-    hessian_entries,
-    restricted_conditions,
-    second_variation_side,
-    verdicts,
-)
-from ._stationary import (
+from ._family import (
     SINGULAR_TOL,
     Scratch,
     broadcast_shape,
@@ -32,6 +22,16 @@ from ._stationary import (
     family_side,
     float_arrays,
     lean,
+)
+from ._model import Satellite
+from ._secondvar import (
+    VERDICTS,
+    a_matrix,
+    entry_constants,
+    hessian_entries,
+    restricted_conditions,
+    second_variation_side,
+    verdicts,
 )
 
 __all__ = ["StabilityMap", "exact_boundaries", "normalized_stability_map", "stability_map"]
@@ -310,7 +310,7 @@ _SIDE_NAMES = ("M", "A1", "A2", "A3", "mu", "R0", "theta0")
 
 
 def _physical(M: Any, A1: Any, A2: Any, A3: Any, mu: Any, R0: Any) -> Any:
-    """A body (positive masses, triangle inequalities) that fits inside its orbit (_stationary.check_fits)."""
+    """A body (positive masses, triangle inequalities) that fits inside its orbit (_family.check_fits)."""
     with np.errstate(all="ignore"):
         return (
             (M > 0) & (A1 > 0) & (A2 > 0) & (A3 > 0) & (mu > 0) & (R0 > 0)

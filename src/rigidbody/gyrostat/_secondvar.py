@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from ..core.quadform import inertia
-from ._stationary import (
+from ._family import (
     FRESH,
     ONE,
     SINGULAR_TOL,
@@ -120,7 +120,7 @@ def _entries(b: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3: Any, mu: An
     shared subexpressions computed once.  Also returns ``Q`` (the bracket of W_b3b3, W_Rb3, W_kb3), ``L``
     (lambda0) and ``om2iS = omega0^2 / S0``.  ``gamma2=False`` leaves out W_g2g2, W_b3g2, W_b3b3 and W_Rg2
     (:func:`second_variation_side` uses the a_ij they combine into, in closed form).  ``work``: see
-    :class:`~rigidbody.gyrostat._stationary.Scratch`.
+    :class:`~rigidbody.gyrostat._family.Scratch`.
     """
     c = constants(entry_constants, M, A1, A2, A3, mu, R) if const is None else const
     w = FRESH if work is None else work
@@ -286,7 +286,7 @@ def second_variation_side(f: dict[str, np.ndarray], M: Any, A1: Any, A2: Any, A3
     Also returns the k2-free parts of the certainty test of :func:`verdicts` and ``valid``: the motion
     exists and the chart (beta1, beta3, gamma1, gamma2) is regular (abs(cos theta0) and abs(cos(theta0 +
     kappa0)) > 1e-6).  ``const``: :func:`entry_constants` of the body; ``work``: see
-    :class:`~rigidbody.gyrostat._stationary.Scratch`.
+    :class:`~rigidbody.gyrostat._family.Scratch`.
     """
     c = constants(entry_constants, M, A1, A2, A3, mu, R0) if const is None else const
     w = FRESH if work is None else work
@@ -393,7 +393,7 @@ def verdicts(d: dict[str, np.ndarray], k2: np.ndarray, valid: np.ndarray, rtol: 
 
     ``out``: arrays of the result's shape that receive ``s2``, ``s3``, ``n_neg`` (int8 or a wider integer
     type) and ``code`` (int8), e.g. views into a map's outputs; ``work``: see
-    :class:`~rigidbody.gyrostat._stationary.Scratch`.
+    :class:`~rigidbody.gyrostat._family.Scratch`.
     """
     w = FRESH if work is None else work
     o = {} if out is None else out

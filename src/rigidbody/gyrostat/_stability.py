@@ -8,6 +8,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._family import SINGULAR_TOL, family_side
 from ._model import Satellite
 from ._secondvar import (
     VERDICTS,
@@ -18,7 +19,7 @@ from ._secondvar import (
     second_variation_side,
     verdicts,
 )
-from ._stationary import SINGULAR_TOL, StationaryMotion, family_side
+from ._stationary import StationaryMotion
 
 __all__ = [
     "Stability",

@@ -10,29 +10,25 @@ from typing import Any
 
 import numpy as np
 
-from ..core.quadform import inertia, leading_minors
 from ..core.validate import positive, real
+from ._family import SINGULAR_TOL, check_fits, check_omega_sign, wrap_angle
 from ._model import GyrostatWarning, Satellite
-from ._secondvar import VERDICTS, verdict_codes
-from ._stationary import SINGULAR_TOL, broadcast_shape, check_fits, check_omega_sign, float_arrays, wrap_angle
 
 __all__ = [
     "SymmetricMotion",
-    "SymmetricStability",
-    "SymmetricStabilityMap",
-    "W_thetatheta_stable",
     "gradient_W_sym",
     "hessian_W_sym",
     "symmetric_family_arrays",
     "symmetric_potential",
-    "symmetric_stability_map",
     "symmetric_stationary_motion",
 ]
+
 
 SYM_COORDS = ("R", "kappa", "theta", "psi")
 
 
-def _check_symmetric(sat: Satellite) -> None:
+def check_symmetric(sat: Satellite) -> None:
+    """Reject a satellite outside section 3 (TypeError if not a Satellite; ValueError unless A1 = A2, k1 = k2 = 0)."""
     if not isinstance(sat, Satellite):
         raise TypeError(f"sat must be a Satellite; got {type(sat).__name__}")
     if sat.A1 != sat.A2:
@@ -104,7 +100,7 @@ def symmetric_potential(
     return K * K / (2 * S1) - U
 
 
-def _derivs(
+def symmetric_derivatives(
     M: Any, A1: Any, A3: Any, mu: Any, k: Any, c: Any, R: Any, kap: Any, th: Any, ps: Any
 ) -> tuple[Any, Any]:
     """Gradient (4,) and Hessian (4, 4) of W by the chain rule W = f(R, kappa, b(kappa, theta, psi)) - U."""
@@ -215,7 +211,7 @@ def gradient_W_sym(sat: Satellite, x: Any, *, k: float, c: float) -> np.ndarray:
     True
     """
     R, kap, th, ps = (np.asarray(v, dtype=float) for v in x)
-    return _derivs(sat.M, sat.A1, sat.A3, sat.mu, k, c, R, kap, th, ps)[0]
+    return symmetric_derivatives(sat.M, sat.A1, sat.A3, sat.mu, k, c, R, kap, th, ps)[0]
 
 
 def hessian_W_sym(sat: Satellite, x: Any, *, k: float, c: float) -> np.ndarray:
@@ -268,7 +264,7 @@ def hessian_W_sym(sat: Satellite, x: Any, *, k: float, c: float) -> np.ndarray:
     0.006036108325 0.006036108325
     """
     R, kap, th, ps = (np.asarray(v, dtype=float) for v in x)
-    return _derivs(sat.M, sat.A1, sat.A3, sat.mu, k, c, R, kap, th, ps)[1]
+    return symmetric_derivatives(sat.M, sat.A1, sat.A3, sat.mu, k, c, R, kap, th, ps)[1]
 
 
 def symmetric_family_arrays(
@@ -428,7 +424,7 @@ def symmetric_stationary_motion(
     >>> print(f"{ms.kappa0:.12f} {math.atan(1.5 * 0.004 / 1.003):.12f}")
     0.005981982484 0.005981982484
     """
-    _check_symmetric(sat)
+    check_symmetric(sat)
     R0 = positive(R0, "R0")
     check_fits(sat, R0)
     theta0 = float(wrap_angle(real(theta0, "theta0")))
@@ -451,384 +447,3 @@ def symmetric_stationary_motion(
         satellite=sat, R0=R0, theta0=theta0, kappa0=kap, omega0=float(f["omega0"]), c=float(f["c"]),
         k=float(f["k"]), S10=float(f["S10"]), point=(R0, kap, theta0, math.pi),
     )
-
-
-def W_thetatheta_stable(M: Any, A1: Any, A3: Any, mu: Any, R0: Any, theta0: Any, kappa0: Any, omega0: Any,
-                        c: Any) -> Any:
-    r"""``d^2 W / d theta^2`` at (3.2) in a form without cancellation (vectorised).
-
-    With ``b = beta3 = sin(theta0 + kappa0)``, ``S10 = M R0^2 cos^2 kappa0 + A1 cos^2(theta0 + kappa0)``:
-    ``W_thth = f_bb cos^2(theta0 + kappa0) - f_b b - U_thth`` with ``f_bb = (c - 2 A1 omega0 b)^2 / S10 +
-    A1 omega0^2``.  Eliminating ``f_b = omega0 (A1 omega0 b - c)`` by the third equation (3.1) (the first
-    relation (3.3)) and using ``cos 2 theta + sin theta cos theta tan(theta + kappa) =
-    (cos^3 theta cos kappa + sin^3 theta sin kappa) / cos(theta + kappa)`` gives
-
-        W_thth = [(c - 2 A1 omega0 b)^2 / S10 + A1 omega0^2] cos^2(theta0 + kappa0)
-                 + 3 mu R0^-3 (A1 - A3) (cos^3 theta0 cos kappa0 + sin^3 theta0 sin kappa0) / cos(theta0 + kappa0).
-
-    The chain-rule value adds terms of order ``mu R0^-3 (A1 - A3)`` that cancel near theta0 = +-pi/2, where
-    the true value is O(l^2/R^2) of them: in SI units float64 kept no correct digit within ~1e-7 of pi/2.
-
-    Parameters
-    ----------
-    M, A1, A3, mu : array_like
-        Mass, equatorial (``A1 = A2``) and axial moments of inertia, gravitational parameter (any
-        consistent units, as in :class:`Satellite`).
-    R0 : array_like
-        Orbit radius of the motion (3.2).
-    theta0, kappa0 : array_like
-        Nutation angle and latitude of the centre of mass at (3.2) (radians).
-    omega0 : array_like
-        Angular velocity of the orbital frame, (3.3).
-    c : array_like
-        Constant of the cyclic integral of phi, (3.3) (an angular momentum).
-
-    Returns
-    -------
-    ndarray or numpy scalar
-        ``d^2 W / d theta^2`` at (3.2), in units of energy, broadcast over the inputs (``inf``/``nan``
-        where ``cos(theta0 + kappa0) = 0``).
-
-    See Also
-    --------
-    hessian_W_sym : the chain-rule Hessian.
-
-    References
-    ----------
-    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eqs. (3.1)-(3.3).
-
-    Examples
-    --------
-    Away from :math:`\theta_0 = \pm\pi/2` (no cancellation) it equals the chain-rule entry:
-
-    >>> import math
-    >>> import numpy as np
-    >>> from rigidbody import gyrostat
-    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
-    >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
-    >>> Wtt = gyrostat.W_thetatheta_stable(1.0, 0.01, 0.006, 1.0, 1.0, ms.theta0, ms.kappa0, ms.omega0, ms.c)
-    >>> print(f"{Wtt:.12f} {gyrostat.hessian_W_sym(sat, ms.point, k=ms.k, c=ms.c)[2, 2]:.12f}")
-    0.011028359030 0.011028359030
-    """
-    with np.errstate(divide="ignore", invalid="ignore"):
-        M, A1, A3, mu, R0, th, kap, om, c = (
-            np.asarray(v, dtype=float) for v in (M, A1, A3, mu, R0, theta0, kappa0, omega0, c))
-        ct, st, ck, sk = np.cos(th), np.sin(th), np.cos(kap), np.sin(kap)
-        cp, b = ct * ck - st * sk, st * ck + ct * sk
-        S = M * R0**2 * ck**2 + A1 * cp**2
-        return (((c - 2 * A1 * om * b) ** 2 / S + A1 * om**2) * cp**2
-                + 3 * mu / R0**3 * (A1 - A3) * (ct**3 * ck + st**3 * sk) / cp)
-
-
-def W_psipsi_34(sat: Satellite, R0: Any, theta0: Any, kappa0: Any) -> Any:
-    r"""The paper's (3.4): ``3 mu R0^-3 (A1 - A3) sin^2 theta0 cos theta0 cos kappa0 / cos(theta0 + kappa0)``.
-
-    ``d^2 W / d psi^2`` at the motion (3.2) (``psi = pi``); the paper's sufficient condition is (3.4) > 0.
-
-    Parameters
-    ----------
-    sat : Satellite
-        Supplies ``A1, A3, mu`` (any consistent units).
-    R0 : array_like
-        Orbit radius of the motion (3.2).
-    theta0, kappa0 : array_like
-        Nutation angle and latitude of the centre of mass at (3.2) (radians).
-
-    Returns
-    -------
-    ndarray or numpy scalar
-        ``W_psipsi`` in units of energy, broadcast over the inputs (``inf``/``nan`` where
-        ``cos(theta0 + kappa0) = 0``).
-
-    See Also
-    --------
-    hessian_W_sym : the whole second variation.
-    symmetric_stability_map : the verdicts from it.
-
-    References
-    ----------
-    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4).
-
-    Examples
-    --------
-    For :math:`|\theta_0| < \pi/2` (3.4) > 0 reduces to :math:`A_1 > A_3` (section 3):
-
-    >>> import math
-    >>> from rigidbody import gyrostat
-    >>> for A3 in (0.006, 0.012):
-    ...     sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=A3)
-    ...     ms = gyrostat.symmetric_stationary_motion(sat, 1.0, 0.5)
-    ...     print(A3, bool(gyrostat.W_psipsi_34(sat, 1.0, ms.theta0, ms.kappa0) > 0))
-    0.006 True
-    0.012 False
-    """
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return (3 * sat.mu / np.asarray(R0, dtype=float) ** 3 * (sat.A1 - sat.A3) * np.sin(theta0) ** 2
-                * np.cos(theta0) * np.cos(kappa0) / np.cos(np.asarray(theta0) + kappa0))
-
-
-@dataclass(frozen=True)
-class SymmetricStability:
-    r"""Stability of a motion (3.2) from the full 4x4 second variation of W(R, kappa, theta, psi).
-
-    Attributes
-    ----------
-    hessian : ndarray (4, 4)
-        Second derivatives of W at (3.2), order (R, kappa, theta, psi); the theta-theta entry from the
-        cancellation-free :func:`W_thetatheta_stable`, the others by the chain rule.
-    minors : ndarray (4,)
-        Its leading principal minors.
-    W_psipsi : float
-        The (3.4) entry; the psi row decouples (W_Rpsi = W_kappapsi = W_thetapsi = 0 at psi = pi).
-    Delta : float
-        Determinant of the (R, kappa, theta) block (section 4: the Jacobian of (3.1) is W_psipsi * Delta).
-    degree, nullity, verdict :
-        As for :class:`Stability`.
-    paper_condition : bool
-        The paper's sufficient condition (3.4) ``W_psipsi > 0``.
-    jacobian : float
-        ``det hessian`` = Jacobian of the system (3.1).
-    unconditionally_stable : bool
-
-    See Also
-    --------
-    stability : the function that returns it.
-
-    References
-    ----------
-    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4) and section 4.
-
-    Examples
-    --------
-    The Jacobian of (3.1) is :math:`W_{\psi\psi}\Delta` (section 4):
-
-    >>> import math
-    >>> import numpy as np
-    >>> from rigidbody import gyrostat
-    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
-    >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
-    >>> st = gyrostat.stability(sat, ms)
-    >>> print(st.verdict, st.paper_condition, f"{st.jacobian:.8e} {st.W_psipsi * st.Delta:.8e}")
-    stable True 6.36976918e-05 6.36976918e-05
-    """
-
-    hessian: np.ndarray
-    minors: np.ndarray
-    W_psipsi: float
-    Delta: float
-    degree: int
-    nullity: int
-    verdict: str
-    paper_condition: bool
-    jacobian: float
-    unconditionally_stable: bool
-
-    @property
-    def s1(self) -> float:
-        """The first leading minor of the second variation, ``W_RR``.
-
-        Examples
-        --------
-        >>> import math
-        >>> import numpy as np
-        >>> from rigidbody import gyrostat
-        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
-        >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
-        >>> st = gyrostat.stability(sat, ms)
-        >>> print(f"{st.s1:.9f} {st.hessian[0, 0]:.9f}")
-        0.977276722 0.977276722
-        """
-        return float(self.minors[0])
-
-    @property
-    def s2(self) -> float:
-        """The second leading minor, the determinant of the (R, kappa) block.
-
-        Examples
-        --------
-        >>> import math
-        >>> import numpy as np
-        >>> from rigidbody import gyrostat
-        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
-        >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
-        >>> st = gyrostat.stability(sat, ms)
-        >>> print(f"{st.s2:.9f} {np.linalg.det(st.hessian[:2, :2]):.9f}")
-        0.990969494 0.990969494
-        """
-        return float(self.minors[1])
-
-    @property
-    def s3(self) -> float:
-        """The third leading minor, the determinant of the (R, kappa, theta) block, :attr:`Delta`.
-
-        Examples
-        --------
-        >>> import math
-        >>> import numpy as np
-        >>> from rigidbody import gyrostat
-        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
-        >>> ms = gyrostat.symmetric_stationary_motion(sat, 1.0, math.pi / 4)
-        >>> st = gyrostat.stability(sat, ms)
-        >>> print(f"{st.s3:.9f} {st.Delta:.9f}")
-        0.010552775 0.010552775
-        """
-        return float(self.minors[2])
-
-
-def stability_symmetric(sat: Satellite, m: SymmetricMotion, *, rtol: float = 1e-12) -> SymmetricStability:
-    _check_symmetric(sat)
-    for name in ("M", "A1", "A3", "mu"):
-        if getattr(sat, name) != getattr(m.satellite, name):
-            raise ValueError(f"sat.{name} differs from the satellite the motion was computed for")
-    H = hessian_W_sym(sat, m.point, k=m.k, c=m.c)
-    H[2, 2] = W_thetatheta_stable(sat.M, sat.A1, sat.A3, sat.mu, m.R0, m.theta0, m.kappa0, m.omega0, m.c)
-    # the psi row/column vanish identically off the diagonal at psi = pi (sin psi = 0)
-    H[3, :3] = 0.0
-    H[:3, 3] = 0.0
-    _, n_neg, n_zero = inertia(H, rtol=rtol)
-    code = int(verdict_codes(np.asarray(n_neg), np.asarray(n_zero)))
-    minors = leading_minors(H)
-    Delta = float(leading_minors(H[:3, :3])[-1])
-    jac = float(minors[-1])
-    return SymmetricStability(
-        hessian=H, minors=minors, W_psipsi=float(H[3, 3]), Delta=Delta, degree=int(n_neg), nullity=int(n_zero),
-        verdict=VERDICTS[code], paper_condition=bool(H[3, 3] > 0), jacobian=jac,
-        unconditionally_stable=(code == 0 and jac != 0.0),
-    )
-
-
-@dataclass(frozen=True)
-class SymmetricStabilityMap:
-    """Verdicts of the motions (3.2) over a grid (codes as in :class:`rigidbody.gyrostat.StabilityMap`).
-
-    See Also
-    --------
-    symmetric_stability_map : the function that returns it.
-
-    References
-    ----------
-    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4).
-
-    Examples
-    --------
-    >>> from rigidbody import gyrostat
-    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
-    >>> sm = gyrostat.symmetric_stability_map(sat, 1.0, [0.5, 1.0], A3=[0.006, 0.012])
-    >>> sm.code
-    array([[0, 1],
-           [0, 1]], dtype=int8)
-    """
-
-    params: dict[str, np.ndarray]
-    kappa0: np.ndarray
-    omega0: np.ndarray
-    c: np.ndarray
-    W_psipsi: np.ndarray
-    minors: np.ndarray
-    degree: np.ndarray
-    code: np.ndarray
-
-    @property
-    def verdict(self) -> np.ndarray:
-        """Verdict strings ('stable', 'unstable', 'undecided', 'invalid').
-
-        Examples
-        --------
-        >>> from rigidbody import gyrostat
-        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
-        >>> gyrostat.symmetric_stability_map(sat, 1.0, [0.5], A3=[0.006, 0.012]).verdict
-        array(['stable', 'unstable'], dtype='<U9')
-        """
-        names = np.array([VERDICTS[0], VERDICTS[1], VERDICTS[2], VERDICTS[-1]])
-        return names[np.where(self.code < 0, 3, self.code)]
-
-    @property
-    def paper_condition(self) -> np.ndarray:
-        """(3.4) > 0.
-
-        Examples
-        --------
-        >>> from rigidbody import gyrostat
-        >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
-        >>> gyrostat.symmetric_stability_map(sat, 1.0, [0.5], A3=[0.006, 0.012]).paper_condition
-        array([ True, False])
-        """
-        return self.W_psipsi > 0
-
-
-def symmetric_stability_map(
-    sat: Satellite, R0: Any, theta0: Any, *, omega_sign: int = 1, grid: bool = True, rtol: float = 1e-12,
-    **overrides: Any,
-) -> SymmetricStabilityMap:
-    r"""Vectorised verdicts of the motions (3.2) from the full 4x4 second variation.
-
-    Parameters as in :func:`rigidbody.gyrostat.stability_map`; overridable: ``M, A1, A3, mu`` (A2 = A1).
-    With ``grid=True`` the 1-D arrays among theta0, R0, M, A1, A3, mu form an outer grid in that order.
-    Points with sin theta0 = 0 (Euler chart) or no motion get code -1.
-
-    Returns
-    -------
-    SymmetricStabilityMap
-
-    See Also
-    --------
-    stability : one motion, with its Hessian.
-    stability_map : the motions (2.3) of a triaxial satellite.
-
-    References
-    ----------
-    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eq. (3.4) and the statements after it.
-
-    Examples
-    --------
-    At :math:`\theta_0 = \pi/4`: stable for :math:`A_3 < A_1`; unstable (degree 1) for
-    :math:`A_1 < A_3 < \frac43A_1`, as the paper says of (3.4) reversed; beyond :math:`3A_3 = 4A_1` the degree is 2
-    and the claim fails (:doc:`/gyrostat`):
-
-    >>> import math
-    >>> from rigidbody import gyrostat
-    >>> sat = gyrostat.Satellite(M=1.0, A1=0.01, A2=0.01, A3=0.006)
-    >>> sm = gyrostat.symmetric_stability_map(sat, 1.0, math.pi / 4, A3=[0.006, 0.012, 0.0145])
-    >>> sm.verdict, sm.degree
-    (array(['stable', 'unstable', 'undecided'], dtype='<U9'), array([0, 1, 2]))
-    """
-    _check_symmetric(sat)
-    omega_sign = check_omega_sign(omega_sign)
-    bad = set(overrides) - {"M", "A1", "A3", "mu"}
-    if bad:
-        raise TypeError(f"unknown parameter(s) {sorted(bad)}; overridable: M, A1, A3, mu")
-    vals = {"theta0": theta0, "R0": R0, "M": overrides.get("M", sat.M), "A1": overrides.get("A1", sat.A1),
-            "A3": overrides.get("A3", sat.A3), "mu": overrides.get("mu", sat.mu)}
-    arrs = float_arrays(vals)
-    if grid:
-        axes = [n for n in arrs if arrs[n].ndim == 1 and arrs[n].size != 1]
-        for n, m in zip(axes, np.meshgrid(*[arrs[n] for n in axes], indexing="ij")):
-            arrs[n] = m
-    shape = broadcast_shape(arrs)
-    P = {n: np.broadcast_to(v, shape) for n, v in arrs.items()}
-    f = symmetric_family_arrays(P["M"], P["A1"], P["A3"], P["mu"], P["R0"], P["theta0"], omega_sign)
-    physical = (P["A3"] > 0) & (P["A1"] > 0) & (P["A3"] <= 2 * P["A1"] * (1 + 1e-12)) & (P["M"] > 0)
-    with np.errstate(all="ignore"):  # the body fits inside its orbit (see check_fits)
-        physical &= (P["mu"] > 0) & (P["R0"] > 0) & (P["R0"] ** 2 > (2 * P["A1"] + P["A3"]) / (2 * P["M"]))
-    valid = f["exists"] & physical & (np.abs(f["sin_t"]) > SINGULAR_TOL) & (np.abs(f["cos_tk"]) > SINGULAR_TOL)
-    with np.errstate(all="ignore"):
-        _, H = _derivs(P["M"], P["A1"], P["A3"], P["mu"], f["k"], f["c"], P["R0"], f["kappa0"], f["theta0"],
-                       np.pi + 0 * f["kappa0"])
-    H = np.array(H)
-    with np.errstate(all="ignore"):
-        H[..., 2, 2] = W_thetatheta_stable(P["M"], P["A1"], P["A3"], P["mu"], P["R0"], f["theta0"], f["kappa0"],
-                                           f["omega0"], f["c"])
-    H[..., 3, :3] = 0.0  # the psi row decouples at psi = pi (sin psi = 0 analytically)
-    H[..., :3, 3] = 0.0
-    valid &= np.all(np.isfinite(H), axis=(-1, -2))
-    n_neg = np.full(shape, -1, dtype=np.int64)
-    code = np.full(shape, -1, dtype=np.int8)
-    minors = np.full((*shape, 4), np.nan)
-    if np.any(valid):
-        _, nn, nz = inertia(H[valid], rtol=rtol)
-        n_neg[valid] = nn
-        code[valid] = verdict_codes(nn, nz)
-        minors[valid] = leading_minors(H[valid])
-    W_pp = np.where(valid, H[..., 3, 3], np.nan)
-    return SymmetricStabilityMap(params=P, kappa0=f["kappa0"], omega0=f["omega0"], c=f["c"], W_psipsi=W_pp,
-                                 minors=minors, degree=n_neg, code=code)
