@@ -53,6 +53,8 @@ import numpy as np
 from scipy import special
 
 from . import kernel
+from ._integrals import E, Einc, F, K
+from ._modulus import ArrayLike, as_float_array, check_modulus, float_out, is_real_scalar, moduli
 from ._nome import jacobi_near, nome, nome_cached
 
 __all__ = [
@@ -68,8 +70,6 @@ __all__ = [
     "sn",
 ]
 
-ArrayLike = Any
-
 #: At and above this complementary parameter :func:`jacobi` calls ``scipy.special.ellipj`` on the argument
 #: as given (no period reduction), with ``dn^2 = mc + m cn^2``; below it, the period-reduced evaluation with
 #: the exact ``mc``. Given ``mc``, SciPy sees ``m = 1 - mc`` rounded by eps/2, a period wrong by ~eps/mc: the
@@ -83,339 +83,13 @@ _MC_JACOBI_FROM_K = 1e-2
 _U_HUGE = 1e300
 
 _ellipk = special.ellipk
-_ellipkm1 = special.ellipkm1
-_ellipe = special.ellipe
 _ellipj = special.ellipj
-
-
-def _out(x: np.ndarray) -> Any:
-    """Scalar in, Python float out; arrays stay arrays."""
-    return float(x) if np.ndim(x) == 0 else x
-
-
-def _is_real_scalar(x: Any) -> bool:
-    """A Python float or int (the scalar fast paths; anything else takes the general route)."""
-    t = type(x)
-    return t is float or t is int
-
-
-def _as_float_array(x: ArrayLike, name: str) -> np.ndarray:
-    try:
-        a = np.asarray(x, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be a real number or an array of real numbers, got {x!r}") from exc
-    return a
-
-
-def check_modulus(k: ArrayLike, name: str = "k") -> np.ndarray:
-    """Validate a modulus (or complementary parameter) and return it as a float array.
-
-    Parameters
-    ----------
-    k : array_like
-        Values that must lie in the closed interval [0, 1] and be finite.
-    name : str
-        Parameter name used in the error message.
-
-    Returns
-    -------
-    numpy.ndarray
-        ``k`` as a float array.
-
-    Raises
-    ------
-    TypeError
-        If ``k`` is not numeric.
-    ValueError
-        If any value is NaN or lies outside [0, 1].
-
-    See Also
-    --------
-    rigidbody.core.validate.finite_array : the check of an array of any real values.
-
-    Examples
-    --------
-    >>> from rigidbody.core.elliptic import check_modulus
-    >>> check_modulus([0.0, 0.5, 1.0])
-    array([0. , 0.5, 1. ])
-    >>> check_modulus(1.2, "k0")
-    Traceback (most recent call last):
-        ...
-    ValueError: k0 must lie in [0, 1] (modulus convention, m = k**2); got ...1.2...
-    """
-    a = _as_float_array(k, name)
-    _range(a, name)
-    return a
-
-
-def _range(a: np.ndarray, name: str) -> tuple[float, float]:
-    """``(min, max)`` of a modulus array after checking it lies in [0, 1] (two reductions; NaN propagates
-    through both, so one comparison catches it).  ``(1.0, 0.0)`` for an empty array."""
-    if a.size == 0:
-        return 1.0, 0.0
-    lo, hi = a.min(), a.max()
-    if lo >= 0.0 and hi <= 1.0:
-        return float(lo), float(hi)
-    if not np.all(np.isfinite(a)):
-        raise ValueError(f"{name} must be finite and in [0, 1]; got a non-finite value")
-    bad = a[(a < 0.0) | (a > 1.0)].ravel()[0]
-    raise ValueError(f"{name} must lie in [0, 1] (modulus convention, m = k**2); got {bad!r}")
-
-
-def _moduli(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[np.ndarray, np.ndarray, float]:
-    """The parameter ``m = k**2``, its complement ``mc = 1 - m`` (validated) and the smallest ``mc``."""
-    if mc is None:
-        if k is None:
-            raise TypeError("give the modulus k or the complementary parameter mc = 1 - k**2")
-        ka = _as_float_array(k, "k")
-        _, hi = _range(ka, "k")
-        m = ka * ka
-        return m, 1.0 - m, 1.0 - hi * hi
-    mca = _as_float_array(mc, "mc")
-    lo, _ = _range(mca, "mc")
-    if k is None:
-        return 1.0 - mca, mca, lo
-    ka = _as_float_array(k, "k")
-    _range(ka, "k")
-    m = ka * ka
-    if np.any(np.abs(m + mca - 1.0) > 1e-12):
-        raise ValueError("k and mc are inconsistent: k**2 + mc must equal 1 (to 1e-12)")
-    return m, mca, lo
 
 
 def m_mc(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[np.ndarray, np.ndarray]:
     """Return the parameter ``m = k**2`` and its complement ``mc = 1 - m`` (validated)."""
-    m, mca, _ = _moduli(k, mc)
+    m, mca, _ = moduli(k, mc)
     return m, mca
-
-
-# --------------------------------------------------------------------------------------------------
-# complete and incomplete integrals
-# --------------------------------------------------------------------------------------------------
-def K(k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    r"""Complete elliptic integral of the first kind :math:`K(k)=\int_0^{\pi/2}(1-k^2\sin^2\phi)^{-1/2}d\phi`.
-
-    Parameters
-    ----------
-    k : array_like, optional
-        Modulus in [0, 1].
-    mc : array_like, optional
-        Complementary parameter :math:`1-k^2` (more accurate near :math:`k=1`).
-
-    Returns
-    -------
-    float or numpy.ndarray
-        :math:`K`; ``inf`` at :math:`k = 1`.
-
-    See Also
-    --------
-    E : the complete integral of the second kind.
-    F : the incomplete integral, :math:`K(k) = F(\pi/2, k)`.
-    jacobi : the Jacobi functions, of period :math:`4K`.
-
-    References
-    ----------
-    NIST Digital Library of Mathematical Functions, §19.2(ii) (Legendre's integrals) and §19.12 (the
-    asymptotic form :math:`K \approx \ln(4/k')` as :math:`k \to 1`).
-
-    Examples
-    --------
-    >>> import math
-    >>> from rigidbody.core.elliptic import K
-    >>> print(f"{K(0.0):.12f}")  # pi/2
-    1.570796326795
-
-    The lemniscatic case :math:`k^2 = 1/2`, where :math:`K = \Gamma(1/4)^2/(4\sqrt\pi)`:
-
-    >>> print(f"{K(math.sqrt(0.5)):.12f} {math.gamma(0.25)**2 / (4 * math.sqrt(math.pi)):.12f}")
-    1.854074677301 1.854074677301
-
-    Near the separatrix give ``mc = 1 - k**2``: :math:`K = \ln(4/k') + O(m_c\ln m_c)`, here
-    :math:`k' = 10^{-6}`:
-
-    >>> print(f"{K(mc=1e-12):.9f} {math.log(4e6):.9f}")
-    15.201804919 15.201804919
-    """
-    if mc is None:
-        if _is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
-            return float(_ellipk(k * k))  # type: ignore[operator]
-        m, _, _ = _moduli(k, None)
-        return _out(_ellipk(m))  # cephes forms 1 - m itself: exact for m = k**2 >= 1/2 (Sterbenz)
-    if k is None and _is_real_scalar(mc) and 0.0 <= mc <= 1.0:
-        return float(_ellipkm1(mc))
-    _, mca, _ = _moduli(k, mc)
-    return _out(_ellipkm1(mca))
-
-
-def E(k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    r"""Complete elliptic integral of the second kind :math:`E(k)=\int_0^{\pi/2}(1-k^2\sin^2\phi)^{1/2}d\phi`.
-
-    Parameters
-    ----------
-    k : array_like, optional
-        Modulus in [0, 1].
-    mc : array_like, optional
-        Complementary parameter :math:`1-k^2`.
-
-    Returns
-    -------
-    float or numpy.ndarray
-        :math:`E`, with :math:`E(1) = 1`.
-
-    See Also
-    --------
-    K : the complete integral of the first kind.
-    Einc : the incomplete integral, :math:`E(k) = E(\pi/2, k)`.
-
-    References
-    ----------
-    NIST Digital Library of Mathematical Functions, §19.2(ii) (Legendre's integrals) and §19.7(i)
-    (Legendre's relation :math:`EK' + E'K - KK' = \pi/2`).
-
-    Examples
-    --------
-    >>> import math
-    >>> from rigidbody.core.elliptic import E, K
-    >>> print(f"{E(0.0):.12f} {E(1.0):.12f}")  # pi/2 and 1
-    1.570796326795 1.000000000000
-
-    Legendre's relation at :math:`k = k' = 1/\sqrt2`, :math:`2EK - K^2 = \pi/2`:
-
-    >>> k = math.sqrt(0.5)
-    >>> print(f"{2 * E(k) * K(k) - K(k)**2:.12f} {math.pi / 2:.12f}")
-    1.570796326795 1.570796326795
-    """
-    # cephes' ellipe(m) is a rational approximation in 1 - m (computed exactly from m = k**2); from mc the
-    # rounding of m = 1 - mc costs |dE/dmc| eps/2 ~ K eps/4, at most 3 ulp down to mc = 1e-20 (E is
-    # well conditioned in mc: E = 1 + mc/4 (ln(16/mc) - 1) + ...), where Carlson's R_F - m/3 R_D loses ~50 ulp
-    if mc is None:
-        if _is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
-            return float(_ellipe(k * k))  # type: ignore[operator]
-    elif k is None and _is_real_scalar(mc) and 0.0 <= mc <= 1.0:
-        return float(_ellipe(1.0 - mc))
-    m, _, _ = _moduli(k, mc)
-    return _out(_ellipe(m))
-
-
-def _reduce_phi(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """phi = j*pi + phr with |phr| <= pi/2."""
-    j = np.round(phi / np.pi)
-    return j, phi - j * np.pi
-
-
-def F(phi: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    r"""Incomplete elliptic integral of the first kind :math:`F(\phi,k)=\int_0^\phi(1-k^2\sin^2t)^{-1/2}dt`.
-
-    Valid for any real :math:`\phi` (quasi-periodicity :math:`F(\phi+j\pi)=F(\phi)+2jK`).
-
-    Parameters
-    ----------
-    phi : array_like
-        Amplitude (radians).
-    k : array_like, optional
-        Modulus in [0, 1].
-    mc : array_like, optional
-        Complementary parameter :math:`1-k^2`.
-
-    Returns
-    -------
-    float or numpy.ndarray
-        :math:`F(\phi, k)`; infinite at :math:`k=1`, :math:`|\phi|\ge\pi/2`.
-
-    See Also
-    --------
-    K : the complete integral, :math:`F(\pi/2, k)`.
-    Einc : the incomplete integral of the second kind.
-    am : the inverse function, :math:`\operatorname{am}(F(\phi, k), k) = \phi`.
-
-    References
-    ----------
-    NIST Digital Library of Mathematical Functions, §19.2(ii) (Legendre's integrals) and §19.25(i) (the
-    same in Carlson's :math:`R_F`).
-
-    Examples
-    --------
-    >>> import math
-    >>> from rigidbody.core.elliptic import F, K, am
-    >>> print(f"{F(0.7, 0.0):.12f}")  # k = 0: F = phi
-    0.700000000000
-    >>> print(f"{F(1.0, 1.0):.12f} {math.atanh(math.sin(1.0)):.12f}")  # k = 1: the inverse Gudermannian
-    1.226191170884 1.226191170884
-    >>> print(f"{F(math.pi / 2, 0.6):.12f} {K(0.6):.12f}")  # F(pi/2, k) = K(k)
-    1.750753802916 1.750753802916
-    >>> print(f"{am(F(1.0, 0.6), 0.6):.12f}")
-    1.000000000000
-    """
-    ph = _as_float_array(phi, "phi")
-    _, mca, _ = _moduli(k, mc)
-    j, phr = _reduce_phi(ph)
-    s, c = np.sin(phr), np.cos(phr)
-    c2 = c * c
-    delta2 = c2 + mca * (s * s)  # 1 - m sin^2, exact in mc
-    with np.errstate(divide="ignore", invalid="ignore"):
-        val = s * special.elliprf(c2, delta2, 1.0)
-        if np.any(j != 0):  # (only there: 0 * K = NaN at k = 1)
-            val = np.where(j != 0, val + 2.0 * j * _ellipkm1(mca), val)
-    # k = 1, |phi| = pi/2 exactly: R_F(0, 0, 1) = inf -> F = +-inf (correct); no NaN can arise otherwise.
-    return _out(val)
-
-
-def Einc(phi: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
-    r"""Incomplete elliptic integral of the second kind :math:`E(\phi,k)=\int_0^\phi(1-k^2\sin^2t)^{1/2}dt`.
-
-    Valid for any real :math:`\phi` (:math:`E(\phi+j\pi)=E(\phi)+2jE`).
-
-    Parameters
-    ----------
-    phi : array_like
-        Amplitude (radians).
-    k : array_like, optional
-        Modulus in [0, 1].
-    mc : array_like, optional
-        Complementary parameter :math:`1-k^2`.
-
-    Returns
-    -------
-    float or numpy.ndarray
-        :math:`E(\phi, k)`.
-
-    See Also
-    --------
-    E : the complete integral, :math:`E(\pi/2, k)`.
-    F : the incomplete integral of the first kind.
-
-    References
-    ----------
-    NIST Digital Library of Mathematical Functions, §19.2(ii) (Legendre's integrals) and §19.25(i) (the
-    same in Carlson's :math:`R_F`, :math:`R_D`).
-
-    Examples
-    --------
-    >>> import math
-    >>> from rigidbody.core.elliptic import E, Einc
-    >>> print(f"{Einc(1.0, 1.0):.12f} {math.sin(1.0):.12f}")  # k = 1: E(phi, 1) = sin(phi)
-    0.841470984808 0.841470984808
-    >>> print(f"{Einc(math.pi / 2, 0.6):.12f} {E(0.6):.12f}")
-    1.418083394449 1.418083394449
-    >>> print(f"{Einc(math.pi + 0.3, 0.6) - Einc(0.3, 0.6):.12f} {2 * E(0.6):.12f}")  # one period: 2E
-    2.836166788897 2.836166788897
-    """
-    ph = _as_float_array(phi, "phi")
-    m, mca, _ = _moduli(k, mc)
-    j, phr = _reduce_phi(ph)
-    s, c = np.sin(phr), np.cos(phr)
-    c2 = c * c
-    delta2 = c2 + mca * (s * s)
-    sing = (mca == 0.0) & (c2 == 0.0)  # R_F and R_D both diverge; E(+-pi/2, 1) = +-1
-    if np.any(sing):
-        c2 = np.where(sing, 1.0, c2)
-        delta2 = np.where(sing, 1.0, delta2)
-    val = s * special.elliprf(c2, delta2, 1.0) - m / 3.0 * s**3 * special.elliprd(c2, delta2, 1.0)
-    if np.any(sing):
-        val = np.where(sing, s, val)
-    if np.any(j != 0):
-        val = val + 2.0 * j * _ellipe(m)
-    return _out(val)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -507,13 +181,13 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
     >>> print(*(f"{x:.12f}" for x in jacobi(1.0, 1.0)[:2]), f"{math.tanh(1.0):.12f} {1 / math.cosh(1.0):.12f}")
     0.761594155956 0.648054273664 0.761594155956 0.648054273664
     """
-    if _is_real_scalar(u) and abs(u) <= _U_HUGE:  # scalar fast path (right-hand sides of integrators)
+    if is_real_scalar(u) and abs(u) <= _U_HUGE:  # scalar fast path (right-hand sides of integrators)
         mcf, mf, fast = -1.0, 0.0, _MC_JACOBI_FROM_K
         if mc is None:
-            if _is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
+            if is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
                 mf = k * k  # type: ignore[operator]
                 mcf = 1.0 - mf
-        elif k is None and _is_real_scalar(mc) and 0.0 <= mc <= 1.0:
+        elif k is None and is_real_scalar(mc) and 0.0 <= mc <= 1.0:
             mcf = float(mc)
             mf, fast = 1.0 - mcf, _MC_JACOBI_FROM_MC
         if mcf >= fast:
@@ -521,15 +195,15 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
             return float(s), float(c), math.sqrt(mcf + mf * (c * c)), float(a)
         if mcf >= 0.0:
             return _jacobi_reduced_scalar(float(u), mf, mcf)
-    ua = _as_float_array(u, "u")
+    ua = as_float_array(u, "u")
     umax = np.max(np.abs(ua)) if ua.size else 0.0
     if not umax <= _U_HUGE and not np.all(np.isfinite(ua)):
         raise ValueError("u must be finite")
-    m, mca, mc_min = _moduli(k, mc)
+    m, mca, mc_min = moduli(k, mc)
     fast = _MC_JACOBI_FROM_K if mc is None else _MC_JACOBI_FROM_MC
     if mc_min >= fast and umax <= _U_HUGE:  # SciPy directly, dn^2 = mc + m cn^2 (see _MC_JACOBI_FROM_K)
         s, c, _, a = _ellipj(ua, m)
-        return _out(s), _out(c), _out(np.sqrt(mca + m * (c * c))), _out(a)
+        return float_out(s), float_out(c), float_out(np.sqrt(mca + m * (c * c))), float_out(a)
     ua, m, mca = np.broadcast_arrays(ua, m, mca)
     shape = ua.shape
     ua, m, mca = ua.ravel(), m.ravel(), mca.ravel()
@@ -547,8 +221,8 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
             o[far] = v
         for o, v in zip(out, _jacobi_reduced(ua[near], m[near], mca[near])):
             o[near] = v
-    return _out(out[0].reshape(shape)), _out(out[1].reshape(shape)), _out(out[2].reshape(shape)), \
-        _out(out[3].reshape(shape))
+    return float_out(out[0].reshape(shape)), float_out(out[1].reshape(shape)), float_out(out[2].reshape(shape)), \
+        float_out(out[3].reshape(shape))
 
 
 _JACOBI_PARAMS = """
