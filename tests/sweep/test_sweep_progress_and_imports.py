@@ -35,6 +35,15 @@ def test_progress_true_draws_a_bar_counting_points(capfd):
     assert "6/6" in err and "sweep poly" in err
 
 
+def test_the_bar_of_a_partial_is_labelled_by_its_function(capfd):
+    # the label was the tail of the partial's repr after its last dot ("sweep 5)):" for a bound 0.5)
+    from functools import partial
+
+    sweep(partial(lib.poly, b=0.5), {"a": [0.0, 1.0]}, executor="serial", progress=True)
+    err = capfd.readouterr().err
+    assert "sweep poly (partial)" in err and "5)" not in err
+
+
 def test_progress_none_on_a_terminal_draws_the_bar():
     code = ("import sys; from rigidbody.sweep import sweep\n"
             "def f(a):\n    return {'x': a}\n"

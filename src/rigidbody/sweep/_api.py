@@ -18,7 +18,7 @@ import numpy as np
 from ._collect import Results
 from ._deps import require
 from ._executors import Lost, dask_workers, local_cpu_count, run_dask, run_executor, run_serial
-from ._grid import Layout, block_shape, check_grid, default_chunk_size, function_name
+from ._grid import Layout, block_shape, check_grid, default_chunk_size, function_label, function_name
 from ._lock import StoreLock
 from ._pool import run_local
 from ._run import Task, dumps_function, is_batched
@@ -222,7 +222,7 @@ def _run(func: Any, fb: bool, name: str, g: dict[str, np.ndarray], layout: Layou
     if show:
         tqdm = require("tqdm")
         bar = tqdm.tqdm(total=math.prod(layout.shape), initial=int(np.count_nonzero(~results.pending)), unit="pt",
-                        file=sys.stderr, desc=f"sweep {name.rsplit('.', 1)[-1][:30]}", dynamic_ncols=True)
+                        file=sys.stderr, desc=f"sweep {function_label(func)[:40]}", dynamic_ncols=True)
     try:
         for ev in events:
             n = results.lose(ev) if isinstance(ev, Lost) else results.add(ev)

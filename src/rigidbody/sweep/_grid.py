@@ -122,6 +122,23 @@ def chunk_points(coords: list[np.ndarray]) -> list[np.ndarray]:
 _ADDRESS = re.compile(r" at 0x[0-9a-fA-F]+")
 
 
+def function_label(func: Any) -> str:
+    """A short label of a sweep's function for its progress bar: the function's own name (a partial: the
+    wrapped function's, marked ``partial``).
+
+    Examples
+    --------
+    >>> from functools import partial
+    >>> function_label(partial(function_name, 1)), function_label(function_name)
+    ('function_name (partial)', 'function_name')
+    """
+    inner, wrapped = func, False
+    while isinstance(inner, partial):
+        inner, wrapped = inner.func, True
+    name = getattr(inner, "__name__", None) or type(inner).__name__
+    return f"{name} (partial)" if wrapped else name
+
+
 def function_name(func: Any) -> str:
     """The identity of a sweep's function: its qualified name (a partial: with its bound arguments).
 
