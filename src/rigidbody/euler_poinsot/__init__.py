@@ -92,6 +92,7 @@ from ._separatrix import (
     separatrix_limits,
 )
 from ._simulate import simulate
+from ._state import Mean, State
 from ._torques import (
     ConstantTorque,
     FunctionTorque,
@@ -115,6 +116,7 @@ __all__ = [
     "GravityGradient",
     "LinearDrag",
     "MagneticDipole",
+    "Mean",
     "N_star",
     "N_time",
     "Orbit",
@@ -122,6 +124,7 @@ __all__ = [
     "SeparatrixCrossing",
     "SeparatrixLimits",
     "Solver",
+    "State",
     "Stops",
     "T_from",
     "Torque",

@@ -118,7 +118,7 @@ def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
         raise ValueError(f"u0 and psi0 must broadcast to the batch shape {mem.batch_shape}") from None
     what, tq = resolve(torque)
     if what == "torque":
-        tq._check_setup(body, orb)
+        tq.check_setup(body, orb)
     if opts["formulation"] == "angles" or opts["method"] != "DOP853":
         one = {k: v for k, v in opts.items() if k not in ("T0", "kind", "u0", "psi0")}
 

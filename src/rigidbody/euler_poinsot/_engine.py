@@ -67,7 +67,7 @@ import numpy as np
 from ..core import averaging as avg
 from ._grid import Grid, nu_nodes
 from ._model import relabel
-from ._protocol import TorqueSum, evaluate
+from ._protocol import TorqueSum, checked_closed_mean, evaluate, first_closed_mean
 from ._state import Mean, State, amplitudes, frame
 
 __all__ = ["TorqueAverage"]
@@ -481,7 +481,7 @@ class Averager:
         closed: list[Any] = []
         rest: list[Any] = []
         for p in self.parts:
-            ok = self.method != "numerical" and p._closed(st) is not None
+            ok = self.method != "numerical" and first_closed_mean(p, st) is not None
             (closed if ok else rest).append(p)
         self.closed = closed
         self.rest = _sum_of(rest) if rest else None
@@ -498,7 +498,7 @@ class Averager:
     def mean(self, st: State) -> Mean:
         total: Mean | None = None
         for p in self.closed:
-            m = p._closed(st)
+            m = checked_closed_mean(p, st)
             total = m if total is None else total + m
         if self.rest is not None:
             assert self.grid is not None
@@ -529,7 +529,7 @@ class Averager:
         forms count as exact."""
         total = Mean(np.zeros(3), 0.0, 0.0)
         for p in self.closed:
-            total = total + p._closed(st)
+            total = total + checked_closed_mean(p, st)
         err = Mean(np.zeros(3), 0.0, 0.0)
         if self.rest is not None:
             assert self.first is not None and self.grid is not None

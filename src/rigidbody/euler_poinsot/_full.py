@@ -321,7 +321,7 @@ def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, 
     what, tq = resolve(torque)
     generic = what == "torque"
     if generic:
-        tq._check_setup(body, orb)
+        tq.check_setup(body, orb)
         Im = np.zeros((3, 3))
     else:
         Im = tq.I

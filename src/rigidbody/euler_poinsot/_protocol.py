@@ -22,20 +22,48 @@ import numpy as np
 
 from ..core.ode import Solution
 from ..core.validate import returned
+from ._state import Mean, State
 from ._stops import stop_message
 
-__all__ = ["FunctionTorque", "Misfire", "Torque", "TorqueSum", "as_torque", "evaluate"]
+__all__ = ["FunctionTorque", "Misfire", "Torque", "TorqueSum", "as_torque", "checked_closed_mean", "evaluate",
+           "first_closed_mean"]
 
 #: what a torque is called in the messages of :func:`rigidbody.core.validate.returned`
 ROLE = "the torque"
 
 
 class Torque:
-    """Base class of the torque objects: ``torque(omega, C, nu) -> M``, body components of shape ``(..., 3)``
+    r"""Base class of the torque objects: ``torque(omega, C, nu) -> M``, body components of shape ``(..., 3)``
     (see ``docs/euler_poinsot.md``, "The protocol").
 
-    Subclasses implement ``__call__(omega, C, nu)``. Adding two torques (or a torque and a plain function)
-    gives a :class:`TorqueSum`.
+    Subclasses implement ``__call__(omega, C, nu)``; they may also declare a closed-form average and the setup
+    they were built for, by overriding the two hooks below. Adding two torques (or a torque and a plain
+    function) gives a :class:`TorqueSum`, whose parts each take their own path.
+
+    Notes
+    -----
+    The two hooks a subclass may override:
+
+    ``closed_mean(st) -> Mean or None``
+        The torque's average over the Euler--Poinsot motion in closed form at the slow state ``st`` (a
+        :class:`State`: ``body``, ``kind`` ('max' or 'min'), ``sigma`` (+1 or -1), ``G``, ``k2``, ``mc`` =
+        :math:`1-k^2`, ``n`` (the unit vector of :math:`\mathbf G` in the orbital axes), ``nu`` (the true
+        anomaly held during the average, or None in the orbit-averaged limit :math:`\varepsilon = 0`, where
+        the average is also over the orbit) and ``orbit``). It returns a :class:`Mean` with ``L`` =
+        :math:`\langle C\mathbf M\rangle`, the mean torque in the orbital axes, shape (3,) (that is
+        :math:`d(G\mathbf n)/d\tau`), ``dT`` = :math:`\langle\boldsymbol\omega\cdot\mathbf M\rangle`
+        (:math:`dT/d\tau`) and ``dk2`` (:math:`dk^2/d\tau`), in the units of ``__call__`` (the section-3
+        scaling divided by :math:`\varepsilon^2`, slow time :math:`\tau`); the mean is over the precession
+        angle, the period of the phase (and the orbit for ``nu=None``), as the averaging engine takes it.
+        Returning None (the default) sends the torque to the averaging engine, which evaluates ``__call__``
+        on grids of the motion. The path is chosen at the first state of each kind of motion of a run: a
+        torque that returns a Mean there must return one at every state of that kind (None later is a
+        ``TypeError`` naming the torque). ``averaging='numerical'`` skips the hook (how a closed form is
+        tested against the engine).
+    ``check_setup(body, orbit) -> None``
+        Called at the start of a run (and of :func:`averaged_rates`, :func:`separatrix_crossing`, ...): raise
+        a ``ValueError`` if the run's :class:`Body` or :class:`Orbit` differs from those the torque was built
+        for (as :class:`GravityGradient` does). The default accepts any.
     """
 
     #: whether ``__call__`` broadcasts the leading axes of its arguments (declared by the catalogue torques that
@@ -57,11 +85,12 @@ class Torque:
         """The torques this one is the sum of (itself for a single torque)."""
         return (self,)
 
-    def _check_setup(self, body: Any, orbit: Any) -> None:
-        """Refuse a run whose body or orbit differs from the one this torque was built for."""
+    def check_setup(self, body: Any, orbit: Any) -> None:
+        """Refuse a run whose body or orbit differs from the one this torque was built for (by default: none)."""
 
-    def _closed(self, st: Any) -> Any:
-        """The closed-form average at a slow state, or None when the torque has none (the engine is used)."""
+    def closed_mean(self, st: State) -> Mean | None:
+        """The closed-form average at the slow state ``st``, or None when the torque has none (by default: the
+        averaging engine is used)."""
         return None
 
 
@@ -117,9 +146,38 @@ class TorqueSum(Torque):
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
         return evaluate(self, omega, C, nu)
 
-    def _check_setup(self, body: Any, orbit: Any) -> None:
+    def check_setup(self, body: Any, orbit: Any) -> None:
         for t in self.terms:
-            t._check_setup(body, orbit)
+            t.check_setup(body, orbit)
+
+
+def first_closed_mean(part: Torque, st: State) -> Mean | None:
+    """``part.closed_mean(st)`` at the first state of a kind of motion, where the path is chosen (None sends the
+    part to the engine), checked whole: a :class:`Mean` of finite numbers with ``L`` of shape (3,), or None; a
+    ``TypeError``/``ValueError`` naming the part otherwise."""
+    m = part.closed_mean(st)
+    if m is None:
+        return None
+    m = checked_closed_mean(part, st, m)
+    if np.shape(m.L) != (3,) or not np.all(np.isfinite(m.L)) or not (math.isfinite(m.dT) and math.isfinite(m.dk2)):
+        raise ValueError(f"{part!r}.closed_mean must return a Mean of finite numbers with L of shape (3,) "
+                         f"(<C M> in the orbital axes), got {m!r}")
+    return m
+
+
+def checked_closed_mean(part: Torque, st: State, m: Any = None) -> Mean:
+    """``part.closed_mean(st)`` (or its value ``m``) at a later state of a kind of motion whose path is the closed
+    form: a :class:`Mean` (only its type is checked, the right-hand sides call this at every step); None or
+    another type is a ``TypeError`` naming the part."""
+    if m is None:
+        m = part.closed_mean(st)
+    if m is None:
+        raise TypeError(f"{part!r}.closed_mean returned None at k2 = {st.k2} (kind {st.kind!r}) after a Mean at "
+                        "the first state of this kind of motion: return a Mean at every state of a kind of motion, "
+                        "or None at every one to have the averaging engine average the torque")
+    if not isinstance(m, Mean):
+        raise TypeError(f"{part!r}.closed_mean must return a Mean or None, got {type(m).__name__}")
+    return m
 
 
 def evaluate(torque: Any, omega: Any, C: Any, nu: Any, shape: tuple[int, ...] | None = None, *,

@@ -12,6 +12,7 @@ from ._algebra import dk2_labelled, drag_rates_labelled, nstar_labelled
 from ._checks import check_averaging, check_sigma
 from ._engine import Averager, TorqueAverage, error_of, mean_of
 from ._model import Body, Orbit, as_orbit, check_body, check_kind, frame_y, labelled
+from ._protocol import checked_closed_mean
 from ._state import Mean, State
 from ._torques import drag_as_torque, resolve
 
@@ -109,7 +110,7 @@ def averaged_rates(
     elif omega0 != 1.0:
         raise ValueError("omega0 applies to a drag tensor only: a torque object carries its own scale "
                          "(e.g. GravityGradient(body, orbit, omega0=...))")
-    tq._check_setup(body, orb)
+    tq.check_setup(body, orb)
     if k2 >= 1.0:
         raise ValueError("k2 = 1 is the separatrix: the Euler-Poinsot period is infinite and a torque object "
                          "has no average there (the drag tensor's closed forms have a limit)")
@@ -143,7 +144,7 @@ def _once(tq: Any, st: State, method: str, tol: float = _TOL) -> tuple[Mean, Mea
     av.calibrate(st)
     total = Mean(np.zeros(3), 0.0, 0.0)
     for p in av.closed:
-        total = total + p._closed(st)
+        total = total + checked_closed_mean(p, st)
     err = Mean(np.zeros(3), 0.0, 0.0)
     if av.first is not None:
         total = total + mean_of(av.first.mean, st)
@@ -240,7 +241,7 @@ def average_torque(
     what, tq = resolve(torque)
     if what == "drag":
         tq = drag_as_torque(tq, body, orb)
-    tq._check_setup(body, orb)
+    tq.check_setup(body, orb)
     G, k2 = real(G, "G"), real(k2, "k2")
     if G <= 0:
         raise ValueError(f"G must be positive, got {G}")

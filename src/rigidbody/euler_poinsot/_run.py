@@ -267,7 +267,7 @@ def run_averaged(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: A
     if what == "drag" and averaging != "numerical":
         gen.drag = tq  # the closed forms (9) of the paper; the torque object serves the crossings
     else:
-        gen.torque._check_setup(body, orb)
+        gen.torque.check_setup(body, orb)
     gen.spin_cap = K2_SPIN_CAP if through else 1.0
     # the true anomaly at the start: nu = tau/eps + nu0 on a circular orbit (as the drag tensor's closed forms and
     # simulate take it, also when tau_span starts after 0); on an eccentric orbit nu is a state starting at nu0

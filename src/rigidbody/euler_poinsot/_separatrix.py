@@ -184,7 +184,7 @@ def _torque_fn(torque: Any, body: Body, orbit: Orbit) -> TorqueFn:
     what, tq = resolve(torque)
     if what == "drag":
         tq = drag_as_torque(tq, body, orbit)
-    tq._check_setup(body, orbit)
+    tq.check_setup(body, orbit)
     return tq
 
 

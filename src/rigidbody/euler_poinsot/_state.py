@@ -15,7 +15,41 @@ __all__ = ["Mean", "State", "amplitudes", "frame"]
 
 @dataclass
 class State:
-    """One slow state: the body, the kind of motion and its sense, G, k^2, n and the true anomaly."""
+    r"""One slow state: the body, the kind of motion and its sense, G, k^2, n and the true anomaly.
+
+    What a torque's :meth:`Torque.closed_mean` receives.
+
+    Parameters
+    ----------
+    body : Body
+        The body.
+    kind : {'max', 'min'}
+        Rotation about the axis of the largest (``'max'``) or the smallest moment (``'min'``).
+    sigma : {1, -1}
+        The sense of the motion.
+    G : float
+        The magnitude of the angular momentum.
+    k2 : float
+        The squared modulus of the Jacobi functions of the motion, in [0, 1).
+    n : numpy.ndarray
+        The unit vector of :math:`\mathbf G` in the orbital axes, shape (3,).
+    nu : float or None
+        The true anomaly, held during the average; None in the orbit-averaged limit (the average is also over
+        the orbit).
+    orbit : Orbit
+        The orbit.
+    mc : float, optional
+        :math:`1 - k^2` (given where it is known more precisely than ``1 - k2``, next to the separatrix).
+
+    Attributes
+    ----------
+    a : tuple of float
+        The moments in the order of the ``'max'``-kind formulas: ``(A1, A2, A3)``, ``(A3, A2, A1)`` for ``'min'``.
+    lab : tuple of int
+        The body axes in that order.
+    Q, T : float
+        :math:`G^2 - 2Ta_3` and the kinetic energy :math:`T` of the motion.
+    """
 
     body: Body
     kind: str
@@ -47,7 +81,20 @@ class State:
 
 @dataclass
 class Mean:
-    """Averaged effect of a torque: L = <C M> (orbital axes), dT, dk2; linear in the torque."""
+    r"""Averaged effect of a torque: L = <C M> (orbital axes), dT, dk2; linear in the torque (``a + b`` adds).
+
+    What a torque's :meth:`Torque.closed_mean` returns.
+
+    Parameters
+    ----------
+    L : numpy.ndarray
+        The mean torque :math:`\langle C\mathbf M\rangle` in the orbital axes, shape (3,):
+        :math:`d(G\mathbf n)/d\tau`.
+    dT : float
+        :math:`\langle\boldsymbol\omega\cdot\mathbf M\rangle = dT/d\tau`.
+    dk2 : float
+        :math:`dk^2/d\tau`.
+    """
 
     L: np.ndarray
     dT: float

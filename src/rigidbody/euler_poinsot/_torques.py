@@ -122,7 +122,7 @@ class LinearDrag(_ArrayEq):
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
         return -(np.asarray(omega, dtype=float) @ self.I.T)
 
-    def _closed(self, st: State) -> Mean:
+    def closed_mean(self, st: State) -> Mean:
         # (6) and (8): only the diagonal enters; the averaged drag is along G
         Id = tuple(float(self.I[i, i]) for i in st.lab)
         dG, dT = drag_rates_labelled(st.a, Id, st.G, st.k2)  # type: ignore[arg-type]  # a 3-tuple
@@ -204,7 +204,7 @@ class GravityGradient(_ArrayEq):
         out[..., 2] = f * (A2 - A1) * r1 * r2
         return out
 
-    def _closed(self, st: State) -> Mean:
+    def closed_mean(self, st: State) -> Mean:
         # (6): d n/dt = (3 w0^2/2G) f N* (e_r . n)(n x e_r); over the orbit <f e_r e_r^T> = mf diag(1/2, 1/2, 0)
         Ns = nstar_labelled(st.a, st.k2)
         n1, n2, n3 = (float(x) for x in st.n)
@@ -216,7 +216,7 @@ class GravityGradient(_ArrayEq):
         c = 1.5 * w2 * st.orbit.factor(st.nu) * Ns * (cn * n1 + sn * n2)
         return Mean(np.array([-c * n3 * sn, c * n3 * cn, c * (n1 * sn - n2 * cn)]), 0.0, 0.0)
 
-    def _check_setup(self, body: Body, orbit: Orbit) -> None:
+    def check_setup(self, body: Body, orbit: Orbit) -> None:
         _check_same_body("GravityGradient", self.body, body)
         if orbit != self.orbit:
             raise ValueError(f"GravityGradient was built for {self.orbit!r}, but the run is on {orbit!r}")
@@ -330,7 +330,7 @@ class ConstantTorque(_ArrayEq):
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
         return np.zeros(np.shape(omega)) + self.M
 
-    def _closed(self, st: State) -> Mean:
+    def closed_mean(self, st: State) -> Mean:
         w1 = _mean_omega1(st)
         M1 = float(self.M[st.lab[0]])
         a1, _, a3 = st.a
@@ -429,7 +429,7 @@ class ViscousCavity(_ArrayEq):
         wddot = (_cross(gdot, w) + _cross(g, wdot)) / A
         return wddot @ self.P + _cross(w, wdot @ self.P)
 
-    def _closed(self, st: State) -> Mean:
+    def closed_mean(self, st: State) -> Mean:
         a1, a2, a3 = st.a
         k2 = st.k2
         c_dn, c_sn, c_cn = amplitudes(st)
@@ -446,7 +446,7 @@ class ViscousCavity(_ArrayEq):
         c = (a2 - a3) / (a1 - a2)
         return Mean(np.zeros(3), float(dT), float(2.0 * dT * (c * a1 + k2 * a3) / st.Q))
 
-    def _check_setup(self, body: Body, orbit: Orbit) -> None:
+    def check_setup(self, body: Body, orbit: Orbit) -> None:
         _check_same_body("ViscousCavity", self.body, body)
 
 
@@ -493,7 +493,7 @@ class MagneticDipole(_ArrayEq):
         Bb = np.einsum("...ij,...i->...j", np.asarray(C, dtype=float), self.field_at(nu))  # C^T B
         return _cross(np.broadcast_to(self.m, Bb.shape), Bb)
 
-    def _closed(self, st: State) -> Mean:
+    def closed_mean(self, st: State) -> Mean:
         if st.nu is None:  # the field averaged over the orbit in time (Kepler's law)
             nu, w = nu_nodes(st.orbit.e, 256)
             B = w @ self.field_at(nu)
