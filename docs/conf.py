@@ -57,7 +57,8 @@ nb_merge_streams = True
 # no notebook shows widgets: no RequireJS or widget bundle from a CDN on the notebook pages
 nb_ipywidgets_js: dict[str, dict[str, str]] = {}
 
-# autosummary / autodoc / numpydoc
+# autosummary / autodoc / numpydoc; the function and class page templates add the gallery back-links
+templates_path = ["_templates"]
 autosummary_generate = True
 autosummary_imported_members = True
 autodoc_typehints = "none"  # numpydoc's Parameters sections carry the types
@@ -89,6 +90,11 @@ sphinx_gallery_conf = {
     "show_memory": False,
     "abort_on_example_error": True,
     "only_warn_on_example_error": False,
+    # "Examples using X" on the API pages: each example's calls of rigidbody names are listed, per name, in
+    # an ``<name>.examples`` file beside the autosummary pages; _templates/autosummary/{function,class}.rst
+    # include it (empty for a name no example calls)
+    "doc_module": ("rigidbody",),
+    "backreferences_dir": "api/generated",
 }
 
 html_theme = "furo"
