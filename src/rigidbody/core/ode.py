@@ -55,6 +55,21 @@ class Event:
         As in ``solve_ivp``: 0 any crossing, +1 upward, -1 downward.
     message : str
         Human-readable explanation written to ``Solution.message`` when the event ends the run.
+
+    See Also
+    --------
+    integrate, rigidbody.core.batch.integrate_batch : the integrators that take events.
+
+    Examples
+    --------
+    ``y = exp(-t)`` falls to one half at ``t = ln 2``; the terminal event ends the run there (status 1):
+
+    >>> import math
+    >>> from rigidbody.core.ode import Event, integrate
+    >>> half = Event(lambda t, y: y[0] - 0.5, "half", message="y fell to one half")
+    >>> sol = integrate(lambda t, y: [-y[0]], (0.0, 5.0), [1.0], events=[half])
+    >>> print(sol.status, sol.event, f"{sol.t_events['half'][0]:.9f} {math.log(2.0):.9f}")
+    1 half 0.693147181 0.693147181
     """
 
     fun: Callable[..., Any]
@@ -151,6 +166,25 @@ class Solution:
     -----
     :data:`OPTIONAL_FIELDS` declares the last three with their defaults; a result that does not record one
     gives its default when asked. :meth:`plot` draws with the module named by :attr:`plot_backend`.
+
+    See Also
+    --------
+    integrate, rigidbody.core.batch.integrate_batch : the integrators that return it.
+    build : how a producer makes one.
+
+    Examples
+    --------
+    ``dy/dt = -k y`` for ``k = 1, 2`` in one batch: member ``i`` ends at ``exp(-k_i)``, and ``sol[i]`` is its
+    single-run view:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.batch import integrate_batch
+    >>> k = np.array([1.0, 2.0])
+    >>> sol = integrate_batch(lambda t, y, k: -k[:, None] * y, (0.0, 1.0), np.ones((2, 1)), args=(k,))
+    >>> sol.batch_shape, sol.y.shape
+    ((2,), (2, 1, 101))
+    >>> print(f"{sol[1].y[0, -1]:.9f} {np.exp(-2.0):.9f}")
+    0.135335283 0.135335283
     """
 
     #: The module whose ``plot_solution(sol, ax=None, **kwargs)`` draws a result: looked up by name when
@@ -260,6 +294,21 @@ class Solution:
             For a producer that is not a non-empty string, or an unknown optional field.
         ValueError
             For a ``y``, ``message``, ``event`` or ``nfev`` whose shape does not fit the batch shape and ``time``.
+
+        See Also
+        --------
+        integrate : which builds its result this way.
+
+        Examples
+        --------
+        A one-field result whose fields are attributes:
+
+        >>> import numpy as np
+        >>> from rigidbody.core.ode import Solution
+        >>> sol = Solution.build(producer="demo", time=np.linspace(0.0, 1.0, 3), y=np.zeros((1, 3)), status=0,
+        ...                      message="done", fields={"x": np.array([1.0, 2.0, 3.0])})
+        >>> print(sol.producer, sol.status, sol.x[-1])
+        demo 0 3.0
         """
         if not isinstance(producer, str) or not producer:
             raise TypeError(f"producer must name the function that made the result (a non-empty str), got "
@@ -464,6 +513,24 @@ def integrate(
     Returns
     -------
     Solution
+
+    See Also
+    --------
+    rigidbody.core.batch.integrate_batch : many independent systems at once.
+    Event : a named event.
+    Solution : the result.
+
+    Examples
+    --------
+    ``dy/dt = -y`` from ``y(0) = 1`` reaches ``1/e`` at ``t = 1``; the named field ``x`` is the state:
+
+    >>> import math
+    >>> from rigidbody.core.ode import integrate
+    >>> sol = integrate(lambda t, y: [-y[0]], (0.0, 1.0), [1.0], fields=lambda t, y: {"x": y[0]})
+    >>> print(f"{sol.x[-1]:.9f} {math.exp(-1.0):.9f}")
+    0.367879441 0.367879441
+    >>> sol.status
+    0
     """
     if len(t_span) != 2:
         raise ValueError(f"t_span must be a pair (t0, t1), got {t_span!r}")
