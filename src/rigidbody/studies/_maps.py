@@ -23,19 +23,21 @@ _OWN = ("status", "message")
 
 class Field(NamedTuple):
     """A variable or coordinate of a :class:`StudyMap`: its dimension names and its values (what the readers
+    use of an ``xarray.DataArray``).
 
-    use of an ``xarray.DataArray``).See Also
-    use of an ``xarray.DataArray``).--------
-    use of an ``xarray.DataArray``).StudyMap : whose variables and coordinates these are.
+    See Also
+    --------
+    StudyMap : whose variables and coordinates these are.
+    grid_values : a variable's values in a chosen order of its dimensions.
 
-    use of an ``xarray.DataArray``).Examples
-    use of an ``xarray.DataArray``).--------
-    use of an ``xarray.DataArray``).>>> import numpy as np
-    use of an ``xarray.DataArray``).>>> from rigidbody.studies import Field
-    use of an ``xarray.DataArray``).>>> f = Field(dims=("eps",), values=np.array([0.01, 0.02]))
-    use of an ``xarray.DataArray``).>>> f.dims, f.values.shape
-    use of an ``xarray.DataArray``).(('eps',), (2,))
-    use of an ``xarray.DataArray``)."""
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody.studies import Field
+    >>> f = Field(dims=("eps",), values=np.array([0.01, 0.02]))
+    >>> f.dims, f.values.shape
+    (('eps',), (2,))
+    """
 
     dims: tuple[str, ...]
     values: np.ndarray
