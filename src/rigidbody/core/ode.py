@@ -367,6 +367,24 @@ class Solution:
             For a single run (it has no members) or a non-integer index.
         IndexError
             For an index outside ``batch_shape``.
+
+        See Also
+        --------
+        to_xarray : all members at once, as a Dataset.
+
+        Examples
+        --------
+        The last member of a batch of ``dy/dt = -k y`` (``k = 2``) ends at ``exp(-2)``:
+
+        >>> import numpy as np
+        >>> from rigidbody.core.batch import integrate_batch
+        >>> k = np.array([1.0, 2.0])
+        >>> sol = integrate_batch(lambda t, y, k: -k[:, None] * y, (0.0, 1.0), np.ones((2, 1)), args=(k,))
+        >>> last = sol.member(-1)
+        >>> last.batch_shape, last.status
+        ((), 0)
+        >>> print(f"{last.y[0, -1]:.9f} {np.exp(-2.0):.9f}")
+        0.135335283 0.135335283
         """
         if not self.batch_shape:
             raise TypeError("a single run has no members; index fields by name (sol['Gz'])")
@@ -448,6 +466,26 @@ class Solution:
         xarray.Dataset
             One variable per field (dimensions: the batch's, ``component`` for vector fields, then the
             time ``t`` or ``tau`` with the times as coordinate), ``status`` and ``message`` per member.
+
+        See Also
+        --------
+        member : one member as a single-run Solution.
+
+        Examples
+        --------
+        A batch of ``dy/dt = -k y`` with the batch axis named by its ``k``: at ``t = 1`` the field ``x`` is
+        ``exp(-k)``:
+
+        >>> import numpy as np
+        >>> from rigidbody.core.batch import integrate_batch
+        >>> k = np.array([1.0, 2.0])
+        >>> sol = integrate_batch(lambda t, y, k: -k[:, None] * y, (0.0, 1.0), np.ones((2, 1)), args=(k,),
+        ...                       t_eval=np.linspace(0.0, 1.0, 3), fields=lambda t, y: {"x": y[..., 0, :]})
+        >>> ds = sol.to_xarray(batch_dims={"k": k})
+        >>> dict(ds["x"].sizes)
+        {'k': 2, 't': 3}
+        >>> print(f"{float(ds['x'].sel(k=2.0, t=1.0)):.9f} {np.exp(-2.0):.9f}")
+        0.135335283 0.135335283
         """
         from ._xarray import solution_to_xarray
 
