@@ -162,15 +162,15 @@ class Solution:
     resonances : list
         Resonances met on the way (per member for a batch: an object array of lists). Default: empty.
 
-    Notes
-    -----
-    :data:`OPTIONAL_FIELDS` declares the last three with their defaults; a result that does not record one
-    gives its default when asked. :meth:`plot` draws with the module named by :attr:`plot_backend`.
-
     See Also
     --------
     integrate, rigidbody.core.batch.integrate_batch : the integrators that return it.
     build : how a producer makes one.
+
+    Notes
+    -----
+    :data:`OPTIONAL_FIELDS` declares the last three with their defaults; a result that does not record one
+    gives its default when asked. :meth:`plot` draws with the module named by :attr:`plot_backend`.
 
     Examples
     --------

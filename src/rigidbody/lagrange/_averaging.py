@@ -142,6 +142,11 @@ def averaged_slow_rates(
     n : int, optional
         Trapezoid nodes per nutation period.
 
+    See Also
+    --------
+    averaged_rhs : the same rates carried to the roots by (2.12)-(2.13).
+    V_matrix : the map between the two.
+
     Notes
     -----
     When the roots come from the cubic (``u123`` not given) and the pair is nearly double,
@@ -149,11 +154,6 @@ def averaged_slow_rates(
     ``F`` at the double root, taken as the local maximum ``(s1 - (s1^2 - 3 s2)^{1/2})/3`` of the cubic
     (1.6): that is smooth in (Gz, H, r), while ``u1, u2`` themselves carry ``sqrt(machine eps)``
     rounding noise there, which would stall a tight integrator. The error is ``O((u2 - u1)^2)``.
-
-    See Also
-    --------
-    averaged_rhs : the same rates carried to the roots by (2.12)-(2.13).
-    V_matrix : the map between the two.
 
     References
     ----------

@@ -109,6 +109,12 @@ def averaged(
         ``batch_shape + (len(tau_eval),)`` (``u``: ``batch_shape + (3, len(tau_eval))``), NaN after a
         member's end, and ``status``, ``message``, ``event`` are per member; ``sol[i]`` is member ``i``.
 
+    See Also
+    --------
+    simulate : the full equations (1.1) it approximates.
+    averaged_rhs : its right-hand side (2.15)-(2.16).
+    paper_solution : the paper's cases.
+
     Notes
     -----
     *What the tolerance controls.* The slow variables of a decaying top (``r``, ``Gz``, the energy above
@@ -127,12 +133,6 @@ def averaged(
     for :class:`LinearDrag`; the general engine evaluates its nutation means member by member); a member
     that needs the other chart continues in a follow-up batch of that chart from its switching point.
     Every member equals its single run within the tolerance.
-
-    See Also
-    --------
-    simulate : the full equations (1.1) it approximates.
-    averaged_rhs : its right-hand side (2.15)-(2.16).
-    paper_solution : the paper's cases.
 
     References
     ----------

@@ -51,17 +51,17 @@ class Top:
     ValueError
         If a parameter is not finite and positive, or ``C > 2A``.
 
+    See Also
+    --------
+    integrals : the first integrals (1.2) of its motion.
+    roots : the roots of the cubic (1.5) they determine.
+
     Notes
     -----
     Units are arbitrary but consistent; the paper's figures use ``A = 1.5, C = 1, mgl = 0.5``.
     ``C <= 2A`` is required: the moments of inertia of a real body about any point obey the triangle
     inequality (``2A - C = 2 * integral of z^2 dm >= 0`` on the symmetry axis), so ``C > 2A`` is no
     rigid body.
-
-    See Also
-    --------
-    integrals : the first integrals (1.2) of its motion.
-    roots : the roots of the cubic (1.5) they determine.
 
     References
     ----------

@@ -236,14 +236,14 @@ class VerticalPlaneTorque(Torque):
     F : callable (Gz, H, r, theta) -> float or array
     M3 : callable (Gz, H, r, theta) -> float or array, optional (default 0)
 
+    See Also
+    --------
+    ProportionalTorque, StarTorque : the other torque classes.
+
     Notes
     -----
     At ``sin(theta) = 0`` the direction (sin phi, cos phi) is undefined; :meth:`body_moments` then
     uses ``F = 0`` for the equatorial part (the torque is discontinuous there unless ``F -> 0``).
-
-    See Also
-    --------
-    ProportionalTorque, StarTorque : the other torque classes.
 
     References
     ----------
