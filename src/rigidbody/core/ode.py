@@ -165,7 +165,7 @@ class Solution:
     See Also
     --------
     integrate, rigidbody.core.batch.integrate_batch : the integrators that return it.
-    build : how a producer makes one.
+    Solution.build : how a producer makes one.
 
     Notes
     -----
@@ -370,7 +370,7 @@ class Solution:
 
         See Also
         --------
-        to_xarray : all members at once, as a Dataset.
+        Solution.to_xarray : all members at once, as a Dataset.
 
         Examples
         --------
@@ -469,7 +469,7 @@ class Solution:
 
         See Also
         --------
-        member : one member as a single-run Solution.
+        Solution.member : one member as a single-run Solution.
 
         Examples
         --------
