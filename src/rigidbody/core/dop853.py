@@ -153,6 +153,19 @@ def error_norm(xp: Any, h: Any, e5n: Any, e3n: Any, n: int) -> Any:
     float or ndarray
         ``h * e5n / sqrt((e5n + 0.01 * e3n) * n)``, 0 where both estimates vanish; a step is accepted where it
         is below 1. NaN where an estimate is not finite.
+
+    See Also
+    --------
+    step_factor : the step-size change it decides.
+
+    Examples
+    --------
+    Without a 3rd-order estimate (``e3n = 0``) the error is ``h (e5n / n)**(1/2)``, here ``0.1 · 1``:
+
+    >>> from rigidbody.core import dop853
+    >>> from rigidbody.core.kernel import SCALAR
+    >>> print(f"{dop853.error_norm(SCALAR, 0.1, 3.0, 0.0, 3):.6f}")
+    0.100000
     """
     return h * e5n / xp.sqrt(xp.maximum(e5n + 0.01 * e3n, _TINY) * n)
 
@@ -175,6 +188,22 @@ def step_factor(xp: Any, err: Any, after_rejection: Any) -> Any:
         Accepted: ``min(MAX_FACTOR, SAFETY * err**ERROR_EXPONENT)`` (``MAX_FACTOR`` for ``err == 0``; at most 1
         after a rejection). Rejected: ``max(MIN_FACTOR, SAFETY * err**ERROR_EXPONENT)``, ``MIN_FACTOR`` for a
         NaN error.
+
+    See Also
+    --------
+    error_norm : the error it takes.
+
+    Examples
+    --------
+    At ``err = 1`` the factor is the safety factor ``0.9``; an error-free step grows by ``MAX_FACTOR = 10``;
+    after a rejection an accepted step does not grow (``min(1, 0.9 · 0.5**(-1/8)) = 0.98...``):
+
+    >>> from rigidbody.core import dop853
+    >>> from rigidbody.core.kernel import SCALAR
+    >>> print(dop853.step_factor(SCALAR, 1.0, False), dop853.step_factor(SCALAR, 0.0, False))
+    0.9 10.0
+    >>> print(f"{dop853.step_factor(SCALAR, 0.5, True):.6f} {min(1.0, 0.9 * 0.5 ** (-1 / 8)):.6f}")
+    0.981457 0.981457
     """
     f = SAFETY * xp.maximum(err, _ERR_FLOOR) ** ERROR_EXPONENT  # NaN for a NaN error
     grow = xp.minimum(xp.where(after_rejection, 1.0, MAX_FACTOR), f)
@@ -199,6 +228,19 @@ def trial_step(xp: Any, d0: Any, d1: Any, span: Any) -> Any:
     -------
     float or ndarray
         ``0.01 * d0 / d1`` (``1e-6`` where either norm is below ``1e-5``), at most ``span``.
+
+    See Also
+    --------
+    initial_step : the first step it leads to.
+
+    Examples
+    --------
+    ``0.01 · 1 / 10``; and ``1e-6`` for a state of norm below ``1e-5``:
+
+    >>> from rigidbody.core import dop853
+    >>> from rigidbody.core.kernel import SCALAR
+    >>> print(dop853.trial_step(SCALAR, 1.0, 10.0, 5.0), dop853.trial_step(SCALAR, 1e-6, 10.0, 5.0))
+    0.001 1e-06
     """
     return xp.minimum(xp.where((d0 < 1e-5) | (d1 < 1e-5), 1e-6, 0.01 * d0 / xp.maximum(d1, 1e-5)), span)
 
@@ -227,6 +269,19 @@ def initial_step(xp: Any, h0: Any, d1: Any, d2: Any, span: Any, max_step: float)
         ``min(100 h0, (0.01 / max(d1, d2))**(1/8), span, max_step)``, with ``max(1e-6, 1e-3 h0)`` for the middle
         term where both norms are below 1e-15; the span where the heuristic gives no positive step (a
         non-finite trial derivative): the step-size control then shrinks it.
+
+    See Also
+    --------
+    trial_step : the trial step ``h0``.
+
+    Examples
+    --------
+    With ``d1 = d2 = 1`` the order-based step ``0.01**(1/8) = 0.56`` exceeds ``100 h0 = 0.1``, which is taken:
+
+    >>> from rigidbody.core import dop853
+    >>> from rigidbody.core.kernel import SCALAR
+    >>> print(f"{dop853.initial_step(SCALAR, 0.001, 1.0, 1.0, 5.0, float('inf')):.6f}")
+    0.100000
     """
     h1 = xp.where((d1 <= 1e-15) & (d2 <= 1e-15), xp.maximum(1e-6, h0 * 1e-3),
                   (0.01 / xp.maximum(xp.maximum(d1, d2), 1e-15)) ** (1.0 / (ERROR_ORDER + 1)))
@@ -260,6 +315,18 @@ def settle_events(xp: Any, roots: list[Any], terminal: list[bool], t_end: Any) -
         Index of the event that ends the step, -1 where none does.
     counted : list of bool or ndarray of bool
         Per event, whether its root counts.
+
+    Examples
+    --------
+    A terminal event (index 0) at ``0.3`` ends the step there; a non-terminal root at ``0.2`` (before it) counts, the
+    one that did not cross (NaN) does not:
+
+    >>> from rigidbody.core import dop853
+    >>> from rigidbody.core.kernel import SCALAR
+    >>> dop853.settle_events(SCALAR, [0.3, 0.2], [True, False], 1.0)
+    (0.3, 0, [True, True])
+    >>> dop853.settle_events(SCALAR, [0.3, float("nan")], [True, False], 1.0)
+    (0.3, 0, [True, False])
     """
     t_stop, stop = t_end, xp.where(t_end == t_end, -1, -1)
     for j, (r, term) in enumerate(zip(roots, terminal)):

@@ -55,6 +55,21 @@ class Event:
         As in ``solve_ivp``: 0 any crossing, +1 upward, -1 downward.
     message : str
         Human-readable explanation written to ``Solution.message`` when the event ends the run.
+
+    See Also
+    --------
+    integrate, rigidbody.core.batch.integrate_batch : the integrators that take events.
+
+    Examples
+    --------
+    ``y = exp(-t)`` falls to one half at ``t = ln 2``; the terminal event ends the run there (status 1):
+
+    >>> import math
+    >>> from rigidbody.core.ode import Event, integrate
+    >>> half = Event(lambda t, y: y[0] - 0.5, "half", message="y fell to one half")
+    >>> sol = integrate(lambda t, y: [-y[0]], (0.0, 5.0), [1.0], events=[half])
+    >>> print(sol.status, sol.event, f"{sol.t_events['half'][0]:.9f} {math.log(2.0):.9f}")
+    1 half 0.693147181 0.693147181
     """
 
     fun: Callable[..., Any]
@@ -147,10 +162,29 @@ class Solution:
     resonances : list
         Resonances met on the way (per member for a batch: an object array of lists). Default: empty.
 
+    See Also
+    --------
+    integrate, rigidbody.core.batch.integrate_batch : the integrators that return it.
+    Solution.build : how a producer makes one.
+
     Notes
     -----
     :data:`OPTIONAL_FIELDS` declares the last three with their defaults; a result that does not record one
     gives its default when asked. :meth:`plot` draws with the module named by :attr:`plot_backend`.
+
+    Examples
+    --------
+    ``dy/dt = -k y`` for ``k = 1, 2`` in one batch: member ``i`` ends at ``exp(-k_i)``, and ``sol[i]`` is its
+    single-run view:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.batch import integrate_batch
+    >>> k = np.array([1.0, 2.0])
+    >>> sol = integrate_batch(lambda t, y, k: -k[:, None] * y, (0.0, 1.0), np.ones((2, 1)), args=(k,))
+    >>> sol.batch_shape, sol.y.shape
+    ((2,), (2, 1, 101))
+    >>> print(f"{sol[1].y[0, -1]:.9f} {np.exp(-2.0):.9f}")
+    0.135335283 0.135335283
     """
 
     #: The module whose ``plot_solution(sol, ax=None, **kwargs)`` draws a result: looked up by name when
@@ -260,6 +294,21 @@ class Solution:
             For a producer that is not a non-empty string, or an unknown optional field.
         ValueError
             For a ``y``, ``message``, ``event`` or ``nfev`` whose shape does not fit the batch shape and ``time``.
+
+        See Also
+        --------
+        integrate : which builds its result this way.
+
+        Examples
+        --------
+        A one-field result whose fields are attributes:
+
+        >>> import numpy as np
+        >>> from rigidbody.core.ode import Solution
+        >>> sol = Solution.build(producer="demo", time=np.linspace(0.0, 1.0, 3), y=np.zeros((1, 3)), status=0,
+        ...                      message="done", fields={"x": np.array([1.0, 2.0, 3.0])})
+        >>> print(sol.producer, sol.status, sol.x[-1])
+        demo 0 3.0
         """
         if not isinstance(producer, str) or not producer:
             raise TypeError(f"producer must name the function that made the result (a non-empty str), got "
@@ -318,6 +367,24 @@ class Solution:
             For a single run (it has no members) or a non-integer index.
         IndexError
             For an index outside ``batch_shape``.
+
+        See Also
+        --------
+        Solution.to_xarray : all members at once, as a Dataset.
+
+        Examples
+        --------
+        The last member of a batch of ``dy/dt = -k y`` (``k = 2``) ends at ``exp(-2)``:
+
+        >>> import numpy as np
+        >>> from rigidbody.core.batch import integrate_batch
+        >>> k = np.array([1.0, 2.0])
+        >>> sol = integrate_batch(lambda t, y, k: -k[:, None] * y, (0.0, 1.0), np.ones((2, 1)), args=(k,))
+        >>> last = sol.member(-1)
+        >>> last.batch_shape, last.status
+        ((), 0)
+        >>> print(f"{last.y[0, -1]:.9f} {np.exp(-2.0):.9f}")
+        0.135335283 0.135335283
         """
         if not self.batch_shape:
             raise TypeError("a single run has no members; index fields by name (sol['Gz'])")
@@ -399,6 +466,26 @@ class Solution:
         xarray.Dataset
             One variable per field (dimensions: the batch's, ``component`` for vector fields, then the
             time ``t`` or ``tau`` with the times as coordinate), ``status`` and ``message`` per member.
+
+        See Also
+        --------
+        Solution.member : one member as a single-run Solution.
+
+        Examples
+        --------
+        A batch of ``dy/dt = -k y`` with the batch axis named by its ``k``: at ``t = 1`` the field ``x`` is
+        ``exp(-k)``:
+
+        >>> import numpy as np
+        >>> from rigidbody.core.batch import integrate_batch
+        >>> k = np.array([1.0, 2.0])
+        >>> sol = integrate_batch(lambda t, y, k: -k[:, None] * y, (0.0, 1.0), np.ones((2, 1)), args=(k,),
+        ...                       t_eval=np.linspace(0.0, 1.0, 3), fields=lambda t, y: {"x": y[..., 0, :]})
+        >>> ds = sol.to_xarray(batch_dims={"k": k})
+        >>> dict(ds["x"].sizes)
+        {'k': 2, 't': 3}
+        >>> print(f"{float(ds['x'].sel(k=2.0, t=1.0)):.9f} {np.exp(-2.0):.9f}")
+        0.135335283 0.135335283
         """
         from ._xarray import solution_to_xarray
 
@@ -464,6 +551,24 @@ def integrate(
     Returns
     -------
     Solution
+
+    See Also
+    --------
+    rigidbody.core.batch.integrate_batch : many independent systems at once.
+    Event : a named event.
+    Solution : the result.
+
+    Examples
+    --------
+    ``dy/dt = -y`` from ``y(0) = 1`` reaches ``1/e`` at ``t = 1``; the named field ``x`` is the state:
+
+    >>> import math
+    >>> from rigidbody.core.ode import integrate
+    >>> sol = integrate(lambda t, y: [-y[0]], (0.0, 1.0), [1.0], fields=lambda t, y: {"x": y[0]})
+    >>> print(f"{sol.x[-1]:.9f} {math.exp(-1.0):.9f}")
+    0.367879441 0.367879441
+    >>> sol.status
+    0
     """
     if len(t_span) != 2:
         raise ValueError(f"t_span must be a pair (t0, t1), got {t_span!r}")

@@ -53,6 +53,23 @@ def modulus(u1: Any, u2: Any, u3: Any) -> tuple[Any, Any]:
     k2, mc : float or numpy.ndarray
         The squared modulus ``k^2`` of the nutation (1.3)-(1.4) and its complement, both in ``[0, 1]``
         for admissible roots.
+
+    See Also
+    --------
+    nutation_frequency : the frequency of the same elliptic phase (1.3).
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (1.4).
+
+    Examples
+    --------
+    Case 2's roots ``(0, 0.5, 2)`` (paper's table): ``k² = 0.5/2``, ``mc = 1.5/2``:
+
+    >>> from rigidbody import lagrange
+    >>> k2, mc = lagrange.modulus(0.0, 0.5, 2.0)
+    >>> print(f"{k2:.6f} {mc:.6f}")
+    0.250000 0.750000
     """
     d = u3 - u1
     return (u2 - u1) / d, (u3 - u2) / d
@@ -79,6 +96,27 @@ def nutation_mean(g: Any, u1: float, u2: float, u3: float, n: int | None = None)
     n : int, optional
         Nodes of the trapezoid rule per period ``2K`` (default
         :func:`rigidbody.core.averaging.n_nodes`, 1e-13 for ``sn^2``-type integrands).
+
+    See Also
+    --------
+    averaged_slow_rates : the means of the rates (2.7) it forms.
+    modulus : the modulus of the nutation.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (1.3), (2.7).
+
+    Examples
+    --------
+    Over the nutation (1.3), ``u = u1 + (u2 - u1) sn²``, whose mean is ``u1 + (u2 - u1)(1 - E/K)/k²``;
+    for case 2's roots ``(0, 0.5, 2)``, ``k² = 1/4``:
+
+    >>> from scipy.special import ellipe, ellipk
+    >>> from rigidbody import lagrange
+    >>> print(f"{lagrange.nutation_mean(lambda u: u, 0.0, 0.5, 2.0):.6f}")
+    0.258980
+    >>> print(f"{0.5 * (1 - ellipe(0.25) / ellipk(0.25)) / 0.25:.6f}")
+    0.258980
     """
     u = _grid_u(u1, u2, u3, n)
     res = np.asarray(g(u), dtype=float).mean(axis=-1)
@@ -104,6 +142,11 @@ def averaged_slow_rates(
     n : int, optional
         Trapezoid nodes per nutation period.
 
+    See Also
+    --------
+    averaged_rhs : the same rates carried to the roots by (2.12)-(2.13).
+    V_matrix : the map between the two.
+
     Notes
     -----
     When the roots come from the cubic (``u123`` not given) and the pair is nearly double,
@@ -111,6 +154,22 @@ def averaged_slow_rates(
     ``F`` at the double root, taken as the local maximum ``(s1 - (s1^2 - 3 s2)^{1/2})/3`` of the cubic
     (1.6): that is smooth in (Gz, H, r), while ``u1, u2`` themselves carry ``sqrt(machine eps)``
     rounding noise there, which would stall a tight integrator. The error is ``O((u2 - u1)^2)``.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (2.7).
+
+    Examples
+    --------
+    Under the linear drag (3.1) the spin decays as ``r0 exp(-b tau / C)`` (3.3): ``dr/dtau = -b r / C =
+    -0.1 sqrt(3)`` in case 2:
+
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> Gz, H, r = lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5])
+    >>> dGz, dH, dr = lagrange.averaged_slow_rates(top, lagrange.PAPER_DRAG, Gz, H, r)
+    >>> print(f"{dr:.6f}")
+    -0.173205
     """
     if u123 is None:
         u1, u2, u3 = roots(top, Gz, H, r)
@@ -150,6 +209,31 @@ def V_matrix(top: Top, u1: Any, u2: Any, u3: Any, Gz: Any, r: Any) -> np.ndarray
     ------
     ValueError
         Unless ``u1 < u2 < u3`` (the determinant of (2.10) vanishes otherwise).
+
+    See Also
+    --------
+    averaged_slow_rates : the rates F it maps.
+    averaged_rhs : the product V F.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (2.12)-(2.13).
+
+    Examples
+    --------
+    ``V`` maps the averaged rates of ``(Gz, H, r)`` to those of the roots: for the drag of case 2 the
+    product is the closed form (3.4):
+
+    >>> import numpy as np
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> Gz, H, r = lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5])
+    >>> V = lagrange.V_matrix(top, 0.0, 0.5, 2.0, Gz, r)
+    >>> F = lagrange.averaged_slow_rates(top, lagrange.PAPER_DRAG, Gz, H, r)
+    >>> print(" ".join(f"{x:.6f}" for x in V @ np.array(F)))
+    -0.051796 -0.040170 -0.348204
+    >>> print(" ".join(f"{x:.6f}" for x in lagrange.drag_rhs(top, lagrange.PAPER_DRAG, 0.0, 0.5, 2.0)))
+    -0.051796 -0.040170 -0.348204
     """
     top = check_top(top)
     _check_roots(u1, u2, u3)
@@ -209,6 +293,30 @@ def averaged_rhs(
     Returns
     -------
     U1, U2, U3 : float
+
+    See Also
+    --------
+    drag_rhs : the closed form (3.4) for the linear drag.
+    averaged : integrates this system.
+    has_closed_form : whether a torque supplies a closed form.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (2.15)-(2.16).
+
+    Examples
+    --------
+    For the drag (3.1) the quadrature route (``closed_form=False``) and the closed form (3.4) agree;
+    case 2's roots ``(0, 0.5, 2)``:
+
+    >>> from rigidbody import lagrange
+    >>> top, drag = lagrange.PAPER_TOP, lagrange.PAPER_DRAG
+    >>> by_quadrature = lagrange.averaged_rhs(top, drag, 0.0, 0.5, 2.0, closed_form=False)
+    >>> closed = lagrange.averaged_rhs(top, drag, 0.0, 0.5, 2.0, closed_form=True)
+    >>> print(" ".join(f"{x:.6f}" for x in by_quadrature))
+    -0.051796 -0.040170 -0.348204
+    >>> print(" ".join(f"{x:.6f}" for x in closed))
+    -0.051796 -0.040170 -0.348204
     """
     top = check_top(top)
     torque = check_torque(torque)
@@ -254,6 +362,29 @@ def drag_rhs(
     ValueError
         Unless ``u1 < u2 < u3`` (regular precession ``u1 = u2`` and the separatrix ``u2 = u3`` are
         singular points of (3.4)).
+
+    See Also
+    --------
+    averaged_rhs : the general averaged system (2.15)-(2.16).
+    LinearDrag : the torque (3.1).
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (3.4).
+
+    Examples
+    --------
+    Vieta (1.6) and ``r = r0 exp(-b tau/C)`` (3.3) fix one combination of the rates: the rates of the
+    roots sum to ``ds1/dtau``, which :func:`vieta` applied to the slow rates (2.7) gives as well. In case 2:
+
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> Gz, H, r = lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5])
+    >>> du = lagrange.drag_rhs(top, lagrange.PAPER_DRAG, 0.0, 0.5, 2.0)
+    >>> dGz, dH, dr = lagrange.averaged_slow_rates(top, lagrange.PAPER_DRAG, Gz, H, r)
+    >>> ds1 = dH / top.mgl - top.C * r * dr / top.mgl + top.C**2 * r * dr / (top.A * top.mgl)
+    >>> print(f"{sum(du):.6f} {ds1:.6f}")
+    -0.440170 -0.440170
     """
     A, C, mgl = top.A, top.C, top.mgl
     a, b = drag.a, drag.b

@@ -109,6 +109,12 @@ def averaged(
         ``batch_shape + (len(tau_eval),)`` (``u``: ``batch_shape + (3, len(tau_eval))``), NaN after a
         member's end, and ``status``, ``message``, ``event`` are per member; ``sol[i]`` is member ``i``.
 
+    See Also
+    --------
+    simulate : the full equations (1.1) it approximates.
+    averaged_rhs : its right-hand side (2.15)-(2.16).
+    paper_solution : the paper's cases.
+
     Notes
     -----
     *What the tolerance controls.* The slow variables of a decaying top (``r``, ``Gz``, the energy above
@@ -127,6 +133,26 @@ def averaged(
     for :class:`LinearDrag`; the general engine evaluates its nutation means member by member); a member
     that needs the other chart continues in a follow-up batch of that chart from its switching point.
     Every member equals its single run within the tolerance.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`,
+    eqs. (2.15)-(2.16), (3.3)-(3.4).
+
+    Examples
+    --------
+    Case 2 under the drag (3.1): the roots start at the paper's table ``(0, 0.5, 2)`` and the spin
+    follows ``r = r0 exp(-b tau / C)`` (3.3), ``sqrt(3)/e`` at ``tau = 10``:
+
+    >>> import math
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> initial = lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5])
+    >>> sol = lagrange.averaged(top, lagrange.PAPER_DRAG, initial, (0.0, 10.0))
+    >>> print(f"{sol.u2[0]:.6f} {sol.u3[0]:.6f}")
+    0.500000 2.000000
+    >>> print(f"{sol.r[-1]:.6f} {math.sqrt(3) / math.e:.6f}")
+    0.637186 0.637186
     """
     top = check_top(top)
     torque = check_torque(torque)

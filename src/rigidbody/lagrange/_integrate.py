@@ -111,6 +111,28 @@ def simulate(
         ``t``, ``tau``, ``p``, ``q``, ``r``, ``phi``, ``theta``, ``psi``, ``u`` (= cos theta), ``Gz``,
         ``H`` (first integrals (1.2) along the motion: the slow variables), ``quat`` (4, n); for a batch each
         with the leading ``batch_shape`` and per-member ``status``, ``message``.
+
+    See Also
+    --------
+    averaged : the averaged system (2.15) in slow time.
+    lagrange_motion : the unperturbed motion (``eps = 0``).
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (1.1), (3.1), (3.3).
+
+    Examples
+    --------
+    For a symmetric top the axial Euler equation is ``C dr/dt = eps M3 = -eps b r``, so under the drag
+    (3.1) the full motion keeps ``r = r0 exp(-eps b t / C)`` (3.3) exactly; case 2 with ``eps = 0.01`` to
+    ``t = 10`` gives ``sqrt(3) exp(-0.01)``:
+
+    >>> import math
+    >>> from rigidbody import lagrange
+    >>> state0 = lagrange.paper_initial_state(2)
+    >>> sol = lagrange.simulate(lagrange.PAPER_TOP, lagrange.PAPER_DRAG, 0.01, state0, (0.0, 10.0))
+    >>> print(f"{sol.r[-1]:.6f} {math.sqrt(3) * math.exp(-0.01):.6f}")
+    1.714817 1.714817
     """
     top = check_top(top)
     torque = check_torque(torque)

@@ -36,6 +36,24 @@ def nutation_frequency(top: Top, u1: float, u3: float) -> float:
     ------
     ValueError
         If ``u3 < u1`` (negative radicand, from :func:`math.sqrt`).
+
+    See Also
+    --------
+    modulus : the modulus ``k`` of the same phase (1.4).
+    lagrange_motion : the motion (1.3) it paces.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (1.3).
+
+    Examples
+    --------
+    Case 2's roots ``(0, 0.5, 2)`` with ``mgl = 0.5``, ``A = 1.5``: ``alpha = (0.5 · 2 / 3)^{1/2} =
+    1/sqrt(3)``:
+
+    >>> from rigidbody import lagrange
+    >>> print(f"{lagrange.nutation_frequency(lagrange.PAPER_TOP, 0.0, 2.0):.6f}")
+    0.577350
     """
     return math.sqrt(top.mgl * (u3 - u1) / (2.0 * top.A))
 
@@ -72,6 +90,27 @@ def lagrange_motion(
     rigidbody.core.ode.Solution
         ``t``, ``u``, ``theta``, ``phi``, ``psi``, and the constants as attributes of ``fields``:
         ``u1, u2, u3, k2, alpha, beta`` (scalars, stored as 0-d arrays).
+
+    See Also
+    --------
+    simulate : the full equations (1.1), with a torque.
+    roots : the turning points ``u1, u2`` of the nutation.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (1.3)-(1.4), (1.7).
+
+    Examples
+    --------
+    The nutation of case 2 runs between the roots ``u1 = 0`` and ``u2 = 0.5`` of the paper's table
+    (``u = cos theta``: the axis swings between 90 and 60 degrees):
+
+    >>> import numpy as np
+    >>> from rigidbody import lagrange
+    >>> sol = lagrange.lagrange_motion(lagrange.PAPER_TOP, lagrange.paper_initial_state(2),
+    ...                                np.linspace(0.0, 20.0, 2001))
+    >>> print(f"{round(sol.u.min(), 6) + 0.0:.6f} {sol.u.max():.6f}")  # + 0.0: no "-0"
+    0.000000 0.500000
     """
     top = check_top(top)
     p0, q0, r0, phi0, th0, psi0 = (float(x) for x in state0)

@@ -62,6 +62,27 @@ def paper_initial_state(case: int) -> tuple[float, float, float, float, float, f
     ------
     ValueError
         If ``case`` is not 1, 2 or 3.
+
+    See Also
+    --------
+    paper_solution : the averaged solution from this state.
+    integrals : its first integrals (1.2).
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, section 3.
+
+    Examples
+    --------
+    Case 2 is spun at ``r0 = sqrt(3)`` and tilted by 60 degrees; its roots are the paper's ``(0, 0.5, 2)``:
+
+    >>> import math
+    >>> from rigidbody import lagrange
+    >>> p, q, r, phi, theta, psi = lagrange.paper_initial_state(2)
+    >>> print(f"{r:.6f} {math.degrees(theta):.6f}")
+    1.732051 60.000000
+    >>> lagrange.PAPER_TABLE[2]
+    (0.0, 0.5, 2.0)
     """
     if case not in PAPER_CASES:
         raise ValueError(f"case must be 1, 2 or 3, got {case!r}")
@@ -96,6 +117,28 @@ def paper_solution(case: int, n_out: int = 1501, tau_end: float | None = None) -
     ------
     ValueError
         If ``case`` is not 1, 2 or 3.
+
+    See Also
+    --------
+    averaged : the integrator it calls.
+    paper_initial_state : the initial states.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (3.3)-(3.4), figs 1-3.
+
+    Examples
+    --------
+    The spin follows ``r = r0 exp(-b tau / C)`` (3.3) exactly: at ``tau = 10``, ``sqrt(3)/e``; the
+    roots start at the paper's table ``(0, 0.5, 2)``:
+
+    >>> import math
+    >>> from rigidbody import lagrange
+    >>> sol = lagrange.paper_solution(2, n_out=11, tau_end=10.0)
+    >>> print(f"{sol.r[-1]:.6f} {math.sqrt(3) / math.e:.6f}")
+    0.637186 0.637186
+    >>> print(f"{sol.u2[0]:.6f} {sol.u3[0]:.6f}")
+    0.500000 2.000000
     """
     state = paper_initial_state(case)
     T = PAPER_TAU_END[case] if tau_end is None else float(tau_end)

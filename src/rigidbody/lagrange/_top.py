@@ -51,12 +51,34 @@ class Top:
     ValueError
         If a parameter is not finite and positive, or ``C > 2A``.
 
+    See Also
+    --------
+    integrals : the first integrals (1.2) of its motion.
+    roots : the roots of the cubic (1.5) they determine.
+
     Notes
     -----
     Units are arbitrary but consistent; the paper's figures use ``A = 1.5, C = 1, mgl = 0.5``.
     ``C <= 2A`` is required: the moments of inertia of a real body about any point obey the triangle
     inequality (``2A - C = 2 * integral of z^2 dm >= 0`` on the symmetry axis), so ``C > 2A`` is no
     rigid body.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (1.1).
+
+    Examples
+    --------
+    The paper's top (section 3); a body with ``C > 2A`` is refused:
+
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.Top(A=1.5, C=1.0, mgl=0.5)
+    >>> top == lagrange.PAPER_TOP
+    True
+    >>> lagrange.Top(A=1.0, C=3.0, mgl=0.5)
+    Traceback (most recent call last):
+        ...
+    ValueError: Top.C must satisfy C <= 2A ...
     """
 
     A: float
@@ -104,6 +126,25 @@ def integrals(top: Top, p: Any, q: Any, r: Any, phi: Any, theta: Any) -> tuple[A
     Gz, H, r
         Vertical component of the angular momentum, total energy, axial spin (broadcast arrays,
         or floats for scalar input).
+
+    See Also
+    --------
+    roots : the roots of the cubic (1.5) from these integrals.
+    vieta : their symmetric functions (1.6).
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (1.2).
+
+    Examples
+    --------
+    The paper's case 2 (spun about the axis, ``r = sqrt(3)``, tilted by 60 degrees): ``Gz = C r cos 60° =
+    sqrt(3)/2`` and ``H = C r²/2 + mgl cos 60° = 3/2 + 1/4``:
+
+    >>> from rigidbody import lagrange
+    >>> Gz, H, r = lagrange.integrals(lagrange.PAPER_TOP, *lagrange.paper_initial_state(2)[:5])
+    >>> print(f"{Gz:.6f} {H:.6f} {r:.6f}")
+    0.866025 1.750000 1.732051
     """
     top = check_top(top)
     names = ("p", "q", "r", "phi", "theta")
@@ -131,6 +172,26 @@ def vieta(top: Top, Gz: Any, H: Any, r: Any) -> tuple[Any, Any, Any]:
         s_1 = \frac{H}{mgl} - \frac{Cr^2}{2mgl} + \frac{C^2r^2}{2Amgl},\quad
         s_2 = \frac{G_zCr}{Amgl} - 1,\quad
         s_3 = -\frac{H}{mgl} + \frac{Cr^2}{2mgl} + \frac{G_z^2}{2Amgl}.
+
+    See Also
+    --------
+    roots : the roots themselves.
+    cubic_coefficients : the same cubic in monomial form.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (1.6).
+
+    Examples
+    --------
+    For case 2 the paper's table gives the roots ``(0, 0.5, 2)``, whose symmetric functions are
+    ``(2.5, 1, 0)``:
+
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> s = lagrange.vieta(top, *lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5]))
+    >>> print(" ".join(f"{round(x, 6) + 0.0:.6f}" for x in s))  # + 0.0: no "-0"
+    2.500000 1.000000 0.000000
     """
     A, C, mgl = top.A, top.C, top.mgl
     s1 = H / mgl - C * r * r / (2 * mgl) + C * C * r * r / (2 * A * mgl)
@@ -157,6 +218,25 @@ def cubic_coefficients(top: Top, Gz: float, H: float, r: float) -> tuple[float, 
     c3, c2, c1, c0 : float
         ``c3 = 2mgl/A``, ``c2 = -c3 s1``, ``c1 = c3 s2``, ``c0 = -c3 s3``, so that
         ``Q(u) = c3 u^3 + c2 u^2 + c1 u + c0`` (units of 1/time^2, as ``u'^2``).
+
+    See Also
+    --------
+    vieta : the symmetric functions of the roots (1.6).
+    roots : the roots.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (1.5).
+
+    Examples
+    --------
+    Case 2 has a root at ``u = 0`` (paper's table ``(0, 0.5, 2)``), so the constant coefficient vanishes:
+
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> c = lagrange.cubic_coefficients(top, *lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5]))
+    >>> print(f"{round(c[-1], 6) + 0.0:.6f}")  # + 0.0: no "-0"
+    0.000000
     """
     s1, s2, s3 = vieta(top, Gz, H, r)
     f = 2.0 * top.mgl / top.A
@@ -290,6 +370,26 @@ def roots(top: Top, Gz: Any, H: Any, r: Any) -> tuple[Any, Any, Any]:
     ------
     ValueError
         If (Gz, H, r) is not attainable by a real motion (Q(u) < 0 on all of [-1, 1]).
+
+    See Also
+    --------
+    integrals : the integrals (1.2) from a state.
+    from_roots : the inverse map (2.8).
+    vieta : the symmetric functions (1.6).
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (1.5)-(1.6).
+
+    Examples
+    --------
+    The paper's table of initial roots for case 2 is ``(0, 0.5, 2)``:
+
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> u = lagrange.roots(top, *lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5]))
+    >>> print(" ".join(f"{round(x, 6) + 0.0:.6f}" for x in u))  # + 0.0: no "-0"
+    0.000000 0.500000 2.000000
     """
     top = check_top(top)
     Gz, H, r = np.broadcast_arrays(*(finite_array(x, name) for x, name in zip((Gz, H, r), ("Gz", "H", "r"))))
@@ -323,6 +423,22 @@ def root_radical(u1: Any, u2: Any, u3: Any) -> Any:
     -------
     float or numpy.ndarray
         The radical ``R >= 0`` (dimensionless).
+
+    See Also
+    --------
+    from_roots : where ``R`` enters (2.8).
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (2.8).
+
+    Examples
+    --------
+    For case 2's roots ``(0, 0.5, 2)``: ``R² = 1 · 0.75 · 3 = 2.25``:
+
+    >>> from rigidbody import lagrange
+    >>> print(f"{lagrange.root_radical(0.0, 0.5, 2.0):.6f}")
+    1.500000
     """
     f = np.maximum(1.0 - u1 * u1, 0.0) * np.maximum(1.0 - u2 * u2, 0.0) * np.maximum(u3 * u3 - 1.0, 0.0)
     return np.sqrt(f)
@@ -354,6 +470,25 @@ def from_roots(
     Returns
     -------
     Gz, H, r
+
+    See Also
+    --------
+    roots : the inverse map.
+    deltas : the signs that select the branch.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (2.8).
+
+    Examples
+    --------
+    From case 2's tabulated roots ``(0, 0.5, 2)`` back to its integrals ``(sqrt(3)/2, 7/4, sqrt(3))``:
+
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> Gz, H, r = lagrange.from_roots(top, 0.0, 0.5, 2.0, delta1=-1, delta2=1)
+    >>> print(f"{Gz:.6f} {H:.6f} {r:.6f}")
+    0.866025 1.750000 1.732051
     """
     top = check_top(top)
     if all(isinstance(x, (float, int)) for x in (u1, u2, u3, delta1, delta2)):
@@ -427,6 +562,24 @@ def deltas(top: Top, Gz: Any, r: Any) -> tuple[Any, Any]:
     -------
     delta1, delta2 : float or numpy.ndarray
         Each +1 or -1; floats for scalar input, else arrays broadcast from ``Gz`` and ``r``.
+
+    See Also
+    --------
+    from_roots : which takes these signs.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (2.8).
+
+    Examples
+    --------
+    For case 2, ``Gz = sqrt(3)/2 < C r = sqrt(3)`` and ``r > 0``, so ``delta1 = -1``, ``delta2 = +1``:
+
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> Gz, H, r = lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5])
+    >>> lagrange.deltas(top, Gz, r)
+    (-1.0, 1.0)
     """
     w = np.asarray(Gz, dtype=float) ** 2 - (top.C * np.asarray(r, dtype=float)) ** 2
     d1 = np.where(w >= 0.0, 1.0, -1.0)

@@ -89,7 +89,35 @@ def _body_slow(top: Top, p: Any, q: Any, r: Any, g1: Any, g2: Any, g3: Any) -> t
 
 
 class Torque:
-    """Base class of admissible perturbing torques (see the module docstring for the protocol)."""
+    """Base class of admissible perturbing torques (see the module docstring for the protocol).
+
+    See Also
+    --------
+    ProportionalTorque, VerticalPlaneTorque, StarTorque, LinearDrag : the torques of the paper.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (2.2)-(2.7).
+
+    Examples
+    --------
+    A torque gives the averaged system the rates F1, F2, F3 of (2.7) of ``(Gz, H, r)`` at ``cos theta = u``.
+    An axial torque ``M3 = -b r`` turns the vertical momentum at ``M3 u``, does work ``M3 r`` and spins down
+    at ``M3 / C``; averaged over case 2's nutation it gives the rates of the :class:`StarTorque` example,
+    ``dH/dtau = -b r² = -0.3`` and ``dr/dtau = -0.1 sqrt(3)``:
+
+    >>> import numpy as np
+    >>> from rigidbody import lagrange
+    >>> class Axial(lagrange.Torque):
+    ...     def slow_rates(self, top, Gz, H, r, u):
+    ...         M3 = -0.1 * r + np.zeros_like(u)
+    ...         return M3 * u, M3 * r, M3 / top.C
+    >>> top = lagrange.PAPER_TOP
+    >>> Gz, H, r = lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5])
+    >>> dGz, dH, dr = lagrange.averaged_slow_rates(top, Axial(), Gz, H, r)
+    >>> print(f"{dH:.6f} {dr:.6f}")
+    -0.300000 -0.173205
+    """
 
     def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray) -> tuple[np.ndarray, ...]:
         """The (corrected) right-hand sides F1, F2, F3 of (2.7) at ``cos(theta) = u``."""
@@ -138,6 +166,31 @@ class ProportionalTorque(Torque):
         The common factor of the equatorial components (2.4), (2.6).
     M3 : callable (Gz, H, r, theta) -> float or array, optional
         The axial component ``M3*`` (default 0).
+
+    See Also
+    --------
+    LinearDrag : its member ``f = -a``, ``M3* = -b r`` (3.1), with a closed form.
+    VerticalPlaneTorque, StarTorque : the other torque classes.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (2.4), (2.6).
+
+    Examples
+    --------
+    With ``f = -a`` and ``M3* = -b r`` it is the linear drag (3.1), so its averaged system, found by
+    quadrature, is the closed form (3.4):
+
+    >>> from rigidbody import lagrange
+    >>> top, drag = lagrange.PAPER_TOP, lagrange.PAPER_DRAG
+    >>> torque = lagrange.ProportionalTorque(lambda Gz, H, r, theta: -0.125 + 0 * theta,
+    ...                                      lambda Gz, H, r, theta: -0.1 * r + 0 * theta)
+    >>> quadrature = lagrange.averaged_rhs(top, torque, 0.0, 0.5, 2.0)
+    >>> closed = lagrange.drag_rhs(top, drag, 0.0, 0.5, 2.0)
+    >>> print(" ".join(f"{a:.6f}" for a in quadrature))
+    -0.051796 -0.040170 -0.348204
+    >>> print(" ".join(f"{b:.6f}" for b in closed))
+    -0.051796 -0.040170 -0.348204
     """
 
     def __init__(self, f: SlowFunction, M3: SlowFunction | None = None) -> None:
@@ -183,10 +236,32 @@ class VerticalPlaneTorque(Torque):
     F : callable (Gz, H, r, theta) -> float or array
     M3 : callable (Gz, H, r, theta) -> float or array, optional (default 0)
 
+    See Also
+    --------
+    ProportionalTorque, StarTorque : the other torque classes.
+
     Notes
     -----
     At ``sin(theta) = 0`` the direction (sin phi, cos phi) is undefined; :meth:`body_moments` then
     uses ``F = 0`` for the equatorial part (the torque is discontinuous there unless ``F -> 0``).
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (2.5).
+
+    Examples
+    --------
+    A purely axial torque ``M3* = -b r`` (``F = 0``) does work ``M3 r = -b r²``, so in case 2
+    (``r² = 3``, ``b = 0.1``) ``dH/dtau = -0.3`` and ``dr/dtau = -b r / C = -0.1 sqrt(3)``:
+
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> Gz, H, r = lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5])
+    >>> torque = lagrange.VerticalPlaneTorque(lambda Gz, H, r, theta: 0 * theta,
+    ...                                       lambda Gz, H, r, theta: -0.1 * r + 0 * theta)
+    >>> dGz, dH, dr = lagrange.averaged_slow_rates(top, torque, Gz, H, r)
+    >>> print(f"{dH:.6f} {dr:.6f}")
+    -0.300000 -0.173205
     """
 
     def __init__(self, F: SlowFunction, M3: SlowFunction | None = None) -> None:
@@ -237,6 +312,28 @@ class StarTorque(Torque):
     ----------
     M1s, M2s, M3s : callable (Gz, H, r, theta) -> float or array
         ``M1* = M1 sin(phi) + M2 cos(phi)``, ``M2* = M1 p + M2 q``, ``M3* = M3``.
+
+    See Also
+    --------
+    ProportionalTorque, VerticalPlaneTorque : torque classes that also give body moments for :func:`simulate`.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (2.2).
+
+    Examples
+    --------
+    A purely axial torque ``M3* = -b r`` does work ``M3 r = -b r²``: in case 2 (``r² = 3``,
+    ``b = 0.1``) ``dH/dtau = -0.3`` and ``dr/dtau = -b r / C = -0.1 sqrt(3)``:
+
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> Gz, H, r = lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5])
+    >>> zero = lambda Gz, H, r, theta: 0 * theta
+    >>> torque = lagrange.StarTorque(zero, zero, lambda Gz, H, r, theta: -0.1 * r + 0 * theta)
+    >>> dGz, dH, dr = lagrange.averaged_slow_rates(top, torque, Gz, H, r)
+    >>> print(f"{dH:.6f} {dr:.6f}")
+    -0.300000 -0.173205
     """
 
     def __init__(self, M1s: SlowFunction, M2s: SlowFunction, M3s: SlowFunction | None = None) -> None:
@@ -270,6 +367,27 @@ class LinearDrag(Torque):
         Equatorial damping coefficient, ``a >= 0``.
     b : float
         Axial damping coefficient, ``b >= 0``.
+
+    See Also
+    --------
+    ProportionalTorque : the class (2.4) it belongs to.
+    drag_rhs : its closed-form averaged system (3.4).
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (3.1)-(3.4).
+
+    Examples
+    --------
+    The axial spin decays as ``r = r0 exp(-b tau / C)`` (3.3): ``dr/dtau = -b r / C = -0.1 sqrt(3)``
+    for the paper's case 2:
+
+    >>> from rigidbody import lagrange
+    >>> top = lagrange.PAPER_TOP
+    >>> Gz, H, r = lagrange.integrals(top, *lagrange.paper_initial_state(2)[:5])
+    >>> rates = lagrange.averaged_slow_rates(top, lagrange.LinearDrag(a=0.125, b=0.1), Gz, H, r)
+    >>> print(f"{rates[2]:.6f}")
+    -0.173205
     """
 
     a: float
@@ -322,7 +440,26 @@ def check_torque(torque: Any, name: str = "torque") -> Torque:
 
 
 def has_closed_form(torque: Any) -> bool:
-    """Whether ``torque`` declares a closed-form average (a ``closed_means`` of its own, see :class:`Torque`)."""
+    """Whether ``torque`` declares a closed-form average (a ``closed_means`` of its own, see :class:`Torque`).
+
+    See Also
+    --------
+    averaged_rhs : which uses the closed form when there is one.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eq. (3.4).
+
+    Examples
+    --------
+    The linear drag (3.1) has the closed form (3.4); a general torque of class (2.4) has none:
+
+    >>> from rigidbody import lagrange
+    >>> lagrange.has_closed_form(lagrange.PAPER_DRAG)
+    True
+    >>> lagrange.has_closed_form(lagrange.ProportionalTorque(lambda Gz, H, r, theta: -0.125 + 0 * theta))
+    False
+    """
     hook = getattr(type(torque), "closed_means", None)
     return callable(hook) and hook is not Torque.closed_means
 

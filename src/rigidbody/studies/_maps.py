@@ -23,7 +23,21 @@ _OWN = ("status", "message")
 
 class Field(NamedTuple):
     """A variable or coordinate of a :class:`StudyMap`: its dimension names and its values (what the readers
-    use of an ``xarray.DataArray``)."""
+    use of an ``xarray.DataArray``).
+
+    See Also
+    --------
+    StudyMap : whose variables and coordinates these are.
+    grid_values : a variable's values in a chosen order of its dimensions.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from rigidbody.studies import Field
+    >>> f = Field(dims=("eps",), values=np.array([0.01, 0.02]))
+    >>> f.dims, f.values.shape
+    (('eps',), (2,))
+    """
 
     dims: tuple[str, ...]
     values: np.ndarray
@@ -40,6 +54,20 @@ class StudyMap:
     data : dict of str to numpy.ndarray
         The outputs, each of shape ``shape`` (or ``shape + (...)`` for an array output), NaN where a point
         failed; ``status`` (int, 0 ok) and ``message`` (str, '' where ok) per point.
+
+    See Also
+    --------
+    evaluate : which makes one.
+    as_study_map : a sweep's dataset as one.
+
+    Examples
+    --------
+    The grid and outputs of a toy study ``error = c eps²``:
+
+    >>> from rigidbody import studies
+    >>> m = studies.evaluate(lambda eps, c: {"error": c * eps**2}, {"eps": [0.01, 0.02, 0.04], "c": [1.0, 3.0]})
+    >>> list(m.coords), m.data["error"].shape
+    (['eps', 'c'], (3, 2))
     """
 
     coords: dict[str, np.ndarray]
@@ -120,6 +148,22 @@ def evaluate(func: Callable[..., Mapping[str, Any]], grid: Mapping[str, Any]) ->
     -------
     StudyMap
         Outputs NaN where ``status`` is not 0 (as in a sweep).
+
+    See Also
+    --------
+    rigidbody.sweep.sweep : the same map with workers, a store or Dask.
+    grid_values, fitted_order : readers of the map.
+
+    Examples
+    --------
+    A toy study ``error = c eps²`` over a 3 x 2 grid:
+
+    >>> from rigidbody import studies
+    >>> m = studies.evaluate(lambda eps, c: {"error": c * eps**2}, {"eps": [0.01, 0.02, 0.04], "c": [1.0, 3.0]})
+    >>> m
+    StudyMap(eps: 3, c: 2; outputs ['error']; 0 failed)
+    >>> print(f"{m.data['error'][2, 1]:.6f}")
+    0.004800
     """
     if not callable(func):
         raise TypeError(f"func must be callable, got {type(func).__name__}")
@@ -160,6 +204,20 @@ def as_study_map(ds: Any) -> StudyMap:
     Returns
     -------
     StudyMap
+
+    See Also
+    --------
+    evaluate : which returns a map.
+    rigidbody.sweep.sweep : which returns a dataset.
+
+    Examples
+    --------
+    A map is returned as it is:
+
+    >>> from rigidbody import studies
+    >>> m = studies.evaluate(lambda eps, c: {"error": c * eps**2}, {"eps": [0.01, 0.02, 0.04], "c": [1.0, 3.0]})
+    >>> studies.as_study_map(m) is m
+    True
     """
     if isinstance(ds, StudyMap):
         return ds
@@ -189,6 +247,20 @@ def grid_values(ds: Any, name: str, dims: tuple[str, ...] | None = None) -> np.n
     Returns
     -------
     numpy.ndarray
+
+    See Also
+    --------
+    fitted_order : a fit along one axis.
+
+    Examples
+    --------
+    The toy study ``error = c eps²`` with its axes swapped to ``(c, eps)``: the row ``c = 3`` is
+    ``3 eps²``:
+
+    >>> from rigidbody import studies
+    >>> m = studies.evaluate(lambda eps, c: {"error": c * eps**2}, {"eps": [0.01, 0.02, 0.04], "c": [1.0, 3.0]})
+    >>> studies.grid_values(m, "error", ("c", "eps"))[1]
+    array([0.0003, 0.0012, 0.0048])
     """
     f = ds[name]
     values, own = np.asarray(f.values), tuple(f.dims)
@@ -214,6 +286,19 @@ def fitted_order(ds: Any, var: str = "error", over: str = "eps") -> Any:
     numpy.ndarray or xarray.DataArray
         One exponent for each point of the other dimensions (NaN where fewer than two points are left): an
         array for a :class:`StudyMap`, a DataArray for a Dataset.
+
+    See Also
+    --------
+    averaging_error_lagrange, averaging_error_euler_poinsot : studies whose order it measures.
+
+    Examples
+    --------
+    ``error = c eps²`` has the exponent 2 for every ``c``:
+
+    >>> from rigidbody import studies
+    >>> m = studies.evaluate(lambda eps, c: {"error": c * eps**2}, {"eps": [0.01, 0.02, 0.04], "c": [1.0, 3.0]})
+    >>> print(" ".join(f"{p:.6f}" for p in studies.fitted_order(m)))
+    2.000000 2.000000
     """
     x = np.log(grid_values(ds, over))
 

@@ -40,6 +40,24 @@ def drag_from_ratios(r1: float, r3: float, body: ep.Body = PAPER_BODY) -> np.nda
     -------
     numpy.ndarray
         The 3x3 tensor.
+
+    See Also
+    --------
+    spin_end : the study that uses it.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (7).
+
+    Examples
+    --------
+    Equal ratios give equal decay rates ``I_ii / A_i = 1``: ``I`` is the body's inertia tensor
+    ``diag(3.2, 2.6, 1.67)``:
+
+    >>> import numpy as np
+    >>> from rigidbody import studies
+    >>> np.diag(studies.drag_from_ratios(1.0, 1.0))
+    array([3.2 , 2.6 , 1.67])
     """
     r1, r3 = (float(v) for v in _ratios(real(r1, "r1"), real(r3, "r3")))
     return np.diag([r1 * body.A1, body.A2, r3 * body.A3])
@@ -91,6 +109,28 @@ def spin_end(
         is marked :func:`rigidbody.sweep.batched`) give arrays, integrated as one batch (a drag tensor per
         point), with ``status`` (1 where the point's single call would raise, its outputs NaN) and ``message``
         (that exception) per point.
+
+    See Also
+    --------
+    spin_end_predicted : the same regime from the equilibria of (8), without integration.
+    drag_from_ratios : the drag tensor of a point.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (7)-(9).
+
+    Examples
+    --------
+    By (7), ``chi = (2 a2 - a1 - a3)/(a3 - a1)``: for the ratios ``(1, 2)`` it is ``-1`` and ``k2`` decays to
+    0 (regime 0), for ``(2, 1)`` it is ``+1`` and ``k2`` reaches the separatrix (regime 2), as the
+    equilibria of (8) predict:
+
+    >>> from rigidbody import studies
+    >>> a, b = studies.spin_end(1.0, 2.0), studies.spin_end(2.0, 1.0)
+    >>> print(f"{a['chi']:.6f} {a['regime']:.0f} {b['chi']:.6f} {b['regime']:.0f}")
+    -1.000000 0 1.000000 2
+    >>> studies.spin_end_predicted(1.0, 2.0), studies.spin_end_predicted(2.0, 1.0)
+    (0, 2)
     """
     k2_0 = float(k2_start(real(k2_0, "k2_0")))
     if np.ndim(r1) or np.ndim(r3):
@@ -140,6 +180,24 @@ def spin_end_predicted(r1: float, r3: float, *, body: ep.Body = PAPER_BODY, k2_0
     -------
     int
         0, 1 or 2 as in :data:`REGIMES`.
+
+    See Also
+    --------
+    spin_end : the integrated regime.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (8).
+
+    Examples
+    --------
+    By (7), the ratios ``(1, 2)`` give ``chi = -1`` and ``k2`` decays to 0 (regime 0);
+    swapping the ratios gives ``chi = +1`` and the separatrix (regime 2), as :func:`spin_end` finds by
+    integration:
+
+    >>> from rigidbody import studies
+    >>> studies.spin_end_predicted(1.0, 2.0), studies.spin_end_predicted(2.0, 1.0)
+    (0, 2)
     """
     I = drag_from_ratios(r1, r3, body)
     rate = ep.dk2_dtau(body, I, real(k2_0, "k2_0"))
@@ -166,6 +224,24 @@ def chi_minus_3_line(r1: Any) -> np.ndarray:
     -------
     numpy.ndarray
         ``r3`` on the line.
+
+    See Also
+    --------
+    equilibrium_line : the other boundary of the spin-end map.
+    spin_end : the map these lines bound.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (7)-(8).
+
+    Examples
+    --------
+    With ``a2 = 1``, ``chi = -3`` means ``a3 = 2 a1 - 1``:
+
+    >>> import numpy as np
+    >>> from rigidbody import studies
+    >>> studies.chi_minus_3_line(np.array([1.0, 2.0]))
+    array([1., 3.])
     """
     return 2.0 * np.asarray(r1, dtype=float) - 1.0
 
@@ -192,6 +268,23 @@ def equilibrium_line(r1: Any, k2_0: float) -> np.ndarray:
     -------
     numpy.ndarray
         ``r3`` on the line.
+
+    See Also
+    --------
+    chi_minus_3_line : the other boundary of the spin-end map.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (8).
+
+    Examples
+    --------
+    Every such line passes through ``(1, 1)`` (equal decay rates: (8) vanishes for any ``k2``):
+
+    >>> import numpy as np
+    >>> from rigidbody import studies
+    >>> print(f"{studies.equilibrium_line(np.array([1.0]), 0.5)[0]:.6f}")
+    1.000000
     """
     k2_0 = float(k2_start(real(k2_0, "k2_0")))
     return 1.0 + _rho(k2_0) * (np.asarray(r1, dtype=float) - 1.0)

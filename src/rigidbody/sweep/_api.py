@@ -272,6 +272,27 @@ def load(store: str | os.PathLike[str]) -> Any:
     xarray.Dataset
         As :func:`sweep` returns it; points not written have status -1, message ``'not computed'`` and
         NaN outputs.
+
+    See Also
+    --------
+    sweep : which writes the store.
+
+    Examples
+    --------
+    A store written in a temporary directory reads back with the sweep's values. Stores need zarr-python 3
+    (Python >= 3.11), which the ``[sweep]`` extra installs only there, so the store part is not run as a
+    doctest (the store tests of the test suite check :func:`load` where zarr is present):
+
+    >>> import os, tempfile
+    >>> from rigidbody.sweep import load, sweep
+    >>> def f(a, b):
+    ...     return {"sum": a + b}
+    >>> with tempfile.TemporaryDirectory() as folder:  # doctest: +SKIP
+    ...     store = os.path.join(folder, "sums.zarr")
+    ...     _ = sweep(f, {"a": [0.0, 1.0], "b": [10.0, 20.0]}, executor="serial", store=store, progress=False)
+    ...     ds = load(store)
+    ...     print(ds["sum"].values.tolist(), int(ds.status.sum()))
+    [[10.0, 20.0], [11.0, 21.0]] 0
     """
     st = Store.open(store, create=False)
     if st is None:

@@ -40,6 +40,23 @@ def batched(func: Callable[..., Any]) -> Callable[..., Any]:
     -------
     callable
         ``func`` itself, marked.
+
+    See Also
+    --------
+    sweep : which calls it once per chunk.
+
+    Examples
+    --------
+    One call per chunk with arrays of the points; the product table ``a b``:
+
+    >>> from rigidbody.sweep import batched, sweep
+    >>> @batched
+    ... def product(a, b):
+    ...     return {"prod": a * b}
+    >>> ds = sweep(product, {"a": [1.0, 2.0], "b": [3.0, 4.0, 5.0]}, executor="serial", progress=False)
+    >>> ds["prod"].values
+    array([[ 3.,  4.,  5.],
+           [ 6.,  8., 10.]])
     """
     if not callable(func):
         raise TypeError(f"batched() needs a callable, got {type(func).__name__}")

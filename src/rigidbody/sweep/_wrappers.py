@@ -39,6 +39,28 @@ def gyrostat_stability(*, sat: Any, R0: Any = None, omega_sign: int = 1, rtol: f
         ``code`` (0 stable, 1 unstable, 2 undecided, -1 no valid motion), ``degree`` (degree of
         instability), ``s1, s2, s3`` (Sylvester quantities of (2.5)), ``kappa0``, ``omega0`` and the one of
         ``k2``, ``k3`` that was not given (the motion, from (2.4)), one value per point.
+
+    See Also
+    --------
+    rigidbody.gyrostat.stability_map : the function it wraps.
+    lagrange_averaged, euler_poinsot_averaged : the other wrappers.
+
+    References
+    ----------
+    :ref:`S. Ya. Stepanov, PMM 32 (1968) <ref-stepanov-1968>`, eqs. (2.3)-(2.5).
+
+    Examples
+    --------
+    Where the three Sylvester quantities of (2.5) are positive the motion is stable (code 0):
+
+    >>> from functools import partial
+    >>> from rigidbody import gyrostat
+    >>> from rigidbody.sweep import gyrostat_stability, sweep
+    >>> sat = gyrostat.Satellite(M=1.0, A1=0.012, A2=0.010, A3=0.008)
+    >>> ds = sweep(partial(gyrostat_stability, sat=sat, R0=1.0), {"theta0": [0.3], "k2": [0.02]},
+    ...            executor="serial", progress=False)
+    >>> [bool(ds[s].item() > 0) for s in ("s1", "s2", "s3")], int(ds["code"].item())
+    ([True, True, True], 0)
     """
     from .. import gyrostat
 
@@ -111,6 +133,33 @@ def euler_poinsot_averaged(*, body: Any, torque: Any, eps: Any = 0.0, G0: Any = 
         ``tau_end`` (when the run ended), and the sweep's ``status`` (0; :data:`RUN_FAILED` where the run failed
         or was refused, e.g. a start outside the theory: its outputs are then NaN) and ``message`` (the
         integration's message).
+
+    See Also
+    --------
+    rigidbody.euler_poinsot.averaged : the function it wraps.
+    lagrange_averaged, gyrostat_stability : the other wrappers.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (9).
+
+    Examples
+    --------
+    A drag tensor equal to the inertia tensor (all decay rates 1) gives ``dG/dtau = -G`` and leaves ``k2``
+    where it starts (the torque ``-I omega = -G``, and ``T`` decays as ``G²``): ``G = 1/e`` at ``tau = 1``:
+
+    >>> import math
+    >>> from functools import partial
+    >>> import numpy as np
+    >>> from rigidbody import euler_poinsot
+    >>> from rigidbody.sweep import euler_poinsot_averaged, sweep
+    >>> body = euler_poinsot.Body(A1=3.2, A2=2.6, A3=1.67)
+    >>> f = partial(euler_poinsot_averaged, body=body, torque=np.diag([3.2, 2.6, 1.67]), tau_span=(0.0, 1.0))
+    >>> ds = sweep(f, {"k2_0": [0.3, 0.6]}, executor="serial", progress=False)
+    >>> print(" ".join(f"{x:.6f}" for x in ds["G"].values), f"{1 / math.e:.6f}")
+    0.367879 0.367879 0.367879
+    >>> print(" ".join(f"{x:.6f}" for x in ds["k2"].values))
+    0.300000 0.600000
     """
     from .. import euler_poinsot as ep
 
@@ -151,6 +200,30 @@ def lagrange_averaged(*, top: Any, torque: Any, Gz0: Any, H0: Any, r0: Any, tau_
     -------
     dict
         As :func:`euler_poinsot_averaged`: the ``outputs``, ``run_status``, ``tau_end``, ``status``, ``message``.
+
+    See Also
+    --------
+    rigidbody.lagrange.averaged : the function it wraps.
+    euler_poinsot_averaged, gyrostat_stability : the other wrappers.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, PMM 43 (1979) <ref-alc-1979>`, eqs. (2.15), (3.3).
+
+    Examples
+    --------
+    The paper's case 2 (``Gz = sqrt(3)/2``, ``H = 7/4``, ``r = sqrt(3)``) under its drag: the spin ends at
+    ``r0 exp(-b tau / C) = sqrt(3)/e`` (3.3) at ``tau = 10``:
+
+    >>> import math
+    >>> from functools import partial
+    >>> from rigidbody import lagrange
+    >>> from rigidbody.sweep import lagrange_averaged, sweep
+    >>> f = partial(lagrange_averaged, top=lagrange.PAPER_TOP, torque=lagrange.PAPER_DRAG,
+    ...             Gz0=math.sqrt(3) / 2, H0=1.75, tau_span=(0.0, 10.0))
+    >>> ds = sweep(f, {"r0": [math.sqrt(3)]}, executor="serial", progress=False)
+    >>> print(f"{float(ds['r'][0]):.6f} {math.sqrt(3) / math.e:.6f}")
+    0.637186 0.637186
     """
     from .. import lagrange
 
