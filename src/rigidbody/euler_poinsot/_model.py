@@ -63,6 +63,28 @@ class Body:
         If a moment is not a real number.
     ValueError
         If a moment is not positive and finite, the ordering is violated or the triangle inequality fails.
+
+    See Also
+    --------
+    Drag, Orbit : the other parameters of the problem.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 1 (:math:`A_1 > A_2 > A_3`) and section 3
+    (the body of the numerical study).
+
+    Examples
+    --------
+    The paper's body of section 3, and a body whose moments break the triangle inequality
+    (:math:`A_1 = 3 > A_2 + A_3 = 2.5`), which no mass distribution has:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> ep.Body(3.2, 2.6, 1.67).A.tolist()
+    [3.2, 2.6, 1.67]
+    >>> ep.Body(3.0, 1.5, 1.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: triangle inequality A1 <= A2 + A3 violated: A1=3.0 > A2 + A3=2.5
     """
 
     A1: float
@@ -189,6 +211,25 @@ class Orbit:
         anomaly obeys :math:`\dot\nu = \omega_0(1+e\cos\nu)^2/(1-e^2)^{3/2}` (Kepler's law; ``e = 0`` gives
         (2), :math:`\nu = \omega_0 t + \nu_0`), with :math:`\omega_0 = 2\pi/Q` the mean motion and the axis
         :math:`Ox_1` towards the pericentre.
+
+    See Also
+    --------
+    GravityGradient : the torque that carries the orbit factor.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (2), (3).
+
+    Examples
+    --------
+    At the pericentre :math:`\nu = 0` the factor is :math:`(1+e)^3/(1-e^2)^3 = 1/(1-e)^3`, and the true
+    anomaly runs at :math:`(1+e)^2/(1-e^2)^{3/2}` times the mean motion (:math:`1/0.729 = 1.371742` and
+    :math:`1.21/0.99^{3/2} = 1.228380` for ``e = 0.1``):
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> orbit = ep.Orbit(e=0.1)
+    >>> print(f"{orbit.factor(0.0):.6f} {orbit.nu_rate(0.0):.6f}")
+    1.371742 1.228380
     """
 
     e: float = 0.0
