@@ -161,6 +161,34 @@ class Drag:
     ValueError
         If the shape is wrong, an entry is not finite or the symmetric part is not positive definite
         (the torque would not dissipate).
+
+    See Also
+    --------
+    LinearDrag : the drag alone, as a torque object.
+    chi, N_time, drag_rates : what the averaged system (6)-(8) takes of it.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (3) and :doc:`/errata` (its sign).
+
+    Examples
+    --------
+    Off-diagonal entries are allowed but do not enter (6): an antisymmetric part leaves the averaged rates
+    those of the diagonal. A tensor that would feed energy in is refused:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> drag = ep.Drag([[2.322, 0.5, 0.0], [-0.5, 1.31, 0.0], [0.0, 0.0, 1.425]])
+    >>> drag.diag
+    (2.322, 1.31, 1.425)
+    >>> a = ep.averaged_rates(body, drag, 1.0, 0.5, 0.7, 0.3, None)
+    >>> b = ep.averaged_rates(body, drag.diag, 1.0, 0.5, 0.7, 0.3, None)
+    >>> print(f"{a['dG']:.6f} {b['dG']:.6f}")
+    -0.665135 -0.665135
+    >>> ep.Drag([1.0, 1.0, -1.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: I: the symmetric part of the drag tensor must be positive definite ...
     """
 
     I: Any = field()
