@@ -342,6 +342,30 @@ class SeparatrixCrossing:
         Whether motions of the source region reach the separatrix at all (its loop drift points to it).
     quad_error : float
         Estimated quadrature error of the drifts (difference to the half-node rule).
+
+    See Also
+    --------
+    separatrix_crossing : computes it.
+    Separatrix : the motions along the arcs.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 (the separatrix :math:`k^2 = 1`, where the
+    averaging of (6) breaks down).
+
+    Examples
+    --------
+    The paper's drag with the gravity gradient, from the ``'max'`` side: the energy gain per revolution
+    (``loop_drifts``) is positive in every region, so the motion crosses into a ``'min'`` region, and the
+    drag is odd in :math:`\boldsymbol\omega`, so both senses of rotation there are equally likely; the
+    probabilities sum to 1:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> c = ep.separatrix_crossing(ep.Body(3.2, 2.6, 1.67), [3.0, 2.0, 1.0], 1.0, 0.7, 0.3, None, ("max", 1))
+    >>> c.crosses, c.capturing
+    (True, (('min', 1), ('min', -1)))
+    >>> print(f"{c.probabilities[('min', 1)]:.6f} {c.probabilities[('min', -1)]:.6f} {c.undetermined:.6f}")
+    0.500000 0.500000 0.000000
     """
 
     source: Region
@@ -472,6 +496,31 @@ class SeparatrixLimits:
     slope : dict
         Region -> dict of :math:`J/4` for ``'dG'``, ``'dT'``, ``'dh'``, ``'dk2'`` (floats) and ``'dn'``
         (array), so that the averaged rate near the separatrix is ``limit + slope / K(k)``.
+
+    See Also
+    --------
+    separatrix_limits : computes it.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (8) (its limit at :math:`k^2 \to 1`).
+
+    Examples
+    --------
+    The energy's averaged drift vanishes at the separatrix, and the limit is approached slowly: at
+    :math:`k^2 = 1 - 10^{-4}` the limit alone misses the closed form (6) (:func:`drag_rates`) by 8 % (the
+    correction decays only like :math:`1/K(k) \approx 1/\ln(4/k')`), the two-term ``near`` by less than
+    :math:`10^{-4}` (its next term is of order :math:`k'^2K`):
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body, I = ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425]
+    >>> lim = ep.separatrix_limits(body, I, 1.0, 0.7, 0.3, None)
+    >>> print(f"{lim.dk2:.6f}")
+    0.000000
+    >>> exact = ep.drag_rates(body, I, 1.0, 1 - 1e-4)[0]
+    >>> near = lim.near(("max", 1), 1e-4)["dG"]
+    >>> print(f"{abs(lim.dG / exact - 1):.2f}", bool(abs(near / exact - 1) < 1e-4))
+    0.08 True
     """
 
     dG: float
@@ -522,6 +571,26 @@ def separatrix_limits(
         :math:`dT/d\tau\to -I_{22}G^2/A_2^2` (rotation about the intermediate axis), and
         :math:`K\,dk^2/d\tau\to \mp2(I_{33}/A_3 - I_{11}/A_1)` from the ``"max"``/``"min"`` side, the
         limit of (8).
+
+    See Also
+    --------
+    SeparatrixLimits : the result.
+    separatrix_crossing : what happens at the separatrix.
+    averaged_rates : the rates off the separatrix.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (6), (8) (their limits at :math:`k^2 \to 1`).
+
+    Examples
+    --------
+    The paper's drag: at the separatrix the mean motion is rotation about the intermediate axis, so
+    :math:`dG/d\tau \to -I_{22}G/A_2 = -1.31/2.6` and :math:`dT/d\tau \to -I_{22}G^2/A_2^2 = -1.31/2.6^2`:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> lim = ep.separatrix_limits(ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425], 1.0, 0.7, 0.3, None)
+    >>> print(f"{lim.dG:.6f} {-1.31 / 2.6:.6f} {lim.dT:.6f} {-1.31 / 2.6**2:.6f}")
+    -0.503846 -0.503846 -0.193787 -0.193787
     """
     sep, fn, n, nu_, orb, (n_x, n_psi, n_nu) = _setup(body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu)
     nus, wnu = _orbit_nodes(nu_, orb, n_nu)
