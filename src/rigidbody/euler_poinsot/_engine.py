@@ -444,6 +444,26 @@ class TorqueAverage:
     convergence : dict
         The last ratio :math:`d_2/d_1` of successive differences per axis (``'psi'``, ``'u'``, ``'nu'``):
         near 0 for spectral convergence, about :math:`2^{-p}` for algebraic convergence of order :math:`p`.
+
+    See Also
+    --------
+    average_torque : computes it.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (6) (the averaged rates).
+
+    Examples
+    --------
+    The engine on the paper's drag agrees with the closed form (6), and says so itself (converged, with an
+    estimated error below :math:`10^{-8}`):
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body, I = ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425]
+    >>> avg = ep.average_torque(body, ep.LinearDrag(I), 1.0, 0.5, 0.7, 0.3, None)
+    >>> print(f"{avg.rates['dG']:.6f} {ep.drag_rates(body, I, 1.0, 0.5)[0]:.6f}", avg.converged,
+    ...       avg.error["dG"] < 1e-8)
+    -0.665135 -0.665135 True True
     """
 
     rates: dict[str, float]

@@ -62,8 +62,19 @@ class EulerPoinsot:
     mc : float, optional
         :math:`1-k^2` when known more accurately than ``1 - k2`` (near the separatrix).
 
+    See Also
+    --------
+    Separatrix : the limit :math:`k^2 \to 1`.
+    k2_from, T_from : formula (5) and its inverse.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 and eq. (5).
+
     Examples
     --------
+    :math:`|\mathbf g| = G` at every instant (the motion conserves the angular momentum):
+
     >>> from rigidbody.euler_poinsot import Body, EulerPoinsot
     >>> m = EulerPoinsot(Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
     >>> g = m.g(0.3)

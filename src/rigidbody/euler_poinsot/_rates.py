@@ -246,6 +246,16 @@ def average_torque(
         ``rates`` (as :func:`averaged_rates`), ``error`` (estimated absolute errors of the rates), ``L``,
         ``dn``, ``nodes``, ``converged``, ``convergence``.
 
+    See Also
+    --------
+    averaged_rates : the rates, from the closed forms where a torque has them.
+    Torque : the protocol of the torque averaged.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 (the averaging over the Euler--Poinsot motion)
+    and eq. (6).
+
     Examples
     --------
     >>> import numpy as np

@@ -103,6 +103,11 @@ class Separatrix:
     G : float
         Magnitude of the angular momentum (> 0).
 
+    See Also
+    --------
+    EulerPoinsot : the motions off the separatrix, of which these are the limit.
+    separatrix_crossing : what a perturbed motion does there.
+
     Notes
     -----
     ``g(t, arc)`` is the motion along the arc ``(s1, s3)`` (see the module docstring), at the middle of
@@ -111,8 +116,14 @@ class Separatrix:
     ``"max"`` motion with ``sigma = s1`` runs along ``(s1, +1)`` and then ``(s1, -1)``, the ``"min"``
     motion with ``sigma = s3`` along ``(+1, s3)`` and then ``(-1, s3)``.
 
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 (the separatrix :math:`G^2 = 2TA_2`).
+
     Examples
     --------
+    On the separatrix :math:`|\mathbf g| = G` and the energy is :math:`T = G^2/2A_2` at every point:
+
     >>> from rigidbody.euler_poinsot import Body, Separatrix
     >>> sep = Separatrix(Body(3.2, 2.6, 1.67), G=1.0)
     >>> g = sep.g(0.7, (1, -1))
@@ -431,6 +442,17 @@ def separatrix_crossing(
     -------
     SeparatrixCrossing
         ``probabilities`` maps each region ``(kind, sigma)`` to its capture probability.
+
+    See Also
+    --------
+    SeparatrixCrossing : the result.
+    separatrix_limits : the averaged rates at the separatrix.
+    averaged_branches : runs on in each region.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 (the separatrix, where the averaging of
+    (6) breaks down).
 
     Examples
     --------
