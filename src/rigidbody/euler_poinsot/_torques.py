@@ -118,7 +118,8 @@ class LinearDrag(_ArrayEq):
 
     References
     ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (3), (6), (8).
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (3), (6), (8);
+    :ref:`L. D. Akulenko, D. D. Leshchenko, A. L. Rachinskaya (2008) <ref-alr-2008>`.
 
     Examples
     --------
