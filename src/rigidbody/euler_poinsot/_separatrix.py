@@ -103,11 +103,6 @@ class Separatrix:
     G : float
         Magnitude of the angular momentum (> 0).
 
-    See Also
-    --------
-    EulerPoinsot : the motions off the separatrix, of which these are the limit.
-    separatrix_crossing : what a perturbed motion does there.
-
     Notes
     -----
     ``g(t, arc)`` is the motion along the arc ``(s1, s3)`` (see the module docstring), at the middle of
@@ -116,14 +111,8 @@ class Separatrix:
     ``"max"`` motion with ``sigma = s1`` runs along ``(s1, +1)`` and then ``(s1, -1)``, the ``"min"``
     motion with ``sigma = s3`` along ``(+1, s3)`` and then ``(-1, s3)``.
 
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 (the separatrix :math:`G^2 = 2TA_2`).
-
     Examples
     --------
-    On the separatrix :math:`|\mathbf g| = G` and the energy is :math:`T = G^2/2A_2` at every point:
-
     >>> from rigidbody.euler_poinsot import Body, Separatrix
     >>> sep = Separatrix(Body(3.2, 2.6, 1.67), G=1.0)
     >>> g = sep.g(0.7, (1, -1))
@@ -354,29 +343,14 @@ class SeparatrixCrossing:
     quad_error : float
         Estimated quadrature error of the drifts (difference to the half-node rule).
 
-    See Also
-    --------
-    separatrix_crossing : computes it.
-    Separatrix : the motions along the arcs.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 (the separatrix :math:`k^2 = 1`, where the
-    averaging of (6) breaks down).
-
     Examples
     --------
-    The paper's drag with the gravity gradient, from the ``'max'`` side: the energy gain per revolution
-    (``loop_drifts``) is positive in every region, so the motion crosses into a ``'min'`` region, and the
-    drag is odd in :math:`\boldsymbol\omega`, so both senses of rotation there are equally likely; the
-    probabilities sum to 1:
+    The drag is odd in :math:`\boldsymbol\omega`: both senses of rotation tie (the tie goes to ``sigma = +1``):
 
     >>> from rigidbody import euler_poinsot as ep
     >>> c = ep.separatrix_crossing(ep.Body(3.2, 2.6, 1.67), [3.0, 2.0, 1.0], 1.0, 0.7, 0.3, None, ("max", 1))
-    >>> c.crosses, c.capturing
-    (True, (('min', 1), ('min', -1)))
-    >>> print(f"{c.probabilities[('min', 1)]:.6f} {c.probabilities[('min', -1)]:.6f} {c.undetermined:.6f}")
-    0.500000 0.500000 0.000000
+    >>> c.capturing, round(c.probabilities[("min", -1)], 9), c.most_probable()
+    ((('min', 1), ('min', -1)), 0.5, ('min', 1))
     """
 
     source: Region
@@ -394,24 +368,7 @@ class SeparatrixCrossing:
         return tuple(r for r in REGIONS if _captures(r[0], self.loop_drifts[r], scale))
 
     def most_probable(self) -> Region:
-        r"""The region of largest capture probability (ties: ``sigma = +1`` first, then ``'max'``).
-
-        Examples
-        --------
-        A drag is odd in :math:`\boldsymbol\omega`: the two senses of rotation tie at 1/2, and the tie goes to
-        ``sigma = +1``; the asymmetric torque of :func:`separatrix_crossing`'s example favours ``('min', -1)``
-        (0.536 against 0.464):
-
-        >>> import numpy as np
-        >>> from rigidbody import euler_poinsot as ep
-        >>> body = ep.Body(3.2, 2.6, 1.67)
-        >>> ep.separatrix_crossing(body, [3.0, 2.0, 1.0], 1.0, 0.7, 0.3, None, ("max", 1)).most_probable()
-        ('min', 1)
-        >>> M0 = np.array([0.4, 0.0, -0.5])
-        >>> push = ep.ConstantTorque(M0)
-        >>> ep.separatrix_crossing(body, push, 1.0, 0.5, 0.0, 0.0, ("min", 1)).most_probable()
-        ('min', -1)
-        """
+        """The region of largest capture probability (ties: ``sigma = +1`` first, then ``'max'``)."""
         if not self.crosses:
             raise ValueError(f"motions of {self.source} do not cross the separatrix: no capture")
         return max(REGIONS, key=lambda r: (round(self.probabilities[r], 12), r[1], r[0] == "max"))
@@ -459,17 +416,6 @@ def separatrix_crossing(
     -------
     SeparatrixCrossing
         ``probabilities`` maps each region ``(kind, sigma)`` to its capture probability.
-
-    See Also
-    --------
-    SeparatrixCrossing : the result.
-    separatrix_limits : the averaged rates at the separatrix.
-    averaged_branches : runs on in each region.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 (the separatrix, where the averaging of
-    (6) breaks down).
 
     Examples
     --------
@@ -536,29 +482,14 @@ class SeparatrixLimits:
         Region -> dict of :math:`J/4` for ``'dG'``, ``'dT'``, ``'dh'``, ``'dk2'`` (floats) and ``'dn'``
         (array), so that the averaged rate near the separatrix is ``limit + slope / K(k)``.
 
-    See Also
-    --------
-    separatrix_limits : computes it.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (8) (its limit at :math:`k^2 \to 1`).
-
     Examples
     --------
-    The energy's averaged drift vanishes at the separatrix, and the limit is approached slowly: at
-    :math:`k^2 = 1 - 10^{-4}` the limit alone misses the closed form (6) (:func:`drag_rates`) by 8 % (the
-    correction decays only like :math:`1/K(k) \approx 1/\ln(4/k')`), the two-term ``near`` by less than
-    :math:`10^{-4}` (its next term is of order :math:`k'^2K`):
+    At :math:`k^2 = 1 - 10^{-4}` the limit is 8 % off (6) (a :math:`1/K` term), ``near`` less than :math:`10^{-4}`:
 
     >>> from rigidbody import euler_poinsot as ep
     >>> body, I = ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425]
-    >>> lim = ep.separatrix_limits(body, I, 1.0, 0.7, 0.3, None)
-    >>> print(f"{lim.dk2:.6f}")
-    0.000000
-    >>> exact = ep.drag_rates(body, I, 1.0, 1 - 1e-4)[0]
-    >>> near = lim.near(("max", 1), 1e-4)["dG"]
-    >>> print(f"{abs(lim.dG / exact - 1):.2f}", bool(abs(near / exact - 1) < 1e-4))
+    >>> lim, exact = ep.separatrix_limits(body, I, 1.0, 0.7, 0.3, None), ep.drag_rates(body, I, 1.0, 1 - 1e-4)[0]
+    >>> print(f"{abs(lim.dG / exact - 1):.2f}", bool(abs(lim.near(("max", 1), 1e-4)["dG"] / exact - 1) < 1e-4))
     0.08 True
     """
 
@@ -611,20 +542,9 @@ def separatrix_limits(
         :math:`K\,dk^2/d\tau\to \mp2(I_{33}/A_3 - I_{11}/A_1)` from the ``"max"``/``"min"`` side, the
         limit of (8).
 
-    See Also
-    --------
-    SeparatrixLimits : the result.
-    separatrix_crossing : what happens at the separatrix.
-    averaged_rates : the rates off the separatrix.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (6), (8) (their limits at :math:`k^2 \to 1`).
-
     Examples
     --------
-    The paper's drag: at the separatrix the mean motion is rotation about the intermediate axis, so
-    :math:`dG/d\tau \to -I_{22}G/A_2 = -1.31/2.6` and :math:`dT/d\tau \to -I_{22}G^2/A_2^2 = -1.31/2.6^2`:
+    The paper's drag: the limits :math:`-I_{22}G/A_2` and :math:`-I_{22}G^2/A_2^2` above:
 
     >>> from rigidbody import euler_poinsot as ep
     >>> lim = ep.separatrix_limits(ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425], 1.0, 0.7, 0.3, None)
