@@ -113,13 +113,11 @@ class LinearDrag(_ArrayEq):
 
     See Also
     --------
-    Drag : the same tensor as Rachinskaya's drag argument (drag plus gravity gradient).
-    drag_rates, dk2_dtau : its closed-form averages (6), (8).
+    Drag, drag_rates, dk2_dtau
 
     References
     ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (3), (6), (8);
-    :ref:`L. D. Akulenko, D. D. Leshchenko, A. L. Rachinskaya (2008) <ref-alr-2008>`.
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (3), (6), (8).
 
     Examples
     --------
@@ -177,13 +175,11 @@ class GravityGradient(_ArrayEq):
 
     See Also
     --------
-    Orbit : the orbit factor :math:`f(\nu)`.
-    N_star, precession_rate : its closed-form average (6).
+    Orbit, N_star, precession_rate
 
     References
     ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (3), (6);
-    :ref:`F. L. Chernousko (1963) <ref-chernousko-1963>`.
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (3), (6).
 
     Examples
     --------
@@ -198,8 +194,7 @@ class GravityGradient(_ArrayEq):
     >>> print(f"{ep.GravityGradient(body)([1.0, 0.0, 0.0], np.eye(3), math.pi / 4)[2]:.6f}")
     -0.900000
 
-    On average it turns :math:`\mathbf G` without changing :math:`G` (the rate of :func:`precession_rate`
-    for :math:`\nu` averaged out):
+    On average it turns :math:`\mathbf G` at the :func:`precession_rate` without changing :math:`G`:
 
     >>> r = ep.averaged_rates(body, ep.GravityGradient(body), 1.0, 0.5, 0.7, 0.3, None)
     >>> print(abs(r["dG"]) < 1e-12, f"{r['dlam']:.6f} {ep.precession_rate(body, 1.0, 0.5, 0.7):.6f}")
@@ -374,14 +369,6 @@ class ConstantTorque(_ArrayEq):
     M : array_like
         The three body components (section-3 scaling divided by :math:`\varepsilon^2`).
 
-    See Also
-    --------
-    MagneticDipole : a body-fixed vector torque that depends on the attitude.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 (the Euler--Poinsot motion averaged over).
-
     Examples
     --------
     At :math:`k^2 = 0` the body spins steadily about the axis of :math:`A_1` with :math:`\omega_1 = G/A_1`,
@@ -473,10 +460,6 @@ class ViscousCavity(_ArrayEq):
     P : array_like
         The tensor :math:`\tilde P = \rho P\Omega_0^2/(\nu G_0\varepsilon^2)` in body axes (3x3 symmetric
         positive semi-definite, or its 3 diagonal entries). Only the diagonal enters the averages.
-
-    See Also
-    --------
-    LinearDrag : an external dissipation, which also changes :math:`G`.
 
     References
     ----------
@@ -572,16 +555,11 @@ class MagneticDipole(_ArrayEq):
     --------
     ConstantTorque : the same average along the axis of rotation, for a torque fixed in the body.
 
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (6) (the slow variables :math:`\delta, \lambda`
-    of :math:`\mathbf G`).
-
     Examples
     --------
     At :math:`k^2 = 0` (:math:`\bar\omega_1 = G/A_1`) a magnet :math:`m_1 = 0.2` in a field :math:`0.5` along
-    the orbit normal turns :math:`\mathbf G` about that normal at :math:`m_1|\mathbf B|/G = 0.1`, in the negative
-    sense (:math:`\dot{\mathbf n} \propto \mathbf n\times\mathbf B`), and leaves :math:`G` unchanged:
+    the orbit normal turns :math:`\mathbf G` at :math:`-m_1|\mathbf B|/G = -0.1` (:math:`\dot{\mathbf n}
+    \propto \mathbf n\times\mathbf B`), and leaves :math:`G` unchanged:
 
     >>> from rigidbody import euler_poinsot as ep
     >>> body, magnet = ep.Body(3.2, 2.6, 1.67), ep.MagneticDipole([0.2, 0.0, 0.0], [0.0, 0.0, 0.5])
