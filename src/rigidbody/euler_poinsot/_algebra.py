@@ -54,8 +54,7 @@ def k2_from(body: Body, G: Any, T: Any, kind: str = "max") -> Any:
 
     See Also
     --------
-    T_from : the inverse.
-    kind_of : which of the two formulas a state needs.
+    T_from, kind_of
 
     References
     ----------
@@ -63,15 +62,12 @@ def k2_from(body: Body, G: Any, T: Any, kind: str = "max") -> Any:
 
     Examples
     --------
-    Rotation about the axis of :math:`A_1` (:math:`2TA_1 = G^2`) has :math:`k^2 = 0`, and the formula
-    inverts :func:`T_from`:
+    :math:`k^2 = 0` for rotation about the axis of :math:`A_1` (:math:`2TA_1 = G^2`); (5) inverts :func:`T_from`:
 
     >>> from rigidbody import euler_poinsot as ep
     >>> body = ep.Body(3.2, 2.6, 1.67)
-    >>> print(f"{ep.k2_from(body, 1.0, 1.0 / (2 * 3.2)):.6f}")
-    0.000000
-    >>> print(f"{ep.k2_from(body, 1.0, ep.T_from(body, 1.0, 0.3)):.6f}")
-    0.300000
+    >>> print(f"{ep.k2_from(body, 1.0, 1 / 6.4):.6f} {ep.k2_from(body, 1.0, ep.T_from(body, 1.0, 0.3)):.6f}")
+    0.000000 0.300000
     """
     check_body(body)
     check_kind(kind)
@@ -119,25 +115,14 @@ def T_from(body: Body, G: Any, k2: Any, kind: str = "max") -> Any:
     -------
     float or numpy.ndarray
 
-    See Also
-    --------
-    k2_from : formula (5), the inverse.
-    kind_of : the kind of a state :math:`(G, T)`.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (5).
-
     Examples
     --------
-    The energy runs from :math:`G^2/2A_1` (rotation about the axis of :math:`A_1`, :math:`k^2 = 0`) to
-    :math:`G^2/2A_2` (the separatrix, :math:`k^2 = 1`): :math:`1/6.4 = 0.15625` and :math:`1/5.2 = 0.192308`;
-    for ``'min'`` it starts from :math:`G^2/2A_3 = 1/3.34 = 0.299401`:
+    :math:`T` runs from :math:`G^2/2A_1 = 1/6.4` (:math:`k^2 = 0`) to :math:`G^2/2A_2 = 1/5.2` (:math:`k^2 = 1`):
 
     >>> from rigidbody import euler_poinsot as ep
     >>> body = ep.Body(3.2, 2.6, 1.67)
-    >>> print(f"{ep.T_from(body, 1.0, 0.0):.6f} {ep.T_from(body, 1.0, 1.0):.6f} {ep.T_from(body, 1.0, 0.0, 'min'):.6f}")
-    0.156250 0.192308 0.299401
+    >>> print(f"{ep.T_from(body, 1.0, 0.0):.6f} {1 / 6.4:.6f} {ep.T_from(body, 1.0, 1.0):.6f} {1 / 5.2:.6f}")
+    0.156250 0.156250 0.192308 0.192308
     """
     check_body(body)
     check_kind(kind)
@@ -180,22 +165,13 @@ def kind_of(body: Body, G: float, T: float) -> str:
         If ``G`` or ``T`` is not positive, or :math:`G^2/2T` lies outside :math:`[A_3, A_1]` (no rigid-body
         state has it).
 
-    See Also
-    --------
-    k2_from, T_from : formula (5) for each kind, and its inverse.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 and eq. (5).
-
     Examples
     --------
-    With :math:`G = 1` the separatrix energy is :math:`1/2A_2 = 0.192308`: below it the body circulates
-    about the axis of :math:`A_1`, above it about that of :math:`A_3`:
+    With :math:`G = 1` the separatrix energy is :math:`1/2A_2 = 1/5.2`; less energy is the ``'max'`` kind:
 
     >>> from rigidbody import euler_poinsot as ep
     >>> body = ep.Body(3.2, 2.6, 1.67)
-    >>> ep.kind_of(body, 1.0, 0.17), ep.kind_of(body, 1.0, 0.25), ep.kind_of(body, 1.0, 1.0 / 5.2)
+    >>> ep.kind_of(body, 1.0, 0.17), ep.kind_of(body, 1.0, 0.25), ep.kind_of(body, 1.0, 1 / 5.2)
     ('max', 'min', 'separatrix')
     """
     check_body(body)
@@ -244,20 +220,10 @@ def chi(body: Body, I: Any) -> float:
         :class:`Drag`); or if :math:`I_{33}A_1 = I_{11}A_3` (then :math:`N = \infty` and :math:`\chi` is
         undefined; the :math:`k^2` equation itself stays finite: use :func:`dk2_dtau`).
 
-    See Also
-    --------
-    N_time : the time scale :math:`N` of (7).
-    dk2_dtau, k2_equilibria : the :math:`k^2` equation (8) and its equilibria.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (7) and section 3 (the two drag cases).
-
     Examples
     --------
-    The paper's two drag cases, printed there as -4.477 and 3.853: the second agrees to the printed digits;
-    the first differs in the third decimal because the denominator :math:`I_{33}A_1 - I_{11}A_3 = 0.682` is a
-    small difference of the rounded printed data (:doc:`/errata`):
+    The paper's two drag cases, printed as -4.477 and 3.853 (the first is sensitive to the rounding of
+    the printed data, :doc:`/errata`):
 
     >>> from rigidbody import euler_poinsot as ep
     >>> body = ep.Body(3.2, 2.6, 1.67)
@@ -297,21 +263,13 @@ def N_time(body: Body, I: Any) -> float:
         If ``I`` is not a valid drag tensor (see :class:`Drag`), or :math:`I_{33}A_1 = I_{11}A_3` (then
         :math:`N` is infinite).
 
-    See Also
-    --------
-    chi : the other parameter of (7).
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (7).
-
     Examples
     --------
-    The paper's first drag case: :math:`N = 3.2\cdot1.67/(1.425\cdot3.2 - 2.322\cdot1.67) = 5.344/0.68226`:
+    The paper's first drag case, :math:`N = 3.2\cdot1.67/(1.425\cdot3.2 - 2.322\cdot1.67)`:
 
     >>> from rigidbody import euler_poinsot as ep
-    >>> body = ep.Body(3.2, 2.6, 1.67)
-    >>> print(f"{ep.N_time(body, [2.322, 1.31, 1.425]):.6f} {5.344 / 0.68226:.6f}")
+    >>> N = ep.N_time(ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425])
+    >>> print(f"{N:.6f} {3.2 * 1.67 / (1.425 * 3.2 - 2.322 * 1.67):.6f}")
     7.832791 7.832791
     """
     check_body(body)
@@ -371,9 +329,7 @@ def dk2_dtau(body: Body, I: Any, k2: float, kind: str = "max") -> float:
 
     See Also
     --------
-    chi, N_time : the parameters of the paper's form (7)-(8).
-    k2_equilibria : the roots of this right-hand side.
-    drag_rates : the :math:`G` and :math:`T` equations (6).
+    chi, N_time, k2_equilibria
 
     References
     ----------
@@ -381,8 +337,7 @@ def dk2_dtau(body: Body, I: Any, k2: float, kind: str = "max") -> float:
 
     Examples
     --------
-    The paper's form :math:`N^{-1}\{(1-\chi)(1-k^2)-[(1-\chi)+(1+\chi)k^2]E/K\}` of (7)-(8), evaluated with
-    SciPy's complete elliptic integrals, gives the same number:
+    The paper's form of (7)-(8), with SciPy's complete elliptic integrals, gives the same number:
 
     >>> from scipy.special import ellipe, ellipk
     >>> from rigidbody import euler_poinsot as ep
@@ -435,25 +390,14 @@ def drag_rates(body: Body, I: Any, G: float, k2: float, kind: str = "max") -> tu
     dG, dT : float
         Per unit dimensional time :math:`t` (or per :math:`\tau` with the nondimensional :math:`\tilde I`).
 
-    See Also
-    --------
-    dk2_dtau : the :math:`k^2` equation (8) that follows from these two.
-    averaged_rates : all the right-hand sides of (6), the gravity-gradient ones included.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (6).
-
     Examples
     --------
-    For an isotropic drag :math:`I = c\,\mathbf 1` the torque is :math:`-c\boldsymbol\omega`, so
-    :math:`dG/dt = -c\,\mathbf g\cdot\boldsymbol\omega/G = -2cT/G` at every instant (no average needed;
-    :math:`T` from :func:`T_from`):
+    An isotropic drag :math:`-c\boldsymbol\omega` gives :math:`dG/dt = -c\,\mathbf g\cdot\boldsymbol\omega/G =
+    -2cT/G` at every instant:
 
     >>> from rigidbody import euler_poinsot as ep
     >>> body = ep.Body(3.2, 2.6, 1.67)
-    >>> dG, dT = ep.drag_rates(body, [0.5, 0.5, 0.5], 1.0, 0.4)
-    >>> print(f"{dG:.6f} {-2 * 0.5 * ep.T_from(body, 1.0, 0.4):.6f}")
+    >>> print(f"{ep.drag_rates(body, [0.5, 0.5, 0.5], 1.0, 0.4)[0]:.6f} {-ep.T_from(body, 1.0, 0.4):.6f}")
     -0.173241 -0.173241
     """
     check_body(body)
@@ -502,22 +446,13 @@ def N_star(body: Body, k2: Any, kind: str = "max") -> Any:
     ValueError
         If ``kind`` is unknown or ``k2`` is not finite and in :math:`[0, 1]`.
 
-    See Also
-    --------
-    precession_rate : the gravity-gradient precession it drives.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (6).
-
     Examples
     --------
-    At :math:`k^2 = 0` the body turns about the axis of :math:`A_1`, so :math:`J_{GG} = A_1` and
-    :math:`N^* = A_2 + A_3 - 2A_1 = -2.13`:
+    At :math:`k^2 = 0` the body turns about the axis of :math:`A_1`: :math:`J_{GG} = A_1`,
+    :math:`N^* = A_2 + A_3 - 2A_1`:
 
     >>> from rigidbody import euler_poinsot as ep
-    >>> body = ep.Body(3.2, 2.6, 1.67)
-    >>> print(f"{ep.N_star(body, 0.0):.6f} {2.6 + 1.67 - 2 * 3.2:.6f}")
+    >>> print(f"{ep.N_star(ep.Body(3.2, 2.6, 1.67), 0.0):.6f} {2.6 + 1.67 - 2 * 3.2:.6f}")
     -2.130000 -2.130000
     """
     check_body(body)
@@ -553,25 +488,15 @@ def k2_equilibria(body: Body, I: Any, kind: str = "max", n_grid: int = 2001) -> 
     -------
     list of (k2, 'stable' | 'unstable' | 'neutral')
 
-    See Also
-    --------
-    dk2_dtau : the right-hand side whose roots these are.
-    chi : decides the stability of :math:`k^2 = 0`.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (7), (8) and section 3.
-
     Examples
     --------
-    The paper's first drag case has :math:`\chi = -4.474 < -3` and :math:`N > 0`, so the slope
-    :math:`(-3-\chi)/2N` at :math:`k^2 = 0` is positive (unstable); the interior root is a zero of
-    :func:`dk2_dtau`:
+    The paper's first drag case: :math:`\chi < -3` and :math:`N > 0` make :math:`k^2 = 0` unstable; the
+    interior root is a zero of :func:`dk2_dtau`:
 
     >>> from rigidbody import euler_poinsot as ep
     >>> body, I = ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425]
     >>> (k0, s0), (k1, s1) = ep.k2_equilibria(body, I)
-    >>> print(f"{k0:.6f} {s0} {k1:.5f} {s1} {abs(ep.dk2_dtau(body, I, k1)) < 1e-12}")
+    >>> print(f"{k0:.6f} {s0} {k1:.5f} {s1}", abs(ep.dk2_dtau(body, I, k1)) < 1e-12)
     0.000000 unstable 0.52064 stable True
     """
     from scipy.optimize import brentq
@@ -649,18 +574,9 @@ def spin_ratio(body: Body, eps: float, G: float, k2: float, kind: str = "max") -
     ValueError
         If ``kind`` is unknown, ``eps <= 0``, ``G <= 0`` or ``k2`` is outside :math:`[0, 1]`.
 
-    See Also
-    --------
-    EulerPoinsot : the motion whose period :math:`P` this is.
-
-    References
-    ----------
-    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 (the Euler--Poinsot motion) and section 3
-    (:math:`\varepsilon = \omega_0/\omega`).
-
     Examples
     --------
-    The ratio is :math:`2\pi/(P\varepsilon)` with the period of the closed-form motion:
+    The ratio is :math:`2\pi/(P\varepsilon)` with the period of :class:`EulerPoinsot`:
 
     >>> import math
     >>> from rigidbody import euler_poinsot as ep
