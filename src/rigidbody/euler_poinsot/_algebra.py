@@ -51,6 +51,23 @@ def k2_from(body: Body, G: Any, T: Any, kind: str = "max") -> Any:
     ValueError
         If :math:`G^2/2T` lies outside :math:`[A_3, A_1]` (no rigid-body state) or on the other side of the
         separatrix :math:`G^2 = 2TA_2` than ``kind`` says (use :func:`kind_of`).
+
+    See Also
+    --------
+    T_from, kind_of
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (5).
+
+    Examples
+    --------
+    :math:`k^2 = 0` for rotation about the axis of :math:`A_1` (:math:`2TA_1 = G^2`); (5) inverts :func:`T_from`:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> print(f"{ep.k2_from(body, 1.0, 1 / 6.4):.6f} {ep.k2_from(body, 1.0, ep.T_from(body, 1.0, 0.3)):.6f}")
+    0.000000 0.300000
     """
     check_body(body)
     check_kind(kind)
@@ -97,6 +114,15 @@ def T_from(body: Body, G: Any, k2: Any, kind: str = "max") -> Any:
     Returns
     -------
     float or numpy.ndarray
+
+    Examples
+    --------
+    :math:`T` runs from :math:`G^2/2A_1 = 1/6.4` (:math:`k^2 = 0`) to :math:`G^2/2A_2 = 1/5.2` (:math:`k^2 = 1`):
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> print(f"{ep.T_from(body, 1.0, 0.0):.6f} {1 / 6.4:.6f} {ep.T_from(body, 1.0, 1.0):.6f} {1 / 5.2:.6f}")
+    0.156250 0.156250 0.192308 0.192308
     """
     check_body(body)
     check_kind(kind)
@@ -138,6 +164,15 @@ def kind_of(body: Body, G: float, T: float) -> str:
     ValueError
         If ``G`` or ``T`` is not positive, or :math:`G^2/2T` lies outside :math:`[A_3, A_1]` (no rigid-body
         state has it).
+
+    Examples
+    --------
+    With :math:`G = 1` the separatrix energy is :math:`1/2A_2 = 1/5.2`; less energy is the ``'max'`` kind:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> ep.kind_of(body, 1.0, 0.17), ep.kind_of(body, 1.0, 0.25), ep.kind_of(body, 1.0, 1 / 5.2)
+    ('max', 'min', 'separatrix')
     """
     check_body(body)
     G, T = real(G, "G"), real(T, "T")
@@ -184,6 +219,16 @@ def chi(body: Body, I: Any) -> float:
         If ``I`` has the wrong shape, is not finite or its symmetric part is not positive definite (see
         :class:`Drag`); or if :math:`I_{33}A_1 = I_{11}A_3` (then :math:`N = \infty` and :math:`\chi` is
         undefined; the :math:`k^2` equation itself stays finite: use :func:`dk2_dtau`).
+
+    Examples
+    --------
+    The paper's two drag cases, printed as -4.477 and 3.853 (the first is sensitive to the rounding of
+    the printed data, :doc:`/errata`):
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> print(f"{ep.chi(body, [2.322, 1.31, 1.425]):.4f} {ep.chi(body, [0.919, 5.228, 1.666]):.4f}")
+    -4.4743 3.8523
     """
     check_body(body)
     I11, I22, I33 = as_drag(I).diag
@@ -217,6 +262,15 @@ def N_time(body: Body, I: Any) -> float:
     ValueError
         If ``I`` is not a valid drag tensor (see :class:`Drag`), or :math:`I_{33}A_1 = I_{11}A_3` (then
         :math:`N` is infinite).
+
+    Examples
+    --------
+    The paper's first drag case, :math:`N = 3.2\cdot1.67/(1.425\cdot3.2 - 2.322\cdot1.67)`:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> N = ep.N_time(ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425])
+    >>> print(f"{N:.6f} {3.2 * 1.67 / (1.425 * 3.2 - 2.322 * 1.67):.6f}")
+    7.832791 7.832791
     """
     check_body(body)
     I11, _, I33 = as_drag(I).diag
@@ -272,6 +326,26 @@ def dk2_dtau(body: Body, I: Any, k2: float, kind: str = "max") -> float:
     ValueError
         If ``kind`` is unknown, ``k2`` is outside :math:`[0, 1]` or ``I`` is not a valid drag tensor (see
         :class:`Drag`).
+
+    See Also
+    --------
+    chi, N_time, k2_equilibria
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (7), (8).
+
+    Examples
+    --------
+    The paper's form of (7)-(8), with SciPy's complete elliptic integrals, gives the same number:
+
+    >>> from scipy.special import ellipe, ellipk
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body, I, k2 = ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425], 0.9
+    >>> c, N = ep.chi(body, I), ep.N_time(body, I)
+    >>> paper = ((1 - c) * (1 - k2) - ((1 - c) + (1 + c) * k2) * ellipe(k2) / ellipk(k2)) / N
+    >>> print(f"{ep.dk2_dtau(body, I, k2):.6f} {paper:.6f}")
+    -0.058536 -0.058536
     """
     check_body(body)
     check_kind(kind)
@@ -315,6 +389,16 @@ def drag_rates(body: Body, I: Any, G: float, k2: float, kind: str = "max") -> tu
     -------
     dG, dT : float
         Per unit dimensional time :math:`t` (or per :math:`\tau` with the nondimensional :math:`\tilde I`).
+
+    Examples
+    --------
+    An isotropic drag :math:`-c\boldsymbol\omega` gives :math:`dG/dt = -c\,\mathbf g\cdot\boldsymbol\omega/G =
+    -2cT/G` at every instant:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> print(f"{ep.drag_rates(body, [0.5, 0.5, 0.5], 1.0, 0.4)[0]:.6f} {-ep.T_from(body, 1.0, 0.4):.6f}")
+    -0.173241 -0.173241
     """
     check_body(body)
     check_kind(kind)
@@ -361,6 +445,15 @@ def N_star(body: Body, k2: Any, kind: str = "max") -> Any:
         If ``body`` is not a :class:`Body` or ``k2`` is not real.
     ValueError
         If ``kind`` is unknown or ``k2`` is not finite and in :math:`[0, 1]`.
+
+    Examples
+    --------
+    At :math:`k^2 = 0` the body turns about the axis of :math:`A_1`: :math:`J_{GG} = A_1`,
+    :math:`N^* = A_2 + A_3 - 2A_1`:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> print(f"{ep.N_star(ep.Body(3.2, 2.6, 1.67), 0.0):.6f} {2.6 + 1.67 - 2 * 3.2:.6f}")
+    -2.130000 -2.130000
     """
     check_body(body)
     check_kind(kind)
@@ -394,6 +487,17 @@ def k2_equilibria(body: Body, I: Any, kind: str = "max", n_grid: int = 2001) -> 
     Returns
     -------
     list of (k2, 'stable' | 'unstable' | 'neutral')
+
+    Examples
+    --------
+    The paper's first drag case: :math:`\chi < -3` and :math:`N > 0` make :math:`k^2 = 0` unstable; the
+    interior root is a zero of :func:`dk2_dtau`:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body, I = ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425]
+    >>> (k0, s0), (k1, s1) = ep.k2_equilibria(body, I)
+    >>> print(f"{k0:.6f} {s0} {k1:.5f} {s1}", abs(ep.dk2_dtau(body, I, k1)) < 1e-12)
+    0.000000 unstable 0.52064 stable True
     """
     from scipy.optimize import brentq
 
@@ -469,6 +573,17 @@ def spin_ratio(body: Body, eps: float, G: float, k2: float, kind: str = "max") -
         If ``body`` is not a :class:`Body` or ``eps``, ``G``, ``k2`` is not a real number.
     ValueError
         If ``kind`` is unknown, ``eps <= 0``, ``G <= 0`` or ``k2`` is outside :math:`[0, 1]`.
+
+    Examples
+    --------
+    The ratio is :math:`2\pi/(P\varepsilon)` with the period of :class:`EulerPoinsot`:
+
+    >>> import math
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> P = ep.EulerPoinsot(body, 1.0, 0.5).period
+    >>> print(f"{ep.spin_ratio(body, 0.1, 1.0, 0.5):.6f} {2 * math.pi / (P * 0.1):.6f}")
+    1.126246 1.126246
     """
     check_body(body)
     check_kind(kind)

@@ -201,6 +201,13 @@ def averaged(
         attracts from all sides). :func:`averaged_branches` runs every branch of the first crossing.
     seed : int or numpy.random.Generator, optional
         Random source for ``branch='random'``.
+
+    See Also
+    --------
+    simulate : the full (unaveraged) equations of the same problem.
+    averaged_rates : the right-hand sides integrated here.
+    averaged_branches : every branch of a separatrix crossing.
+
     Notes
     -----
     *Batches.* Arrays for ``eps``, ``G0``, ``k2_0`` (or ``T0``), ``delta0``, ``lam0``, ``nu0`` (and a batch of
@@ -216,8 +223,14 @@ def averaged(
     adapts to each state). Every member equals its single call within
     the tolerance; with ``branch='random'`` the members draw from one generator seeded by ``seed``.
 
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (6)-(9) and section 3 (the drag cases).
+
     Examples
     --------
+    The paper's first drag case, orbit-averaged (``eps = 0``): the drag dissipates, so :math:`G` falls:
+
     >>> import numpy as np
     >>> from rigidbody import euler_poinsot as ep
     >>> body = ep.Body(3.2, 2.6, 1.67)
@@ -248,6 +261,29 @@ def averaged_branches(*args: Any, **kwargs: Any) -> dict[tuple[str, int], Soluti
     dict
         Region -> Solution; each Solution's ``crossings[0]['probabilities'][region]`` is the probability of
         that branch. A run that does not cross the separatrix gives one entry, its initial region.
+
+    See Also
+    --------
+    averaged : one run, in the most probable (or a chosen) branch.
+    separatrix_crossing : the capture probabilities.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (9) (integrated on each side of the separatrix).
+
+    Examples
+    --------
+    For the drag ``diag(3, 2, 1)`` :math:`k^2` grows to the separatrix (:func:`k2_equilibria`: only the
+    unstable :math:`k^2 = 0`), and the motion goes on about the axis of :math:`A_3`; the drag is odd in
+    :math:`\boldsymbol\omega`, so the two senses of rotation there are equally likely:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> runs = ep.averaged_branches(ep.Body(3.2, 2.6, 1.67), [3.0, 2.0, 1.0], 0.0, k2_0=0.9, tau_span=(0, 3),
+    ...                             k2_max=None)
+    >>> for region, sol in sorted(runs.items()):
+    ...     print(region, sol.status, f"{sol.crossings[0]['probabilities'][region]:.6f}")
+    ('min', -1) 0 0.500000
+    ('min', 1) 0 0.500000
     """
     if "branch" in kwargs:
         raise TypeError("averaged_branches runs every branch: do not pass branch")

@@ -61,6 +61,30 @@ def initial_state(
     dict
         ``g`` (body components of G), ``R`` (body -> Ox_i), ``q`` (its quaternion), ``psi``, ``theta``,
         ``phi`` (Euler angles relative to Oy_i), ``T``.
+
+    See Also
+    --------
+    EulerPoinsot : the motion the body is put on.
+    simulate : starts from this state.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (1), (5) (the angles and the modulus).
+
+    Examples
+    --------
+    The body's momentum, turned into the orbital axes, points along :math:`(\delta_0, \lambda_0)`, and the
+    energy is that of :func:`T_from`:
+
+    >>> import numpy as np
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> st = ep.initial_state(body, 1.0, 0.5, 0.7, 0.3)
+    >>> n = [np.sin(0.7) * np.cos(0.3), np.sin(0.7) * np.sin(0.3), np.cos(0.7)]
+    >>> bool(np.allclose(st["R"] @ st["g"], n, rtol=0, atol=1e-14))
+    True
+    >>> print(f"{st['T']:.6f} {ep.T_from(body, 1.0, 0.5):.6f}")
+    0.176877 0.176877
     """
     u0, psi0 = real(u0, "u0"), real(psi0, "psi0")
     m = EulerPoinsot(body, G0, k2_0, kind, sigma)

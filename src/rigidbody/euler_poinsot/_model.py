@@ -63,6 +63,28 @@ class Body:
         If a moment is not a real number.
     ValueError
         If a moment is not positive and finite, the ordering is violated or the triangle inequality fails.
+
+    See Also
+    --------
+    Drag, Orbit : the other parameters of the problem.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 1 (:math:`A_1 > A_2 > A_3`) and section 3
+    (the body of the numerical study).
+
+    Examples
+    --------
+    The paper's body of section 3, and a body whose moments break the triangle inequality
+    (:math:`A_1 = 3 > A_2 + A_3 = 2.5`), which no mass distribution has:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> ep.Body(3.2, 2.6, 1.67).A.tolist()
+    [3.2, 2.6, 1.67]
+    >>> ep.Body(3.0, 1.5, 1.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: triangle inequality A1 <= A2 + A3 violated: A1=3.0 > A2 + A3=2.5
     """
 
     A1: float
@@ -139,6 +161,34 @@ class Drag:
     ValueError
         If the shape is wrong, an entry is not finite or the symmetric part is not positive definite
         (the torque would not dissipate).
+
+    See Also
+    --------
+    LinearDrag : the drag alone, as a torque object.
+    chi, N_time, drag_rates : what the averaged system (6)-(8) takes of it.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eq. (3) and :doc:`/errata` (its sign).
+
+    Examples
+    --------
+    Off-diagonal entries are allowed but do not enter (6): an antisymmetric part leaves the averaged rates
+    those of the diagonal. A tensor that would feed energy in is refused:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> drag = ep.Drag([[2.322, 0.5, 0.0], [-0.5, 1.31, 0.0], [0.0, 0.0, 1.425]])
+    >>> drag.diag
+    (2.322, 1.31, 1.425)
+    >>> a = ep.averaged_rates(body, drag, 1.0, 0.5, 0.7, 0.3, None)
+    >>> b = ep.averaged_rates(body, drag.diag, 1.0, 0.5, 0.7, 0.3, None)
+    >>> print(f"{a['dG']:.6f} {b['dG']:.6f}")
+    -0.665135 -0.665135
+    >>> ep.Drag([1.0, 1.0, -1.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: I: the symmetric part of the drag tensor must be positive definite ...
     """
 
     I: Any = field()
@@ -189,6 +239,25 @@ class Orbit:
         anomaly obeys :math:`\dot\nu = \omega_0(1+e\cos\nu)^2/(1-e^2)^{3/2}` (Kepler's law; ``e = 0`` gives
         (2), :math:`\nu = \omega_0 t + \nu_0`), with :math:`\omega_0 = 2\pi/Q` the mean motion and the axis
         :math:`Ox_1` towards the pericentre.
+
+    See Also
+    --------
+    GravityGradient : the torque that carries the orbit factor.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (2), (3).
+
+    Examples
+    --------
+    At the pericentre :math:`\nu = 0` the factor is :math:`(1+e)^3/(1-e^2)^3 = 1/(1-e)^3`, and the true
+    anomaly runs at :math:`(1+e)^2/(1-e^2)^{3/2}` times the mean motion (:math:`1/0.729 = 1.371742` and
+    :math:`1.21/0.99^{3/2} = 1.228380` for ``e = 0.1``):
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> orbit = ep.Orbit(e=0.1)
+    >>> print(f"{orbit.factor(0.0):.6f} {orbit.nu_rate(0.0):.6f}")
+    1.371742 1.228380
     """
 
     e: float = 0.0

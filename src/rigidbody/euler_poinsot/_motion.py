@@ -62,8 +62,19 @@ class EulerPoinsot:
     mc : float, optional
         :math:`1-k^2` when known more accurately than ``1 - k2`` (near the separatrix).
 
+    See Also
+    --------
+    Separatrix : the limit :math:`k^2 \to 1`.
+    k2_from, T_from : formula (5) and its inverse.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 and eq. (5).
+
     Examples
     --------
+    :math:`|\mathbf g| = G` at every instant (the motion conserves the angular momentum):
+
     >>> from rigidbody.euler_poinsot import Body, EulerPoinsot
     >>> m = EulerPoinsot(Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
     >>> g = m.g(0.3)
@@ -182,6 +193,22 @@ class EulerPoinsot:
             Time.
         u0 : float
             Initial elliptic argument (phase of the motion).
+
+        Examples
+        --------
+        The motion repeats after ``period`` :math:`= 4K(k)/\dot u` (:math:`K` from SciPy), and
+        :math:`\boldsymbol\omega\cdot\mathbf g = 2T` at every instant:
+
+        >>> import numpy as np
+        >>> from scipy.special import ellipk
+        >>> from rigidbody import euler_poinsot as ep
+        >>> m = ep.EulerPoinsot(ep.Body(3.2, 2.6, 1.67), 1.0, 0.5)
+        >>> print(f"{m.period:.6f} {4 * ellipk(0.5) / m.rate:.6f}")
+        55.788752 55.788752
+        >>> bool(np.allclose(m.omega(0.3 + m.period), m.omega(0.3), rtol=0, atol=1e-14))
+        True
+        >>> print(f"{m.omega(0.3) @ m.g(0.3):.6f} {2 * m.T:.6f}")
+        0.353753 0.353753
         """
         w1, w2, w3 = self._components(t, u0)
         return np.stack([np.asarray(w1, float), np.asarray(w2, float), np.asarray(w3, float)])
@@ -205,6 +232,17 @@ class EulerPoinsot:
         :math:`k^2`. (The degenerate-angle rule of ``rigidbody.core.euler.angles``, :math:`\varphi = 0`, is
         for reading angles off a matrix; here it would leave :math:`\psi` the only moving angle, at the
         wrong rate.)
+
+        Examples
+        --------
+        :math:`\cos\theta = g_3/G`:
+
+        >>> import math
+        >>> from rigidbody import euler_poinsot as ep
+        >>> m = ep.EulerPoinsot(ep.Body(3.2, 2.6, 1.67), 1.0, 0.5)
+        >>> psi, theta, phi = m.angles(0.3)
+        >>> print(f"{math.cos(theta):.6f} {m.g(0.3)[2]:.6f}")
+        0.379290 0.379290
         """
         theta, phi = self._theta_phi(t, u0)
         psi = psi0 + self._psi_integral(np.asarray(t, dtype=float), u0)
@@ -287,6 +325,18 @@ class EulerPoinsot:
         -------
         float or numpy.ndarray
             The mean over the two leading axes.
+
+        Examples
+        --------
+        The mean moment of inertia about :math:`\mathbf G`, :math:`\langle J_{GG}\rangle =
+        \langle\sum_j\alpha_{3j}^2A_j\rangle`, gives :math:`N^* = A_1 + A_2 + A_3 - 3\langle J_{GG}\rangle`,
+        the closed form of (6) (:func:`N_star`):
+
+        >>> from rigidbody import euler_poinsot as ep
+        >>> body = ep.Body(3.2, 2.6, 1.67)
+        >>> J = ep.EulerPoinsot(body, 1.0, 0.5).average(lambda a, w: (a[..., 2, :] ** 2 * body.A).sum(-1))
+        >>> print(f"{body.A.sum() - 3 * J:.6f} {ep.N_star(body, 0.5):.6f}")
+        -1.268617 -1.268617
         """
         t, g = self.nodes(n)
         omega = (g / self.body.A[:, None]).T

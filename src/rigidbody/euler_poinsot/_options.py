@@ -26,6 +26,19 @@ class Solver:
     method : str
         ``'DOP853'`` (default; run on Python floats) or another :func:`scipy.integrate.solve_ivp` method (single
         runs only: a batch uses DOP853).
+
+    See Also
+    --------
+    Stops : the other option group.
+    averaged, simulate : the runs that take it (``solver=Solver(...)`` or its fields by keyword).
+
+    Examples
+    --------
+    A looser tolerance for a quick run; the fields not given keep their defaults:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> ep.Solver(rtol=1e-8)
+    Solver(rtol=1e-08, atol=1e-12, method='DOP853')
     """
 
     rtol: float = 1e-10
@@ -49,6 +62,23 @@ class Stops:
     resonance_tol : float or None
         :func:`averaged` with a torque object: the largest predicted jump at a resonance crossing (``None``: no
         check). :func:`simulate` refuses a value other than the default.
+
+    See Also
+    --------
+    Solver : the other option group.
+    averaged, simulate : the runs that take it (``stops=Stops(...)`` or its fields by keyword).
+
+    Examples
+    --------
+    An averaged run that stops at :math:`k^2 = 0.95`: for the drag ``diag(3, 2, 1)`` the only equilibrium of
+    (8) is the unstable :math:`k^2 = 0` (:func:`k2_equilibria`), so :math:`k^2` grows from 0.9 until the stop,
+    which the run locates as an event (status 1, the last :math:`k^2` is the threshold):
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> sol = ep.averaged(body, [3.0, 2.0, 1.0], 0.0, k2_0=0.9, tau_span=(0, 50), stops=ep.Stops(k2_max=0.95))
+    >>> print(sol.status, f"{sol.k2[-1]:.6f}")
+    1 0.950000
     """
 
     k2_max: float | None = 1.0 - 1e-6

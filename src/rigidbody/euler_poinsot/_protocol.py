@@ -34,11 +34,16 @@ ROLE = "the torque"
 
 class Torque:
     r"""Base class of the torque objects: ``torque(omega, C, nu) -> M``, body components of shape ``(..., 3)``
-    (see ``docs/euler_poinsot.md``, "The protocol").
+    (see :doc:`/euler_poinsot`, "The protocol").
 
     Subclasses implement ``__call__(omega, C, nu)``; they may also declare a closed-form average and the setup
     they were built for, by overriding the two hooks below. Adding two torques (or a torque and a plain
     function) gives a :class:`TorqueSum`, whose parts each take their own path.
+
+    See Also
+    --------
+    LinearDrag, GravityGradient, ConstantTorque, ViscousCavity, MagneticDipole : the catalogue.
+    average_torque : the engine that averages any torque.
 
     Notes
     -----
@@ -64,6 +69,22 @@ class Torque:
         Called at the start of a run (and of :func:`averaged_rates`, :func:`separatrix_crossing`, ...): raise
         a ``ValueError`` if the run's :class:`Body` or :class:`Orbit` differs from those the torque was built
         for (as :class:`GravityGradient` does). The default accepts any.
+
+    Examples
+    --------
+    A torque of one's own: the engine averages it over the Euler--Poinsot motion. This one is
+    :math:`-0.5\boldsymbol\omega`, an isotropic drag, so its averages are those of the closed form (6):
+
+    >>> import numpy as np
+    >>> from rigidbody import euler_poinsot as ep
+    >>> class Damper(ep.Torque):
+    ...     def __call__(self, omega, C, nu):
+    ...         return -0.5 * np.asarray(omega)
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> r = ep.averaged_rates(body, Damper(), 1.0, 0.4, 0.7, 0.3, None)
+    >>> dG, dT = ep.drag_rates(body, [0.5, 0.5, 0.5], 1.0, 0.4)
+    >>> print(f"{r['dG']:.6f} {dG:.6f} {r['dT']:.6f} {dT:.6f}")
+    -0.173241 -0.173241 -0.062377 -0.062377
     """
 
     #: whether ``__call__`` broadcasts the leading axes of its arguments (declared by the catalogue torques that
@@ -111,6 +132,25 @@ class FunctionTorque(Torque):
 
     Calling it returns the function's value checked by :func:`evaluate` (finite real components of shape
     ``(..., 3)``; otherwise a ``TypeError``/``ValueError`` naming the function).
+
+    See Also
+    --------
+    Torque : the protocol it implements.
+
+    Examples
+    --------
+    A function that returns the wrong shape is named in the error:
+
+    >>> import numpy as np
+    >>> from rigidbody import euler_poinsot as ep
+    >>> def wrong(omega, C, nu):
+    ...     return np.zeros(2)
+    >>> try:
+    ...     ep.FunctionTorque(wrong)(np.ones(3), np.eye(3), 0.0)
+    ... except ValueError as exc:
+    ...     print(exc)
+    the torque <function wrong at 0x...> returned an array of shape (2,); expected finite real numbers of shape
+    (..., 3), here (3,) (or broadcasting to it)
     """
 
     fun: Callable[..., Any]
@@ -125,7 +165,31 @@ class FunctionTorque(Torque):
 
 @dataclass(frozen=True)
 class TorqueSum(Torque):
-    """The sum of torques (what ``a + b`` returns); nested sums are flattened."""
+    """The sum of torques (what ``a + b`` returns); nested sums are flattened.
+
+    See Also
+    --------
+    Torque : ``a + b`` of two torques.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (3), (6) (drag plus gravity gradient).
+
+    Examples
+    --------
+    Rachinskaya's perturbation as a sum of two catalogue torques has the averages of (6), which
+    :func:`averaged_rates` evaluates from the drag tensor alone:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body, I = ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425]
+    >>> both = ep.LinearDrag(I) + ep.GravityGradient(body)
+    >>> type(both).__name__, len(both.terms)
+    ('TorqueSum', 2)
+    >>> a = ep.averaged_rates(body, both, 1.0, 0.5, 0.7, 0.3, 0.2)
+    >>> b = ep.averaged_rates(body, I, 1.0, 0.5, 0.7, 0.3, 0.2)
+    >>> print(f"{a['ddelta']:.6f} {b['ddelta']:.6f} {a['dlam']:.6f} {b['dlam']:.6f}")
+    -0.121774 -0.121774 -1.440931 -1.440931
+    """
 
     terms: tuple[Torque, ...]
 

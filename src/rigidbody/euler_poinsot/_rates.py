@@ -84,6 +84,31 @@ def averaged_rates(
         torque object), ``sigma`` is not +1 or -1, ``method`` or ``kind`` is unknown, or a torque object
         was built for another body or orbit; or the torque returns a scalar, a shape other than ``(..., 3)``,
         NaN or infinities (the message names it and what was expected).
+
+    See Also
+    --------
+    averaged : integrates these right-hand sides.
+    average_torque : the engine, with its error estimate.
+    drag_rates, dk2_dtau, precession_rate : the closed forms of the paper's case.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (6), (8), (9).
+
+    Examples
+    --------
+    The paper's case (a drag tensor: drag plus gravity gradient): the gravity gradient leaves :math:`G`,
+    :math:`T` and :math:`k^2` unchanged on average, so those rates are the drag's of (6) and (8), and with
+    :math:`\nu` averaged out (``nu=None``) :math:`\lambda` turns at the :func:`precession_rate`:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body, I = ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425]
+    >>> r = ep.averaged_rates(body, I, 1.0, 0.5, 0.7, 0.3, None)
+    >>> dG, dT = ep.drag_rates(body, I, 1.0, 0.5)
+    >>> print(f"{r['dG']:.6f} {dG:.6f} {r['dk2']:.6f} {ep.dk2_dtau(body, I, 0.5):.6f}")
+    -0.665135 -0.665135 0.001881 0.001881
+    >>> print(f"{r['dlam']:.6f} {ep.precession_rate(body, 1.0, 0.5, 0.7):.6f}")
+    -0.727719 -0.727719
     """
     check_body(body)
     check_kind(kind)
@@ -222,6 +247,16 @@ def average_torque(
         ``rates`` (as :func:`averaged_rates`), ``error`` (estimated absolute errors of the rates), ``L``,
         ``dn``, ``nodes``, ``converged``, ``convergence``.
 
+    See Also
+    --------
+    averaged_rates : the rates, from the closed forms where a torque has them.
+    Torque : the protocol of the torque averaged.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, section 2 (the averaging over the Euler--Poinsot motion)
+    and eq. (6).
+
     Examples
     --------
     >>> import numpy as np
@@ -301,6 +336,29 @@ def precession_rate(body: Body, G: float, k2: float, delta: float, *, kind: str 
     ValueError
         If ``kind`` is unknown, a number is not finite, ``G <= 0``, ``omega0 <= 0`` or ``k2`` is outside
         :math:`[0, 1]`.
+
+    See Also
+    --------
+    N_star : the factor of the body's moments.
+    averaged_rates : all the rates, at a given :math:`\nu` too.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (6), (9).
+
+    Examples
+    --------
+    The formula with :func:`N_star`, and the eccentric orbit's factor :math:`(1-e^2)^{-3/2}`
+    (:math:`0.99^{-3/2} = 1.015190` for ``e = 0.1``):
+
+    >>> import math
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> rate = ep.precession_rate(body, 1.0, 0.5, 0.7)
+    >>> print(f"{rate:.6f} {0.75 * ep.N_star(body, 0.5) * math.cos(0.7):.6f}")
+    -0.727719 -0.727719
+    >>> print(f"{ep.precession_rate(body, 1.0, 0.5, 0.7, orbit=ep.Orbit(0.1)) / rate:.6f}")
+    1.015190
     """
     check_body(body)
     check_kind(kind)

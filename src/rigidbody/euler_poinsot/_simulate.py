@@ -96,6 +96,11 @@ def simulate(
         For a batch every field has the leading ``batch_shape`` (and ``tau_eval``, default 101 times, as its
         last axis), NaN after a member's end; ``status``, ``message``, ``event`` are per member.
 
+    See Also
+    --------
+    averaged : the averaged system (9) of the same problem.
+    initial_state : the attitude a run starts from.
+
     Notes
     -----
     *Batches.* Arrays for ``eps``, ``G0``, ``k2_0`` (or ``T0``), ``delta0``, ``lam0``, ``nu0``, ``u0``, ``psi0``
@@ -105,6 +110,23 @@ def simulate(
     ``lam`` continuous from the located passages of :math:`\mathbf n` through the branch cut of the azimuth;
     the ``'angles'`` formulation (and a ``method`` other than DOP853) runs member by member. A member whose
     start the single call refuses gets ``status = -1`` and that call's message.
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (1), (3), (4) (the full equations) and (5)
+    (the modulus :math:`k^2`).
+
+    Examples
+    --------
+    With no torque the motion is Euler--Poinsot's: :math:`G` and :math:`T`, hence :math:`k^2`, keep their
+    initial values (1 and 0.5 here) to the integrator's tolerance:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> sol = ep.simulate(body, ep.ConstantTorque([0.0, 0.0, 0.0]), 0.1, k2_0=0.5, tau_span=(0, 0.05),
+    ...                   tau_eval=[0, 0.05])
+    >>> print(sol.status, f"{sol.G[-1]:.6f} {sol.k2[-1]:.6f}")
+    0 1.000000 0.500000
     """
     opts = simulate_options(kind=kind, T0=T0, orbit=orbit, sigma=sigma, **options)
     if is_batch(eps, G0, k2_0, delta0, lam0, nu0, opts["T0"], opts["u0"], opts["psi0"]):

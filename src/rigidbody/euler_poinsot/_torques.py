@@ -110,6 +110,29 @@ class LinearDrag(_ArrayEq):
     I : array_like
         The nondimensional tensor :math:`\tilde I = I/(G_0\varepsilon^2)` (3x3, any; or its 3 diagonal
         entries); its symmetric part must be positive definite (as for :class:`Drag`).
+
+    See Also
+    --------
+    Drag, drag_rates, dk2_dtau
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (3), (6), (8).
+
+    Examples
+    --------
+    The torque is :math:`-I\boldsymbol\omega` at every instant, and its averages are those of (6):
+
+    >>> import numpy as np
+    >>> from rigidbody import euler_poinsot as ep
+    >>> drag = ep.LinearDrag([1.0, 2.0, 3.0])
+    >>> drag([1.0, 1.0, 1.0], np.eye(3), 0.0).tolist()
+    [-1.0, -2.0, -3.0]
+    >>> body, I = ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425]
+    >>> r = ep.averaged_rates(body, ep.LinearDrag(I), 1.0, 0.5, 0.7, 0.3, None)
+    >>> dG, dT = ep.drag_rates(body, I, 1.0, 0.5)
+    >>> print(f"{r['dG']:.6f} {dG:.6f} {r['dT']:.6f} {dT:.6f}")
+    -0.665135 -0.665135 -0.235227 -0.235227
     """
 
     _broadcasts: ClassVar[bool] = True
@@ -149,6 +172,33 @@ class GravityGradient(_ArrayEq):
     omega0 : float
         The orbital mean motion in the units of the torque: 1 (default) in the module's scaling (the
         torque divided by :math:`\varepsilon^2`); the dimensional :math:`\omega_0` for dimensional torques.
+
+    See Also
+    --------
+    Orbit, N_star, precession_rate
+
+    References
+    ----------
+    :ref:`A. L. Rachinskaya (c. 2014) <ref-rachinskaya>`, eqs. (3), (6).
+
+    Examples
+    --------
+    With the body axes along the orbital ones (:math:`C = 1`) at :math:`\nu = \pi/4` the radius vector is
+    :math:`\boldsymbol\rho = (1, 1, 0)/\sqrt2`, so the torque is :math:`3\cdot\tfrac12(A_2 - A_1)
+    = -0.9` about the third axis:
+
+    >>> import math
+    >>> import numpy as np
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> print(f"{ep.GravityGradient(body)([1.0, 0.0, 0.0], np.eye(3), math.pi / 4)[2]:.6f}")
+    -0.900000
+
+    On average it turns :math:`\mathbf G` at the :func:`precession_rate` without changing :math:`G`:
+
+    >>> r = ep.averaged_rates(body, ep.GravityGradient(body), 1.0, 0.5, 0.7, 0.3, None)
+    >>> print(abs(r["dG"]) < 1e-12, f"{r['dlam']:.6f} {ep.precession_rate(body, 1.0, 0.5, 0.7):.6f}")
+    True -0.727719 -0.727719
     """
 
     _broadcasts: ClassVar[bool] = True
@@ -318,6 +368,20 @@ class ConstantTorque(_ArrayEq):
     ----------
     M : array_like
         The three body components (section-3 scaling divided by :math:`\varepsilon^2`).
+
+    Examples
+    --------
+    At :math:`k^2 = 0` the body spins steadily about the axis of :math:`A_1` with :math:`\omega_1 = G/A_1`,
+    so a torque :math:`M_{0,1} = 0.1` along it gives exactly :math:`dG/d\tau = 0.1` and
+    :math:`dT/d\tau = \omega_1M_{0,1} = 0.1/3.2 = 0.03125`; both change sign with the sense of rotation:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body, push = ep.Body(3.2, 2.6, 1.67), ep.ConstantTorque([0.1, 0.0, 0.0])
+    >>> for sigma in (1, -1):
+    ...     r = ep.averaged_rates(body, push, 1.0, 0.0, 0.7, 0.3, None, sigma=sigma)
+    ...     print(f"{r['dG']:.6f} {r['dT']:.6f}")
+    0.100000 0.031250
+    -0.100000 -0.031250
     """
 
     _broadcasts: ClassVar[bool] = True
@@ -396,6 +460,21 @@ class ViscousCavity(_ArrayEq):
     P : array_like
         The tensor :math:`\tilde P = \rho P\Omega_0^2/(\nu G_0\varepsilon^2)` in body axes (3x3 symmetric
         positive semi-definite, or its 3 diagonal entries). Only the diagonal enters the averages.
+
+    References
+    ----------
+    :ref:`L. D. Akulenko, Ya. S. Zinkevich, D. D. Leshchenko, A. L. Rachinskaya (2008) <ref-azlr-2008>`.
+
+    Examples
+    --------
+    The fluid is internal: on average :math:`G` keeps its value while the energy falls
+    (:math:`\langle\dot T\rangle = -\langle\dot{\boldsymbol\omega}\cdot P\dot{\boldsymbol\omega}\rangle < 0`):
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body = ep.Body(3.2, 2.6, 1.67)
+    >>> r = ep.averaged_rates(body, ep.ViscousCavity(body, [1.0, 1.0, 1.0]), 1.0, 0.5, 0.7, 0.3, None)
+    >>> print(abs(r["dG"]) < 1e-12, r["dT"] < 0)
+    True True
     """
 
     _broadcasts: ClassVar[bool] = True
@@ -471,6 +550,22 @@ class MagneticDipole(_ArrayEq):
     B : array_like or callable
         The field in the orbital axes: 3 components, or a function ``B(nu) -> (..., 3)`` vectorised over
         ``nu``. :math:`\tilde m\tilde B = mB/(G_0\Omega_0\varepsilon^2)` in the module's scaling.
+
+    See Also
+    --------
+    ConstantTorque : the same average along the axis of rotation, for a torque fixed in the body.
+
+    Examples
+    --------
+    At :math:`k^2 = 0` (:math:`\bar\omega_1 = G/A_1`) a magnet :math:`m_1 = 0.2` in a field :math:`0.5` along
+    the orbit normal turns :math:`\mathbf G` at :math:`-m_1|\mathbf B|/G = -0.1` (:math:`\dot{\mathbf n}
+    \propto \mathbf n\times\mathbf B`), and leaves :math:`G` unchanged:
+
+    >>> from rigidbody import euler_poinsot as ep
+    >>> body, magnet = ep.Body(3.2, 2.6, 1.67), ep.MagneticDipole([0.2, 0.0, 0.0], [0.0, 0.0, 0.5])
+    >>> r = ep.averaged_rates(body, magnet, 1.0, 0.0, 0.7, 0.3, None)
+    >>> print(abs(r["dG"]) < 1e-12, f"{r['dlam']:.6f}")
+    True -0.100000
     """
 
     m: Any = field()
