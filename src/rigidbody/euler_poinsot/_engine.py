@@ -32,9 +32,8 @@ Error estimate: the grid of :math:`n` nodes per axis contains the grids of :math
 or alternate in sign -- the erratic convergence of torques with kinks), by the geometric tail
 :math:`d_2 r/(1-r)` for :math:`1/2 \le r < 0.9`, and by :math:`10\max(d_1, d_2)` when the differences do
 not decrease; differences at the rounding level of the mean count as converged. For a smooth torque this
-is pessimistic (the error of :math:`Q_n` is about :math:`d_2 r`), which costs one doubling at the start of
-a run and buys an honest figure for torques that are not smooth. The node counts are doubled along each
-axis whose estimate exceeds the tolerance, up to a budget.
+is pessimistic (the error of :math:`Q_n` is about :math:`d_2 r`): one doubling at the start of a run buys an
+honest figure for torques that are not smooth. Node counts double along each axis over the tolerance (a budget).
 
 Two checks that the nested differences cannot make. A torque that *jumps* (an eclipse, a switched torque)
 gives means whose differences change by whole nodes, and often not at all: along an axis whose profile (the

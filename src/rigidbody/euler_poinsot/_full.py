@@ -213,15 +213,12 @@ def _body_form(c: _Common) -> tuple[Any, ...]:
     return rhs, y0, GT, nvec, G_D, body_dir, extra_events
 
 
-def _angles_form(c: _Common) -> tuple[Any, ...]:
-    """The paper's equations (1), (3), (4) in (G, delta, lambda, theta, phi, psi, T): right-hand side, initial state,
-    the slow variables and directions from the state, the events of their singular states."""
-    body, orb, tq, generic, st, nu0, misfire = c.body, c.orbit, c.torque, c.generic, c.st, c.nu0, c.misfire
-    nu_of = c.nu_of
+def _angle_torques(c: _Common) -> Any:
+    """The torque projected on the axes Oy of the angles form, ``torques(y, nu) -> (L1, L2, L3)``: the drag tensor
+    plus the gravity gradient written out on floats, or any torque object through its body components."""
+    body, orb, tq = c.body, c.orbit, c.torque
     A1, A2, A3 = body.A1, body.A2, body.A3
-    ie2, ie, circular = 1.0 / (c.eps * c.eps), 1.0 / c.eps, orb.e == 0.0
     (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in c.Im)
-    G0, delta0, lam0 = c.G0, c.delta0, c.lam0
 
     def torques_drag(y: np.ndarray, nu: float) -> tuple[float, ...]:
         G, de, la, th, ph, ps = y[0], y[1], y[2], y[3], y[4], y[5]
@@ -266,7 +263,19 @@ def _angles_form(c: _Common) -> tuple[Any, ...]:
         L = alpha @ M
         return float(L[0]), float(L[1]), float(L[2])
 
-    torques = torques_generic if generic else torques_drag
+    return torques_generic if c.generic else torques_drag
+
+
+def _angles_form(c: _Common) -> tuple[Any, ...]:
+    """The paper's equations (1), (3), (4) in (G, delta, lambda, theta, phi, psi, T): right-hand side, initial state,
+    the slow variables and directions from the state, the events of their singular states."""
+    body, orb, tq, generic, st, nu0, misfire = c.body, c.orbit, c.torque, c.generic, c.st, c.nu0, c.misfire
+    nu_of = c.nu_of
+    A1, A2, A3 = body.A1, body.A2, body.A3
+    ie2, ie, circular = 1.0 / (c.eps * c.eps), 1.0 / c.eps, orb.e == 0.0
+    G0, delta0, lam0 = c.G0, c.delta0, c.lam0
+
+    torques = _angle_torques(c)
 
     def rhs(tau: float, y: np.ndarray) -> list[float]:
         G, de, th, ph, ps, T = y[0], y[1], y[3], y[4], y[5], y[6]

@@ -98,13 +98,7 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
         arr.fill(none)
     lam_shift = np.zeros((B, nt))
     if idx.size:
-        y0 = np.empty((idx.size, ns))
-        for j, i in enumerate(idx):
-            st = initial_state(body, float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]), float(mem.lam0[i]),
-                               kind=str(run.kind[i]), u0=float(u0[i]), psi0=float(psi0[i]), sigma=run.sigma)
-            y0[j, :3], y0[j, 3:7] = st["g"], st["q"]
-            if e != 0.0:
-                y0[j, 7] = mem.nu0[i]
+        y0 = _initial_states(run, mem, idx, u0, psi0, ns)
         ie = 1.0 / mem.eps[idx]
         mx = run.kind[idx] == "max"  # the labelled moments A1, A3 of each member's initial kind (the k2_max stop)
         # the last arg: each member's index, to note where its torque turned non-finite (t_bad; see below)
@@ -169,12 +163,7 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
         why = result_message(getattr(run.torque, "fun", run.torque), (3,), "non-finite values (NaN or inf)", ROLE)
         for i in idx[(status[idx] == -1) & (t_bad[idx] >= t_final[idx])].tolist():
             message[i] = stop_message("torque", tau=t_bad[i], why=why)
-        for j, i in enumerate(idx):
-            for name, sign in (("_cut_up", -1.0), ("_cut_down", 1.0)):
-                tc, yc = sol.t_events[name][j], sol.y_events[name][j]
-                if tc.size:
-                    tc = tc[n_of(yc)[:, 0] < 0.0]
-                    lam_shift[i] += sign * 2.0 * math.pi * (tc[:, None] <= te[None, :]).sum(axis=0)
+        _cut_shifts(sol, idx, n_of, te, lam_shift)
     data = _fields(A, Y, lam_shift, mem, te, e)
     shape = mem.batch_shape
     data = {k: v.reshape(shape + v.shape[1:]) for k, v in data.items()}
@@ -182,6 +171,29 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
     return Solution("tau", te, Y.reshape(shape + Y.shape[1:]), data, status.reshape(shape), message.reshape(shape),
                     event.reshape(shape), t_events, {}, None, nfev.reshape(shape), batch_shape=shape,
                     t_final=t_final.reshape(shape))
+
+
+def _initial_states(run: FullRun, mem: Members, idx: np.ndarray, u0: np.ndarray, psi0: np.ndarray,
+                    ns: int) -> np.ndarray:
+    """The body-frame start (g, q[, nu]) of each member in ``idx``."""
+    y0 = np.empty((idx.size, ns))
+    for j, i in enumerate(idx):
+        st = initial_state(run.body, float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]), float(mem.lam0[i]),
+                           kind=str(run.kind[i]), u0=float(u0[i]), psi0=float(psi0[i]), sigma=run.sigma)
+        y0[j, :3], y0[j, 3:7] = st["g"], st["q"]
+        if ns == 8:
+            y0[j, 7] = mem.nu0[i]
+    return y0
+
+
+def _cut_shifts(sol: Solution, idx: np.ndarray, n_of: Any, te: np.ndarray, lam_shift: np.ndarray) -> None:
+    """Add 2 pi to lambda of each member at every passage of its azimuth through the branch cut (n2 = 0, n1 < 0)."""
+    for j, i in enumerate(idx):
+        for name, sign in (("_cut_up", -1.0), ("_cut_down", 1.0)):
+            tc, yc = sol.t_events[name][j], sol.y_events[name][j]
+            if tc.size:
+                tc = tc[n_of(yc)[:, 0] < 0.0]
+                lam_shift[i] += sign * 2.0 * math.pi * (tc[:, None] <= te[None, :]).sum(axis=0)
 
 
 def _rhs(run: FullRun, t_bad: np.ndarray) -> Any:

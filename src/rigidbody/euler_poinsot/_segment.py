@@ -208,39 +208,15 @@ def _axisymmetric(av: Averager, st: State, tol: float = 1e-9) -> bool:
     return True
 
 
-def integrate_kind(setup: Setup, kind: str, sigma: int, tau_span: Any, G0: float, k2_0: float,
-                    n0: Any, nu0: float, lam0: float, first_step: float | None = None) -> _Segment:
-    """Integrate the averaged system of a torque object in one kind of motion from (G0, k2_0, n0) at the
-    start of ``tau_span`` (true anomaly ``nu0`` there, continuous lambda ``lam0``). A crossing into the other kind
-    restarts here with G, T, n continuous (k2 from (5) of the other kind).
-
-    As for a drag tensor (:mod:`._kernel`) the state is ``(ln G, ln k^2, delta, lambda[, nu])`` (``nu`` on an
-    eccentric orbit with eps > 0): ``rtol`` is the relative accuracy of G and k^2 however far they decay, and
-    lambda, a state, is continuous through any number of turns. ``d ln k^2/dtau = (dk^2/dtau)/k^2`` is finite as
-    k -> 0 (the engine's dk^2 is O(k^2) there, without cancellation); a start at k^2 = 0 exactly stays there (an
-    equilibrium of every averaged system: the phase-dependent part of the motion vanishes), carried by the factor
-    z = 0. The polar angles are singular at the poles sin(delta) = 0, where a torque may turn G (the drag tensor's
-    gravity gradient does not): there (sin(delta) < _SIN_OFF, until it exceeds _SIN_ON) the direction is the unit
-    vector n instead. With ``method='DOP853'`` DOP853 runs on Python floats (``engine='python'``), its dense output
-    computed lazily."""
-    tau0, t1 = float(tau_span[0]), float(tau_span[1])
-    eps, orb, body = setup.eps, setup.orbit, setup.body
-    ecc = eps > 0.0 and orb.e != 0.0
-    av = setup.averager
-    nn = np.asarray(n0, dtype=float)
-    nn = nn / math.sqrt(float(nn @ nn))
-    st0 = State(body, kind, sigma, G0, min(k2_0, 1.0 - 1e-15), nn, None if eps == 0.0 else nu0, orb)
-    av.calibrate(st0)
-    # k2 enters as s = ln(k2 + c): c = 0 with closed forms only (a start at k2 = 0 exactly then keeps z = 0); with the
-    # engine, whose dk2 carries rounding ~eps_mach k (zero-mean O(k) products, see _engine) against a size O(k^2),
-    # c = _k2_floor(rtol): the relative accuracy rtol of k2 down to where the engine has it, absolute below
-    c = 0.0 if av.rest is None else _k2_floor(setup.rtol)
-    z = 1.0 if k2_0 > 0.0 or c > 0.0 else 0.0
-    a = labelled(body, kind)
+def _mean_functions(setup: Setup, kind: str, sigma: int, z: float, c: float, tau0: float, nu0: float, inu: int,
+                    misfire: Misfire) -> tuple[Any, Any]:
+    """The averaged torque at a state of either chart of :func:`integrate_kind` (``mean_at``, on floats, the last
+    call remembered) and as a (State, Mean) pair (``pair``, for the drift event)."""
     exp, sqrt, sin, cos = math.exp, math.sqrt, math.sin, math.cos
+    eps, orb, body, av = setup.eps, setup.orbit, setup.body, setup.averager
+    ecc = eps > 0.0 and orb.e != 0.0
     ie = 1.0 / eps if eps > 0.0 else 0.0
     k2_top = 1.0 - 1e-15
-    inu = 4  # index of nu in the angle chart's state (5 in the vector chart's)
 
     def nu_of(tau: float, y: Any, i: int) -> float | None:
         if eps == 0.0:
@@ -251,7 +227,6 @@ def integrate_kind(setup: Setup, kind: str, sigma: int, tau_span: Any, G0: float
 
     fast = av.fast(kind, sigma, eps > 0.0)  # the engine alone on floats, or None (closed forms: state objects)
     memo: list[Any] = [None, None, None, None]  # the last (chart, tau, y, means): the drift event reuses them
-    misfire = Misfire()  # a torque that misbehaves part-way ends the run with a status naming it
 
     def mean_at(tau: float, y: Any, chart: str) -> _Slow:
         """(G, k2, n1, n2, n3, nu, L1, L2, L3, dT, dk2) at a state of the chart."""
@@ -288,6 +263,43 @@ def integrate_kind(setup: Setup, kind: str, sigma: int, tau_span: Any, G0: float
         return (State(body, kind, sigma, G, k2, np.array([n1, n2, n3]), nu, orb),
                 Mean(np.array([L1, L2, L3]), dT, dk2))
 
+    return mean_at, pair
+
+
+def integrate_kind(setup: Setup, kind: str, sigma: int, tau_span: Any, G0: float, k2_0: float,
+                    n0: Any, nu0: float, lam0: float, first_step: float | None = None) -> _Segment:
+    """Integrate the averaged system of a torque object in one kind of motion from (G0, k2_0, n0) at the
+    start of ``tau_span`` (true anomaly ``nu0`` there, continuous lambda ``lam0``). A crossing into the other kind
+    restarts here with G, T, n continuous (k2 from (5) of the other kind).
+
+    As for a drag tensor (:mod:`._kernel`) the state is ``(ln G, ln k^2, delta, lambda[, nu])`` (``nu`` on an
+    eccentric orbit with eps > 0): ``rtol`` is the relative accuracy of G and k^2 however far they decay, and
+    lambda, a state, is continuous through any number of turns. ``d ln k^2/dtau = (dk^2/dtau)/k^2`` is finite as
+    k -> 0 (the engine's dk^2 is O(k^2) there, without cancellation); a start at k^2 = 0 exactly stays there (an
+    equilibrium of every averaged system: the phase-dependent part of the motion vanishes), carried by the factor
+    z = 0. The polar angles are singular at the poles sin(delta) = 0, where a torque may turn G (the drag tensor's
+    gravity gradient does not): there (sin(delta) < _SIN_OFF, until it exceeds _SIN_ON) the direction is the unit
+    vector n instead. With ``method='DOP853'`` DOP853 runs on Python floats (``engine='python'``), its dense output
+    computed lazily."""
+    tau0, t1 = float(tau_span[0]), float(tau_span[1])
+    eps, orb, body = setup.eps, setup.orbit, setup.body
+    ecc = eps > 0.0 and orb.e != 0.0
+    av = setup.averager
+    nn = np.asarray(n0, dtype=float)
+    nn = nn / math.sqrt(float(nn @ nn))
+    st0 = State(body, kind, sigma, G0, min(k2_0, 1.0 - 1e-15), nn, None if eps == 0.0 else nu0, orb)
+    av.calibrate(st0)
+    # k2 enters as s = ln(k2 + c): c = 0 with closed forms only (a start at k2 = 0 exactly then keeps z = 0); with the
+    # engine, whose dk2 carries rounding ~eps_mach k (zero-mean O(k) products, see _engine) against a size O(k^2),
+    # c = _k2_floor(rtol): the relative accuracy rtol of k2 down to where the engine has it, absolute below
+    c = 0.0 if av.rest is None else _k2_floor(setup.rtol)
+    z = 1.0 if k2_0 > 0.0 or c > 0.0 else 0.0
+    a = labelled(body, kind)
+    ie = 1.0 / eps if eps > 0.0 else 0.0
+    inu = 4  # index of nu in the angle chart's state (5 in the vector chart's)
+    sqrt, sin = math.sqrt, math.sin
+    misfire = Misfire()  # a torque that misbehaves part-way ends the run with a status naming it
+    mean_at, pair = _mean_functions(setup, kind, sigma, z, c, tau0, nu0, inu, misfire)
     rhs_angles, rhs_vector = _rhs_pair(mean_at, z, c, orb, ie if ecc else None, inu)
 
     y0: list[float] = [math.log(G0), math.log(k2_0 + c) if z else 0.0, *(float(v) for v in nn)]

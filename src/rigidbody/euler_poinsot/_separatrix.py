@@ -9,8 +9,7 @@ rotation: ``("max", s)`` (circulation about :math:`s\,\mathbf e_1`, :math:`g_1` 
 separates the regions ``("max", s1)`` and ``("min", s3)``; the flow runs along it from
 :math:`+\mathbf e_2` to :math:`-\mathbf e_2` when :math:`s_1s_3 = 1` and back when :math:`s_1s_3 = -1`.
 
-Motion on an arc (derived here from Euler's equations; it is the :math:`k\to1` limit of the closed form of
-section 2, :math:`\operatorname{sn}\to\tanh`, :math:`\operatorname{cn},\operatorname{dn}\to\operatorname{sech}`):
+Motion on an arc (from Euler's equations; the :math:`k\to1` limit of section 2, sn → tanh, cn, dn → sech):
 
 .. math::
     \mathbf g = \big(s_1c_1\operatorname{sech}\lambda t,\ -s_1s_3G\tanh\lambda t,\

@@ -533,15 +533,12 @@ class ViscousCavity(_ArrayEq):
 class MagneticDipole(_ArrayEq):
     r"""The torque :math:`\mathbf m\times\mathbf B` of a permanent magnet in a magnetic field.
 
-    :math:`\mathbf m` is fixed in the body; :math:`\mathbf B` is given in the orbital axes, constant or as a
-    function of the true anomaly (e.g. the dipole field along the orbit). The torque model (not its averages)
-    of passive magnetic attitude control, D. T. Gerhardt, S. E. Palo, "Passive magnetic attitude control for
-    CubeSat spacecraft", 24th Annual AIAA/USU Conference on Small Satellites, SSC10 (2010). Averaged over the
-    Euler--Poinsot motion (derived here, ``docs/euler_poinsot.md``, "Any torque"): only the mean of the body vector
-    along :math:`\mathbf G` survives, :math:`\langle C\mathbf m\rangle = \mathbf n\,a_1\bar\omega_1m_1/G`, so
-    :math:`\mathbf G` precesses about :math:`\mathbf B` at the rate :math:`a_1\bar\omega_1m_1|\mathbf B|/G^2`
-    while :math:`G`, :math:`T` and :math:`k^2` do not change on average (:math:`\bar\omega_1` as in
-    :class:`ConstantTorque`; the precession reverses with ``sigma``).
+    :math:`\mathbf m` fixed in the body, :math:`\mathbf B` in the orbital axes, constant or a function of the true
+    anomaly: the torque model of passive magnetic attitude control (Gerhardt & Palo, SSC10, 2010). Averaged
+    (derived in :doc:`/euler_poinsot`, "Any torque"), :math:`\langle C\mathbf m\rangle = \mathbf n\,a_1
+    \bar\omega_1m_1/G`: :math:`\mathbf G` precesses about :math:`\mathbf B` at :math:`a_1\bar\omega_1m_1
+    |\mathbf B|/G^2` (reversed with ``sigma``), :math:`G, T, k^2` constant on average (:math:`\bar\omega_1` as
+    in :class:`ConstantTorque`).
 
     Parameters
     ----------
