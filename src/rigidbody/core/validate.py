@@ -15,8 +15,8 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["RESULT_ERRORS", "ResultTypeError", "ResultValueError", "finite_array", "positive", "real",
-           "result_message", "returned", "span"]
+__all__ = ["RESULT_ERRORS", "ResultTypeError", "ResultValueError", "finite_array", "member_states", "positive",
+           "real", "result_message", "returned", "span"]
 
 
 def _as_float(value: Any, name: str) -> float:
@@ -200,15 +200,101 @@ def finite_array(value: Any, name: str) -> np.ndarray:
         ...
     TypeError: n0 must be real numbers, got [1j, 0, 0]
     """
-    if isinstance(value, (str, bytes)) or np.iscomplexobj(value):
-        raise TypeError(f"{name} must be real numbers, got {value!r}")
-    try:
-        a = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise TypeError(f"{name} must be real numbers, got {value!r}") from None
+    a = _real_array(value, name)
     if not np.all(np.isfinite(a)):
         raise ValueError(f"{name} must be finite, got {value!r}")
     return a
+
+
+def member_states(value: Any, names: tuple[str, ...], name: str) -> np.ndarray:
+    """The start states of a run or a batch, given stacked or by components, as one array ``batch_shape + (k,)``.
+
+    The library's batch convention: the batch shape of a call is the broadcast shape of its per-member inputs
+    (NumPy's rules), ``()`` for a single run. A state of ``k`` components is given either
+
+    * *by components*: a ``tuple`` or ``list`` of ``k`` entries (``names``), each a number or an array; they
+      broadcast together (``(Gz0, H0, r0)`` with ``r0`` an array of 50 spins is a batch of 50), or
+    * *stacked*: a NumPy array of shape ``batch_shape + (k,)``, one row per member.
+
+    The type decides, so no value has two readings: an array is always stacked on its last axis, a tuple or
+    list always holds the components. A list of ``k`` lists of ``k`` numbers (the nested-list form of ``k``
+    stacked states, which the tuple rule would read transposed) is refused as ambiguous.
+
+    Parameters
+    ----------
+    value : tuple, list or numpy.ndarray
+        The user's input.
+    names : tuple of str
+        The components' names, in order (their count is ``k``).
+    name : str
+        Parameter name used in the error messages.
+
+    Returns
+    -------
+    numpy.ndarray
+        Float array of shape ``batch_shape + (k,)`` (not checked for finiteness: a run refuses a non-finite
+        member with a status, a batch ends that member alone).
+
+    Raises
+    ------
+    TypeError
+        If an entry cannot be read as real numbers.
+    ValueError
+        For a tuple or list of another length than ``k``, components that do not broadcast, a stacked array
+        whose last axis is not ``k``, an empty batch, or the ambiguous nested list.
+
+    See Also
+    --------
+    finite_array : one array of finite numbers.
+
+    Examples
+    --------
+    Components broadcast (one spin per member, the rest shared); an array is stacked on its last axis:
+
+    >>> import numpy as np
+    >>> from rigidbody.core.validate import member_states
+    >>> member_states((0.5, 1.0, np.array([1.0, 2.0])), ("Gz", "H", "r"), "initial")
+    array([[0.5, 1. , 1. ],
+           [0.5, 1. , 2. ]])
+    >>> member_states(np.array([[0.5, 1.0, 1.0]]), ("Gz", "H", "r"), "initial").shape
+    (1, 3)
+    >>> member_states((0.5, 1.0, 1.0), ("Gz", "H", "r"), "initial").shape  # one run: batch shape ()
+    (3,)
+    """
+    k, listed = len(names), ", ".join(names)
+    stacked = f"stacked states are a NumPy array of shape batch_shape + ({k},)"
+    if isinstance(value, (tuple, list)):
+        if len(value) != k:
+            raise ValueError(f"{name} as a tuple or list holds the {k} components ({listed}), got {len(value)} "
+                             f"entries; {stacked}")
+        if all(isinstance(v, (tuple, list)) and len(v) == k for v in value):
+            raise ValueError(f"{name} is ambiguous: a list of {k} lists of {k} numbers reads as the components "
+                             f"({listed}) of {k} members or as {k} stacked states; pass np.asarray({name}) for "
+                             f"stacked states or the components as arrays")
+        parts = [_real_array(v, f"{name}[{i}] ({names[i]})") for i, v in enumerate(value)]
+        try:
+            out = np.stack(np.broadcast_arrays(*parts), axis=-1)
+        except ValueError:
+            raise ValueError(f"the components ({listed}) of {name} must broadcast together, got shapes "
+                             f"{[p.shape for p in parts]}") from None
+    else:
+        out = _real_array(value, name)
+        if out.ndim == 0 or out.shape[-1] != k:
+            raise ValueError(f"{name} must be ({listed}) or an array of shape batch_shape + ({k},), got shape "
+                             f"{out.shape}")
+    if out.size == 0:
+        raise ValueError(f"the batch of {name} is empty (shape {out.shape})")
+    return out
+
+
+def _real_array(value: Any, name: str) -> np.ndarray:
+    """``value`` as a float array, finite or not (a ``TypeError`` naming ``name`` for what is not real numbers)."""
+    if isinstance(value, (str, bytes)) or np.iscomplexobj(value):
+        raise TypeError(f"{name} must be real numbers, got {value!r}")
+    try:
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise TypeError(f"{name} must be real numbers, got {value!r}") from None
 
 
 class ResultTypeError(TypeError):

@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from ..core.ode import Solution
+from ..core.validate import member_states
 from ._avgdriver import run_members
 from ._avgsetup import ChartSetup, check_options
 from ._top import Top, check_top
@@ -63,8 +64,9 @@ def averaged(
     (root spread below 1e-3: a fast sleeping top slowed down to ``C^2 r^2 = 4 A mgl``, event
     ``'triple_root'``).
 
-    A batch of initial states (``initial`` of shape ``batch_shape + (3,)``) is integrated together, each
-    member with its own charts, signs, events and status (see Notes).
+    A batch of initial states (components of ``initial`` that are arrays, or a stacked array of shape
+    ``batch_shape + (3,)``) is integrated together, each member with its own charts, signs, events and status
+    (see Notes).
 
     Parameters
     ----------
@@ -72,8 +74,11 @@ def averaged(
     torque : Torque
         Any admissible torque: one with a closed-form average (``closed_means``, e.g. :class:`LinearDrag`,
         (3.4)) uses it by default, the others the general engine.
-    initial : (Gz, H, r) or array_like of shape ``batch_shape + (3,)``
-        Initial slow variables (1.2), one triple per member for a batch.
+    initial : tuple (Gz0, H0, r0) or numpy.ndarray of shape ``batch_shape + (3,)``
+        Initial slow variables (1.2). By components: a tuple or list of three numbers or arrays that broadcast
+        together (as :func:`integrals` returns them for arrays of states); stacked: an array with one row
+        ``(Gz, H, r)`` per member. The batch shape is the components' broadcast shape (the array's shape less
+        its last axis), ``()`` for one run.
     tau_span : (tau0, tau1)
         Slow-time interval.
     tau_eval : array_like, optional
@@ -128,9 +133,14 @@ def averaged(
     smaller of ``|Gz|``, ``|C r|`` inherits the gaps' error times their ratio (at most ``1/switch_tol``
     before the chart switches). ``atol`` is used only where no relative scale exists (``Gz = r = 0``).
 
-    *Batches.* ``top``, ``torque`` and the options are shared by all members. Members in the same chart
-    are integrated together by :func:`rigidbody.core.batch.integrate_batch` (vectorised right-hand sides
-    for :class:`LinearDrag`; the general engine evaluates its nutation means member by member); a member
+    *Batches.* The batch convention of the library (:func:`rigidbody.core.validate.member_states`): the batch
+    shape is the broadcast shape of the per-member inputs, here the components of ``initial``. The type
+    decides how ``initial`` is read, so no value has two readings: an array is stacked on its last axis (the
+    form of earlier versions, kept), a tuple or list holds the three components (the form of the per-member
+    arguments of :func:`rigidbody.euler_poinsot.averaged`); a list of three lists of three numbers, which
+    could be either, is refused. ``top``, ``torque`` and the options are shared by all members. Members in the
+    same chart are integrated together by :func:`rigidbody.core.batch.integrate_batch` (vectorised right-hand
+    sides for :class:`LinearDrag`; the general engine evaluates its nutation means member by member); a member
     that needs the other chart continues in a follow-up batch of that chart from its switching point.
     Every member equals its single run within the tolerance.
 
@@ -162,24 +172,9 @@ def averaged(
     te_all = None if tau_eval is None else np.atleast_1d(np.asarray(tau_eval, dtype=float))
     if te_all is not None and te_all.size and (te_all.min() < t0 or te_all.max() > t1):
         raise ValueError("tau_eval must lie within tau_span")
-    try:
-        ndim = np.ndim(initial)
-    except ValueError:  # ragged input
-        ndim = 1
-    if ndim >= 2:
-        try:
-            ini = np.asarray(initial, dtype=float)
-        except (TypeError, ValueError):
-            raise ValueError("initial must be (Gz, H, r) or an array of shape batch_shape + (3,), "
-                             f"got {initial!r}") from None
-        if ini.shape[-1] != 3:
-            raise ValueError(f"a batch of initial states has shape batch_shape + (3,), got {ini.shape}")
-        if ini.size == 0:
-            raise ValueError("the batch of initial states is empty")
+    ini = member_states(initial, ("Gz", "H", "r"), "initial")
+    batch_shape = ini.shape[:-1]
+    if batch_shape:
         te = np.linspace(t0, t1, 101) if te_all is None else te_all
-        return run_members(st, ini.reshape(-1, 3), ini.shape[:-1], t0, t1, te, "DOP853", max_segments)
-    try:
-        Gz0, H0, r0 = (float(x) for x in initial)
-    except (TypeError, ValueError):
-        raise ValueError(f"initial must be (Gz, H, r), got {initial!r}") from None
-    return run_members(st, np.array([[Gz0, H0, r0]]), (), t0, t1, te_all, method, max_segments)
+        return run_members(st, ini.reshape(-1, 3), batch_shape, t0, t1, te, "DOP853", max_segments)
+    return run_members(st, ini.reshape(1, 3), (), t0, t1, te_all, method, max_segments)

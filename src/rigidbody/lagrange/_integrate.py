@@ -9,7 +9,7 @@ import numpy as np
 from ..core import euler as _euler
 from ..core.batch import integrate_batch
 from ..core.ode import Solution, integrate
-from ..core.validate import positive, span
+from ..core.validate import member_states, positive, span
 from ._avgrun import averaged
 from ._top import Top, check_top
 from ._torques import Torque, check_torque
@@ -85,9 +85,9 @@ def simulate(
     angles are derived output (:func:`rigidbody.core.euler.euler_from_quat`; at ``sin theta = 0``:
     ``phi = 0``).
 
-    A batch (``state0`` of shape ``batch_shape + (6,)`` and/or an array ``eps`` broadcasting against that
-    batch shape) is integrated together by :func:`rigidbody.core.batch.integrate_batch` on a common
-    ``t_eval`` (default: 101 uniform points); each member equals its single run within the tolerance.
+    A batch (components of ``state0`` or ``eps`` that are arrays; the batch shape is their broadcast shape, the
+    convention of :func:`averaged`) is integrated together by :func:`rigidbody.core.batch.integrate_batch` on a
+    common ``t_eval`` (default: 101 uniform points); each member equals its single run within the tolerance.
 
     Parameters
     ----------
@@ -97,8 +97,10 @@ def simulate(
         :class:`VerticalPlaneTorque`). In a batch their user functions receive arrays of members.
     eps : float or array_like
         Small parameter, ``eps >= 0`` (per member in a batch).
-    state0 : (p, q, r, phi, theta, psi) or array_like of shape ``batch_shape + (6,)``
-        Initial angular velocity (body components) and Euler angles (rad).
+    state0 : tuple (p, q, r, phi, theta, psi) or numpy.ndarray of shape ``batch_shape + (6,)``
+        Initial angular velocity (body components) and Euler angles (rad): by components, a tuple or list of
+        six numbers or arrays that broadcast together (and with ``eps``), or stacked, an array with one row per
+        member (see :func:`rigidbody.core.validate.member_states`: the type decides).
     t_span : (t0, t1)
         Time interval (fast time ``t``; ``tau = eps t``).
     t_eval : array_like, optional
@@ -139,13 +141,11 @@ def simulate(
     t0, t1 = span(t_span, "t_span")
     rtol, atol = positive(rtol, "rtol"), positive(atol, "atol")
     eps_a = _check_eps(eps)
-    if eps_a.ndim or np.ndim(state0) >= 2:
-        return _simulate_batch(top, torque, eps_a, state0, t0, t1, t_eval, rtol, atol)
+    st0 = member_states(state0, ("p", "q", "r", "phi", "theta", "psi"), "state0")
+    if eps_a.ndim or st0.ndim > 1:
+        return _simulate_batch(top, torque, eps_a, st0, t0, t1, t_eval, rtol, atol)
     eps = float(eps_a)
-    try:
-        p0, q0, r0, phi0, th0, psi0 = (float(x) for x in state0)
-    except (TypeError, ValueError):
-        raise ValueError(f"state0 must be (p, q, r, phi, theta, psi), got {state0!r}") from None
+    p0, q0, r0, phi0, th0, psi0 = (float(x) for x in st0)
     quat0 = _euler.quat_from_euler(psi0, th0, phi0)
     y0 = np.array([p0, q0, r0, *np.asarray(quat0, dtype=float)])
     body = torque.body_moments
@@ -177,16 +177,9 @@ def _check_eps(eps: Any) -> np.ndarray:
     return e
 
 
-def _simulate_batch(top: Top, torque: Torque, eps: np.ndarray, state0: Any, t0: float, t1: float, t_eval: Any,
+def _simulate_batch(top: Top, torque: Torque, eps: np.ndarray, st: np.ndarray, t0: float, t1: float, t_eval: Any,
                     rtol: float, atol: float) -> Solution:
-    """The batch branch of :func:`simulate`."""
-    try:
-        st = np.asarray(state0, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"state0 must be (p, q, r, phi, theta, psi) or an array of shape batch_shape + (6,), "
-                         f"got {state0!r}") from None
-    if st.shape[-1:] != (6,):
-        raise ValueError(f"a batch of initial states has shape batch_shape + (6,), got {st.shape}")
+    """The batch branch of :func:`simulate`: start states ``st`` of shape ``batch_shape + (6,)``."""
     try:
         batch_shape = np.broadcast_shapes(st.shape[:-1], eps.shape)
     except ValueError:

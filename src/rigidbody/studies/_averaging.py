@@ -255,7 +255,7 @@ def averaging_error_lagrange(
         def runs(e: float, i: np.ndarray) -> tuple[Any, Any]:
             state0 = np.zeros((i.size, 6))
             state0[:, 2], state0[:, 4] = r_[i], th_[i]
-            initial = np.stack(lagrange.integrals(top, 0.0, 0.0, r_[i], 0.0, th_[i]), axis=-1)
+            initial = lagrange.integrals(top, 0.0, 0.0, r_[i], 0.0, th_[i])  # the components (Gz0, H0, r0)
             avg = lagrange.averaged(top, torque, initial, (0.0, tau_end), tau_eval=tau)
             return avg, lagrange.simulate(top, torque, e, state0, (0.0, tau_end / e), t_eval=tau / e)
 

@@ -165,9 +165,8 @@ def euler_poinsot_averaged(*, body: Any, torque: Any, eps: Any = 0.0, G0: Any = 
 
     t1 = float(tau_span[1])
     te = np.array([t1]) if tau_eval is None else tau_eval
-    sol = ep.averaged(body, torque, eps, G0, k2_0, delta0, lam0, tau_span, te, nu0, **options)
-    if not sol.batch_shape:  # every input a scalar: a batch of one
-        sol = ep.averaged(body, torque, np.atleast_1d(eps), G0, k2_0, delta0, lam0, tau_span, te, nu0, **options)
+    # the grid's arrays go straight in (they broadcast); a call with scalars only is a batch of one
+    sol = ep.averaged(body, torque, np.atleast_1d(eps), G0, k2_0, delta0, lam0, tau_span, te, nu0, **options)
     return _evolution_outputs(sol, tuple(outputs), tau_eval is None)
 
 
@@ -179,8 +178,8 @@ def lagrange_averaged(*, top: Any, torque: Any, Gz0: Any, H0: Any, r0: Any, tau_
 
     A batched wrapper of :func:`rigidbody.lagrange.averaged` for :func:`rigidbody.sweep.sweep`: the grid
     names are the initial slow variables ``Gz0, H0, r0`` (any of them, the others fixed); fix the top, the
-    torque, ``tau_span`` and options with :func:`functools.partial`. Each chunk is one batch call (initial
-    states of shape ``(n, 3)``).
+    torque, ``tau_span`` and options with :func:`functools.partial`. Each chunk is one batch call (the chunk's
+    arrays passed as the components ``initial=(Gz0, H0, r0)``).
 
     Parameters
     ----------
@@ -229,7 +228,6 @@ def lagrange_averaged(*, top: Any, torque: Any, Gz0: Any, H0: Any, r0: Any, tau_
 
     t1 = float(tau_span[1])
     te = np.array([t1]) if tau_eval is None else tau_eval
-    ini = np.stack(np.broadcast_arrays(*(np.atleast_1d(np.asarray(v, dtype=float)) for v in (Gz0, H0, r0))),
-                   axis=-1)
-    sol = lagrange.averaged(top, torque, ini, tau_span, tau_eval=te, **options)
+    # the grid's arrays go straight in as the components of initial (they broadcast); scalars only: a batch of one
+    sol = lagrange.averaged(top, torque, (np.atleast_1d(Gz0), H0, r0), tau_span, tau_eval=te, **options)
     return _evolution_outputs(sol, tuple(outputs), tau_eval is None)
