@@ -26,6 +26,8 @@ from ._top import deltas
 
 __all__ = ["run_members"]
 
+#: the producer its results record (one run and a batch alike)
+PRODUCER = "lagrange.averaged"
 FIELDS = ("u1", "u2", "u3", "Gz", "H", "r", "k2", "delta1", "delta2", "chart")
 _AX = _k.ARRAY
 
@@ -305,8 +307,9 @@ def _single_result(m: _Members) -> Solution:
     tau, cols = m.output.single()
     U = np.array([cols["u1"], cols["u2"], cols["u3"]]).reshape(3, -1)
     tev = {k: np.asarray(v[0], dtype=float) for k, v in m.tev.items()}
-    return Solution("tau", tau, U, {"u": U, **cols}, int(m.status[0]), str(m.message[0]), m.event[0], tev, {},
-                    None, int(m.nfev[0]))
+    return Solution.build(producer=PRODUCER, time_name="tau", time=tau, y=U, status=int(m.status[0]),
+                          message=str(m.message[0]), fields={"u": U, **cols}, event=m.event[0], t_events=tev,
+                          nfev=int(m.nfev[0]), t_final=float(m.t_final[0]))
 
 
 def _batch_result(m: _Members, batch_shape: tuple[int, ...]) -> Solution:
@@ -322,6 +325,7 @@ def _batch_result(m: _Members, batch_shape: tuple[int, ...]) -> Solution:
         for q in range(m.B):
             arr[q] = np.asarray(lists[q], dtype=float)
         t_events[name] = arr.reshape(batch_shape)
-    return Solution("tau", te, U, {"u": U, **data}, m.status.reshape(batch_shape), m.message.reshape(batch_shape),
-                    m.event.reshape(batch_shape), t_events, {}, None, m.nfev.reshape(batch_shape),
-                    batch_shape=batch_shape, t_final=m.t_final.reshape(batch_shape))
+    return Solution.build(producer=PRODUCER, time_name="tau", time=te, y=U, status=m.status.reshape(batch_shape),
+                          message=m.message.reshape(batch_shape), fields={"u": U, **data},
+                          event=m.event.reshape(batch_shape), t_events=t_events, nfev=m.nfev.reshape(batch_shape),
+                          t_final=m.t_final.reshape(batch_shape))

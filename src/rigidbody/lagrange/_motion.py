@@ -166,5 +166,6 @@ def lagrange_motion(
         "alpha": np.asarray(alpha), "beta": np.asarray(beta),
         "Gz": np.asarray(Gz), "H": np.asarray(H), "r": np.asarray(r),
     }
-    return Solution("t", tt, sol.y, data, sol.status, sol.message, sol.event, sol.t_events, sol.y_events,
-                    None, sol.nfev)
+    return Solution.build(producer="lagrange.lagrange_motion", time_name="t", time=tt, y=np.vstack([psi, phi]),
+                          status=sol.status, message=sol.message, fields=data, event=sol.event, t_events=sol.t_events,
+                          y_events=sol.y_events, nfev=sol.nfev)
