@@ -113,12 +113,13 @@ def test_a_batch_whose_torque_reverses_the_spin_equals_its_single_runs():
     [(-0.3, 1.8, -1.0, 1.0), (0.5, 1.2, 1.0, 1.0), (0.1, 3.0, -1.0, -1.0), (-0.8, 1.05, 1.0, -1.0)],
 )
 def test_the_near_double_root_average_is_the_value_at_the_double_root(u1, u3, d1, d2):
-    # Slip caught: a sign slip in averaged_slow_rates' own copy of the double-root formula (s1 -+ sqrt(s1^2 -
-    # 3 s2))/3 (the local maximum of the cubic, the other copy is in the kernel's GHr decoding). The branch is
-    # taken when the roots come from the cubic and u2 - u1 <= 1e-6 max(u3 - u1, 1) (near a regular precession);
-    # the wrong sign gives the local minimum, beyond u3 >= 1. References independent of that formula: the
-    # state is built from roots u1 < u2 = u1 + 1e-9 < u3 (2.8), so the double root lies in [u1, u2]; and the
-    # zero of Q'(u) in [-1, 1] from NumPy's companion-matrix roots of the derivative of (1.5).
+    # Slip caught: a sign slip in the double-root formula (s1 -+ sqrt(s1^2 - 3 s2))/3 (the local maximum of the
+    # cubic) on averaged_slow_rates' branch (the formula is the kernel's double_root, shared with the GHr
+    # chart's decoding; averaged_slow_rates kept a copy of it once). The branch is taken when the roots come
+    # from the cubic and u2 - u1 <= 1e-6 max(u3 - u1, 1) (near a regular precession); the wrong sign gives the
+    # local minimum, beyond u3 >= 1. References independent of that formula: the state is built from roots
+    # u1 < u2 = u1 + 1e-9 < u3 (2.8), so the double root lies in [u1, u2]; and the zero of Q'(u) in [-1, 1]
+    # from NumPy's companion-matrix roots of the derivative of (1.5).
     f = lambda G, H, r, th: -0.2 * (1.0 + np.cos(th) ** 2)  # noqa: E731
     m3 = lambda G, H, r, th: 0.1 * np.cos(th) - 0.05 * r + 0.3 * np.cos(th) ** 3  # noqa: E731
     torque = L.ProportionalTorque(f=f, M3=m3)
