@@ -22,8 +22,8 @@ The body-frame period of the motion is :math:`4K/\dot u`; the separatrix
 :math:`k^2 = 1` (infinite period) is a boundary both kinds exclude.
 
 The precession angle follows from (1) with :math:`L = 0`,
-:math:`\dot\psi = G(\sin^2\varphi/A_1+\cos^2\varphi/A_2)`, a :math:`2K`-periodic function of :math:`u`; it
-is integrated spectrally (Fourier series on the uniform phase grid of ``rigidbody.core.averaging``).
+:math:`\dot\psi = G(\sin^2\varphi/A_1+\cos^2\varphi/A_2)`, a :math:`2K`-periodic function of :math:`u`,
+integrated in closed form with the incomplete elliptic integral of the third kind (:mod:`._precession`).
 """
 
 from __future__ import annotations
@@ -275,7 +275,8 @@ class EulerPoinsot:
 
         :math:`\cos\theta = g_3/G`, :math:`\tan\varphi = g_1/g_2` (rule of ``rigidbody.core.euler``:
         :math:`\alpha_{3j} = (\sin\theta\sin\varphi, \sin\theta\cos\varphi, \cos\theta)`), and
-        :math:`\psi = \psi_0 + \int_0^t G(\sin^2\varphi/A_1 + \cos^2\varphi/A_2)\,dt` (spectral). ``phi`` is
+        :math:`\psi = \psi_0 + \int_0^t G(\sin^2\varphi/A_1 + \cos^2\varphi/A_2)\,dt` (closed form, exact to
+        rounding). ``phi`` is
         in :math:`(-\pi, \pi]`.
 
         For ``kind='min'`` at :math:`k = 0` (pure spin about :math:`z_3`, :math:`\theta = 0` or :math:`\pi`,

@@ -25,11 +25,13 @@ angles about :math:`\mathbf G` (never reached by :math:`\mathbf G`),
 :math:`\dot\psi = G/a_3 - \eta Gq/(a_1a_3(1 - n\operatorname{sn}^2u))`, :math:`n = -a_3E_1/(a_1E_3) \le 0`,
 integrated in closed form by :mod:`._precession`. A state whose angular velocity is an eigenvector of the
 inertia tensor (rest, the sphere, a spin about a principal axis of a symmetric body's equal moments, the spin
-about the intermediate axis exactly on the separatrix) is a permanent rotation.
+about the intermediate axis exactly on the separatrix, a spin about a principal axis) is a permanent rotation,
+exact to rounding.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -112,6 +114,16 @@ def _basis_to_g(g: np.ndarray) -> np.ndarray:
                      np.stack([g3 * g1 / rho, g3 * g2 / rho, -rho], -1), g], -2)
 
 
+def _turn(omega: np.ndarray, t: np.ndarray) -> Rotation:
+    """The turns by ``|omega| t`` about ``omega`` (body axes), from the half-angle's sine and cosine (SciPy's
+    ``from_rotvec`` loses ~1e-14 at 20 rad)."""
+    rate = float(np.linalg.norm(omega))
+    if rate == 0.0:
+        return Rotation.identity(len(t))
+    half = 0.5 * rate * t
+    return Rotation.from_quat(np.column_stack([np.sin(half)[:, None] * (omega / rate), np.cos(half)]))
+
+
 def _rot_z(psi: np.ndarray) -> np.ndarray:
     c, s, o, i = np.cos(psi), np.sin(psi), np.zeros_like(psi), np.ones_like(psi)
     return np.stack([np.stack([c, -s, o], -1), np.stack([s, c, o], -1), np.stack([o, o, i], -1)], -2)
@@ -174,21 +186,16 @@ class FreeMotion:
         self.G, self.T = float(np.linalg.norm(g)), 0.5 * float(np.dot(g, w))
         self.momentum = R0.apply(P @ g)
         sep = A[0] * (A[0] - A[1]) * w[0] ** 2 - A[2] * (A[1] - A[2]) * w[2] ** 2
-        self.uniform = self.G == 0.0 or A[0] == A[2] or (
-            sep == 0.0 and (A[0] == A[1] or A[1] == A[2] or (w[0] == 0.0 and w[2] == 0.0)))
+        self.uniform = len(set(A[w != 0.0].tolist())) <= 1  # omega an eigenvector of the inertia
         self.kind = ("rest" if self.G == 0.0 else "sphere" if A[0] == A[2] else
                      "max" if sep > 0.0 else "min" if sep < 0.0 else "separatrix")
         self.k2, self.mc, self.sigma, self.phase, self.rate = 0.0, 1.0, 1, 0.0, 0.0
-        self.paper = None
         if self.uniform:
             self.k2, self.mc = (1.0, 0.0) if self.kind == "separatrix" else (0.0, 1.0)
-            self.sigma = -1 if w[0] < 0.0 else 1
+            self.sigma = -1 if w[2 if self.kind == "min" else 0] < 0.0 else 1
         else:
             self._solution(A, w)
-            if self.kind in KINDS and A[0] > A[1] > A[2]:
-                body = Body(float(A[0]), float(A[1]), float(A[2]))
-                self.paper = paper(body, self.G, self.k2, self.kind, self.sigma, mc=self.mc)
-        self.frame = self._paper_frame(R0.as_matrix() @ P, g)
+        self._paper_class, self._g = paper, g
 
     def _solution(self, A: np.ndarray, w: np.ndarray) -> None:
         """Landau's solution in the labelled frame of the kind ('max' labels on the separatrix)."""
@@ -199,14 +206,18 @@ class FreeMotion:
         E3 = a[0] * q * wl[0] ** 2 + a[1] * r * wl[1] ** 2
         on_sep = self.kind == "separatrix"
         self.mc = 0.0 if on_sep else q * (p * a[0] * wl[0] ** 2 - r * a[2] * wl[2] ** 2) / (p * E3)
-        self.k2 = 1.0 if on_sep else r * E1 / (p * E3)
+        self.k2 = 1.0 if on_sep else min(r * E1 / (p * E3), 1.0)
         self._eta = 1.0 if a[0] > a[2] else -1.0
         s1, s3 = (1.0 if wl[0] > 0.0 else -1.0), (-1.0 if on_sep and wl[2] < 0.0 else 1.0)
         self._signs = (s1, -self._eta * s1 * s3, s3)
-        self._amp = (math.sqrt(E3 / (a[0] * q)), math.sqrt(E1 / (a[1] * p)), math.sqrt(E1 / (a[2] * q)))
+        # sqrt(E1) as a hypot: E1 underflows for a state within 1e-154 of the rotation axis
+        sn0, cn0 = -self._eta * s1 * s3 * wl[1] * math.sqrt(a[1] * p), s3 * wl[2] * math.sqrt(a[2] * q)
+        root_E1 = math.hypot(sn0, cn0)
+        self._amp = (math.sqrt(E3 / (a[0] * q)), root_E1 / math.sqrt(a[1] * p), root_E1 / math.sqrt(a[2] * q))
         self.rate = math.sqrt(p * E3 / (a[0] * a[1] * a[2]))
-        self._u0 = elliptic_f(-self._eta * s1 * s3 * wl[1] * math.sqrt(a[1] * p), s3 * wl[2] * math.sqrt(a[2] * q),
-                              self.mc)
+        self._u0 = elliptic_f(sn0, cn0, self.mc)
+        # sn, cn, dn of u0 from the state itself (exact to rounding, unlike sn(F(phi0)))
+        self._jac0 = (sn0 / root_E1, cn0 / root_E1, abs(wl[0]) * math.sqrt(a[0] * q / E3))
         self._n = -a[2] * E1 / (a[0] * E3)
         self._cpsi = self._eta * self.G * q / (a[0] * a[2])
         self._a, self._L = a, L
@@ -215,20 +226,55 @@ class FreeMotion:
         self.phase = self._u0 if self.kind != "min" else math.remainder(self._u0 + 2.0 * K, 4.0 * K)
         self._F = self.attitude0.as_matrix() @ self.axes @ L @ _basis_to_g(self._a * self._omega_l(np.zeros(1)))[0].T
 
+    def _jacobi(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        r""":math:`\operatorname{sn}, \operatorname{cn}, \operatorname{dn}` of :math:`u_0 + \lambda t`: by the addition
+        theorem (DLMF 22.8.1-3) from those of :math:`u_0` where its denominator :math:`1 - m s_0^2 s^2 \ge 1/2`
+        (so that ``t = 0`` gives the state back to rounding), directly elsewhere (no cancellation near the
+        separatrix)."""
+        sv, cv, dv, _ = ell.jacobi(self.rate * t, mc=self.mc)
+        s0, c0, d0 = self._jac0
+        den = 1.0 - self.k2 * s0 * s0 * sv * sv
+        add = ((s0 * cv * dv + sv * c0 * d0) / den, (c0 * cv - s0 * sv * d0 * dv) / den,
+               (d0 * dv - self.k2 * s0 * sv * c0 * cv) / den)
+        if np.all(den >= 0.5):
+            return add
+        sn, cn, dn, _ = ell.jacobi(self.rate * t + self._u0, mc=self.mc)
+        good = den >= 0.5
+        return np.where(good, add[0], sn), np.where(good, add[1], cn), np.where(good, add[2], dn)
+
     def _omega_l(self, t: np.ndarray) -> np.ndarray:
         """Angular velocity in the labelled frame, shape ``t.shape + (3,)``."""
-        sn, cn, dn, _ = ell.jacobi(self.rate * t + self._u0, mc=self.mc)
+        sn, cn, dn = self._jacobi(t)
         (s1, s2, s3), (c1, c2, c3) = self._signs, self._amp
         return np.stack([s1 * c1 * np.asarray(dn), s2 * c2 * np.asarray(sn), s3 * c3 * np.asarray(cn)], -1)
 
-    def _paper_frame(self, R0P: np.ndarray, g: np.ndarray) -> np.ndarray:
+    @functools.cached_property
+    def paper(self) -> Any:
+        """The paper's :class:`EulerPoinsot` (triaxial body, kind ``'max'`` or ``'min'``), else ``None``."""
+        A = self.moments
+        if self._paper_class is None or self.kind not in KINDS or not A[0] > A[1] > A[2]:
+            return None
+        body = Body(float(A[0]), float(A[1]), float(A[2]))
+        return self._paper_class(body, self.G, self.k2, self.kind, self.sigma, mc=self.mc)
+
+    @functools.cached_property
+    def frame(self) -> np.ndarray:
         """:math:`Oy_i` in inertial axes: the attitude of the principal axes times the inverse of the paper's
         3-1-3 angles at ``t = 0`` (``psi = 0``)."""
         if self.paper is not None:
             _, theta, phi = self.paper.angles(0.0, self.phase)
         else:
+            g = self._g
             theta, phi = math.atan2(math.hypot(g[0], g[1]), g[2]), math.atan2(g[0], g[1])
-        return np.asarray(R0P @ euler.dcm(0.0, theta, phi).T)
+        return np.asarray(self.attitude0.as_matrix() @ self.axes @ euler.dcm(0.0, theta, phi).T)
+
+    @property
+    def period(self) -> float:
+        r"""Period of the body angular velocity, :math:`4K/\dot u` (``inf`` on the separatrix, 0 for a permanent
+        rotation)."""
+        if self.uniform:
+            return 0.0
+        return 4.0 * float(ell.K(mc=self.mc)) / self.rate if self.mc > 0.0 else math.inf
 
     def psi(self, t: Any) -> np.ndarray:
         r"""The precession angle about :math:`\mathbf G` of the labelled polar axis :math:`l_3`, from 0 at ``t = 0``
@@ -238,8 +284,7 @@ class FreeMotion:
             raise ValueError("psi is not defined for a permanent rotation (kind "
                              f"{self.kind!r}): use rotation(t)")
         u, u0 = self.rate * t + self._u0, self._u0
-        span = (elliptic_pi(u, self._n, self.mc, *ell.jacobi(u, mc=self.mc)[:3])
-                - elliptic_pi(u0, self._n, self.mc, *ell.jacobi(u0, mc=self.mc)[:3]))
+        span = elliptic_pi(u, self._n, self.mc, *self._jacobi(t)) - elliptic_pi(u0, self._n, self.mc, *self._jac0)
         return np.asarray(self.G / self._a[2] * t - self._cpsi / self.rate * span)
 
     def omega(self, t: Any) -> np.ndarray:
@@ -255,7 +300,7 @@ class FreeMotion:
         t = np.asarray(t, dtype=float)
         flat = t.reshape(-1)
         if self.uniform:
-            R = self.attitude0 * Rotation.from_rotvec(flat[:, None] * self.omega0[None, :])
+            R = self.attitude0 * _turn(self.omega0, flat)
         else:
             B = _basis_to_g(self._a * self._omega_l(flat))
             M = self._F @ _rot_z(self.psi(flat)) @ B @ (self.axes @ self._L).T
