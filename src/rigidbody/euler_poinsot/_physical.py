@@ -172,6 +172,21 @@ class FreeMotion:
         The paper's motion (``Body(*moments), G, k2, kind, sigma``) for a triaxial body in ``'max'`` or ``'min'``.
     uniform : bool
         Whether the motion is a permanent rotation (the angular velocity an eigenvector of the inertia).
+
+    Examples
+    --------
+    An axisymmetric satellite (two equal moments) precesses regularly: the symmetry-axis rate stays, the
+    transverse rate turns at :math:`\Omega = (A_t - A_s)\omega_s/A_t` in body axes:
+
+    >>> import numpy as np
+    >>> from rigidbody.euler_poinsot import EulerPoinsot
+    >>> m = EulerPoinsot.from_state([2.0, 2.0, 1.5], [0.3, 0.0, 1.0])
+    >>> m.kind, m.k2, m.paper is None
+    ('min', 0.0, True)
+    >>> Omega = (2.0 - 1.5) * 1.0 / 2.0
+    >>> t = 2.0
+    >>> bool(np.allclose(m.omega(t), [0.3 * np.cos(Omega * t), -0.3 * np.sin(Omega * t), 1.0], rtol=0, atol=1e-15))
+    True
     """
 
     def __init__(self, inertia: Any, omega: Any, attitude: Any = None, paper: Any = None) -> None:
@@ -205,8 +220,8 @@ class FreeMotion:
         E1 = a[1] * p * wl[1] ** 2 + a[2] * q * wl[2] ** 2
         E3 = a[0] * q * wl[0] ** 2 + a[1] * r * wl[1] ** 2
         on_sep = self.kind == "separatrix"
-        self.mc = 0.0 if on_sep else q * (p * a[0] * wl[0] ** 2 - r * a[2] * wl[2] ** 2) / (p * E3)
-        self.k2 = 1.0 if on_sep else min(r * E1 / (p * E3), 1.0)
+        self.mc = 0.0 if on_sep else float(q * (p * a[0] * wl[0] ** 2 - r * a[2] * wl[2] ** 2) / (p * E3))
+        self.k2 = 1.0 if on_sep else float(min(r * E1 / (p * E3), 1.0))
         self._eta = 1.0 if a[0] > a[2] else -1.0
         s1, s3 = (1.0 if wl[0] > 0.0 else -1.0), (-1.0 if on_sep and wl[2] < 0.0 else 1.0)
         self._signs = (s1, -self._eta * s1 * s3, s3)
@@ -279,7 +294,7 @@ class FreeMotion:
     def psi(self, t: Any) -> np.ndarray:
         r"""The precession angle about :math:`\mathbf G` of the labelled polar axis :math:`l_3`, from 0 at ``t = 0``
         (closed form, :mod:`._precession`)."""
-        t = np.asarray(t, dtype=float)
+        t = finite_array(t, "t")
         if self.uniform:
             raise ValueError("psi is not defined for a permanent rotation (kind "
                              f"{self.kind!r}): use rotation(t)")
@@ -289,7 +304,7 @@ class FreeMotion:
 
     def omega(self, t: Any) -> np.ndarray:
         """Angular velocity in the user's body axes at times ``t`` (units of 1/omega), shape ``t.shape + (3,)``."""
-        t = np.asarray(t, dtype=float)
+        t = finite_array(t, "t")
         if self.uniform:
             return np.broadcast_to(self.omega0, (*t.shape, 3)).copy()
         return np.asarray(self._omega_l(t) @ (self.axes @ self._L).T)
@@ -297,7 +312,7 @@ class FreeMotion:
     def rotation(self, t: Any) -> Rotation:
         """Attitude (body -> inertial) at times ``t``: one ``Rotation`` for a scalar ``t``, else a stack over the
         flattened ``t``."""
-        t = np.asarray(t, dtype=float)
+        t = finite_array(t, "t")
         flat = t.reshape(-1)
         if self.uniform:
             R = self.attitude0 * _turn(self.omega0, flat)
