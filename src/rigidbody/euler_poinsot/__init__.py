@@ -21,6 +21,9 @@ Euler--Poinsot motion (unperturbed)
     closed form in Jacobi functions: ``.omega(t)``, ``.g(t)``, ``.angles(t)`` (psi, theta, phi),
     ``.period``, ``.T``, ``.nodes(n)``, ``.average(f)``: mean over psi and the period (the averaging of
     sec. 2).
+``EulerPoinsot.from_state(inertia, omega, attitude) -> FreeMotion``
+    the torque-free motion of any body (two equal moments, the sphere, on the separatrix, at rest) from a
+    physical state: ``.omega(t)``, ``.rotation(t)`` (a SciPy ``Rotation``), the paper's variables.
 ``k2_from(body, G, T, kind)``, ``T_from(body, G, k2, kind)``, ``kind_of(body, G, T)``
     formula (5), its counterpart for rotation about the A3 axis, and their inverses.
 
@@ -81,6 +84,7 @@ from ._full import initial_state
 from ._model import KINDS, Body, Drag, Orbit
 from ._motion import EulerPoinsot
 from ._options import Solver, Stops
+from ._physical import FreeMotion
 from ._rates import average_torque, averaged_rates, precession_rate
 from ._separatrix import (
     ARCS,
@@ -112,6 +116,7 @@ __all__ = [
     "ConstantTorque",
     "Drag",
     "EulerPoinsot",
+    "FreeMotion",
     "FunctionTorque",
     "GravityGradient",
     "LinearDrag",

@@ -34,7 +34,7 @@ from scipy import special
 from ..core.validate import real
 
 __all__ = ["AXES", "KINDS", "Body", "Drag", "Orbit", "as_drag", "as_orbit", "check_body", "check_kind",
-           "elliptic_ratios", "frame_y", "labelled", "relabel"]
+           "elliptic_ratios", "frame_y", "labelled", "relabel", "violates_triangle"]
 
 KINDS = ("max", "min")
 
@@ -42,6 +42,11 @@ KINDS = ("max", "min")
 def check_kind(kind: str) -> None:
     if not isinstance(kind, str) or kind not in KINDS:
         raise ValueError(f"kind must be 'max' (rotation about the axis of A1) or 'min' (about A3), got {kind!r}")
+
+
+def violates_triangle(A1: float, A2: float, A3: float) -> bool:
+    """Whether the largest moment ``A1`` exceeds ``A2 + A3`` beyond rounding (no mass distribution has such moments)."""
+    return bool(A1 > (A2 + A3) * (1.0 + 1e-12))
 
 
 @dataclass(frozen=True)
@@ -103,7 +108,7 @@ class Body:
                 f"the moments must satisfy A1 > A2 > A3 (paper's labelling), got A1={A1}, A2={A2}, A3={A3}; "
                 "relabel the axes (equal moments: a symmetric body, not covered by this module)"
             )
-        if A1 > (A2 + A3) * (1.0 + 1e-12):
+        if violates_triangle(A1, A2, A3):
             raise ValueError(f"triangle inequality A1 <= A2 + A3 violated: A1={A1} > A2 + A3={A2 + A3}")
 
     @property

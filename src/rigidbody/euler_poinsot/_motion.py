@@ -22,8 +22,8 @@ The body-frame period of the motion is :math:`4K/\dot u`; the separatrix
 :math:`k^2 = 1` (infinite period) is a boundary both kinds exclude.
 
 The precession angle follows from (1) with :math:`L = 0`,
-:math:`\dot\psi = G(\sin^2\varphi/A_1+\cos^2\varphi/A_2)`, a :math:`2K`-periodic function of :math:`u`; it
-is integrated spectrally (Fourier series on the uniform phase grid of ``rigidbody.core.averaging``).
+:math:`\dot\psi = G(\sin^2\varphi/A_1+\cos^2\varphi/A_2)`, a :math:`2K`-periodic function of :math:`u`,
+integrated in closed form with the incomplete elliptic integral of the third kind (:mod:`._precession`).
 """
 
 from __future__ import annotations
@@ -40,6 +40,8 @@ from ..core import euler
 from ..core.validate import real
 from ._algebra import T_from, k2_from
 from ._model import Body, check_kind
+from ._physical import FreeMotion
+from ._precession import elliptic_pi
 
 __all__ = ["EulerPoinsot"]
 
@@ -117,6 +119,57 @@ class EulerPoinsot:
         D = G * G / (2.0 * T)
         kind = "max" if D > body.A2 else "min"
         return cls(body, G, k2_from(body, G, T, kind), kind, sigma)
+
+    @classmethod
+    def from_state(cls, inertia: Any, omega: Any, attitude: Any = None) -> FreeMotion:
+        r"""The torque-free motion of any rigid body from a physical state.
+
+        Parameters
+        ----------
+        inertia : array_like
+            The inertia tensor, 3x3 symmetric positive definite, in any body axes (its principal axes and their
+            order are found, the rotation kept), or three principal moments in any order (the body axes are then
+            principal). Refused (``ValueError``): asymmetry beyond rounding, a moment <= 0, moments that violate the
+            triangle inequality.
+        omega : array_like, shape (3,)
+            The body angular velocity, in the same body axes, in any unit of 1/time: the motion's times are in
+            that unit.
+        attitude : scipy.spatial.transform.Rotation or array_like, optional
+            Body -> inertial: a ``Rotation``, a quaternion (x, y, z, w: scalar last, as SciPy) or a direction
+            cosine matrix (columns: body axes in inertial axes). Default the identity.
+
+        Returns
+        -------
+        FreeMotion
+            ``.omega(t)`` (user's body axes, shape ``t.shape + (3,)``), ``.rotation(t)`` (a ``Rotation``, body ->
+            inertial), the paper's variables ``G, k2, kind, sigma, phase, frame`` and, for a triaxial body in
+            ``'max'`` or ``'min'``, the paper's motion ``.paper``. Two equal moments, the sphere, a state on the
+            separatrix or at rest have a motion too (``paper`` is then ``None``: :class:`Body` needs
+            :math:`A_1 > A_2 > A_3`).
+
+        Notes
+        -----
+        The paper's variables give the state back: with ``ep = m.paper``, ``A = m.axes``,
+        ``omega = A @ ep.omega(t, m.phase)`` and ``attitude = m.frame @ euler.dcm(*ep.angles(t, m.phase)) @ A.T``
+        (``rigidbody.core.euler.dcm``), the attitude exact to rounding: :math:`\psi` in closed form (the incomplete
+        elliptic integral of the third kind), as in Principia's ``EulerSolver``.
+
+        Examples
+        --------
+        A spin about the intermediate axis with a small wobble flips (the tennis-racket effect) while the
+        angular momentum stays fixed in space:
+
+        >>> import numpy as np
+        >>> from rigidbody.euler_poinsot import EulerPoinsot
+        >>> m = EulerPoinsot.from_state([3.0, 5.0, 7.0], [0.0, 0.4, 0.001])
+        >>> m.kind, m.paper is not None
+        ('max', True)
+        >>> R = m.rotation(np.linspace(0.0, 40.0, 5))
+        >>> L = R.apply(m.omega(np.linspace(0.0, 40.0, 5)) * [3.0, 5.0, 7.0])
+        >>> bool(np.abs(L - m.momentum).max() < 1e-13)
+        True
+        """
+        return FreeMotion(inertia, omega, attitude, paper=cls)
 
     @property
     def T(self) -> float:
@@ -222,7 +275,8 @@ class EulerPoinsot:
 
         :math:`\cos\theta = g_3/G`, :math:`\tan\varphi = g_1/g_2` (rule of ``rigidbody.core.euler``:
         :math:`\alpha_{3j} = (\sin\theta\sin\varphi, \sin\theta\cos\varphi, \cos\theta)`), and
-        :math:`\psi = \psi_0 + \int_0^t G(\sin^2\varphi/A_1 + \cos^2\varphi/A_2)\,dt` (spectral). ``phi`` is
+        :math:`\psi = \psi_0 + \int_0^t G(\sin^2\varphi/A_1 + \cos^2\varphi/A_2)\,dt` (closed form, exact to
+        rounding). ``phi`` is
         in :math:`(-\pi, \pi]`.
 
         For ``kind='min'`` at :math:`k = 0` (pure spin about :math:`z_3`, :math:`\theta = 0` or :math:`\pi`,
@@ -269,26 +323,16 @@ class EulerPoinsot:
         return float(np.mean(self._psi_rate_nodes(n)))
 
     def _psi_integral(self, t: np.ndarray, u0: float) -> np.ndarray:
-        n = 2 * avg.n_nodes(mc=self.mc, period="2K")
-        r = self._psi_rate_nodes(n)
+        """psi(t) - psi(0) in closed form (:mod:`._precession`): with :math:`z_3` as the polar axis both kinds have
+        :math:`\\dot\\psi = G/A_3 - c/(1 - n\\operatorname{sn}^2u)`, :math:`c = G(A_1 - A_3)/(A_1A_3)`,
+        :math:`n = -A_3(A_1 - A_2)/(A_1(A_2 - A_3))` times :math:`k^2` for ``'max'``."""
+        A1, A2, A3 = self.body.A1, self.body.A2, self.body.A3
+        n = -A3 * (A1 - A2) / (A1 * (A2 - A3)) * (self.k2 if self.kind == "max" else 1.0)
         rate = self.rate
-        c = np.fft.rfft(r) / n
-        mean = c[0].real
-        P = 2.0 * self.K  # period in u
-        w = 2.0 * math.pi / P
-        m = np.arange(1, len(c))
-        cm = c[1:].copy()
-        if n % 2 == 0:
-            cm[-1] *= 0.5  # Nyquist term counted once
         u = rate * t + u0
-
-        def prim(x: np.ndarray) -> np.ndarray:
-            xx = np.asarray(x, float)[..., None]
-            return mean * np.asarray(x, float) + 2.0 * np.real(
-                (cm / (1j * m * w)) * np.exp(1j * m * w * xx)
-            ).sum(axis=-1)
-
-        return (prim(u) - prim(np.asarray(u0))) / rate
+        mc = float(self.mc)  # type: ignore[arg-type]  # set by __post_init__
+        span = elliptic_pi(u, n, mc, *ell.jacobi(u, mc=mc)[:3]) - elliptic_pi(u0, n, mc, *ell.jacobi(u0, mc=mc)[:3])
+        return self.G / A3 * t - self.G * (A1 - A3) / (A1 * A3 * rate) * span
 
     def nodes(self, n: int | None = None) -> tuple[np.ndarray, np.ndarray]:
         """Times and body angular momenta on ``n`` uniform nodes of one period (for period averages).
