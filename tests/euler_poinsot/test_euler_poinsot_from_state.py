@@ -242,3 +242,10 @@ def test_refusals_name_the_parameter():
     for method in (m.omega, m.rotation, m.psi):
         with pytest.raises(ValueError, match="t must be finite"):
             method([0.0, math.nan])
+
+
+def test_the_repr_names_the_sorted_moments_and_the_kind_of_motion():
+    # moments given in any order are shown sorted (the paper's A1 >= A2 >= A3); a spin about the intermediate axis
+    # is exactly on the separatrix (G^2 = 2 T A2 = 4 here), a slip in the kind or the sort shows in the text
+    text = repr(ep.EulerPoinsot.from_state([1.0, 3.0, 2.0], [0.0, 0.0, 1.0]))
+    assert text.startswith("<FreeMotion moments=(3, 2, 1)") and "kind='separatrix'" in text and "k2=1" in text

@@ -283,6 +283,11 @@ class FreeMotion:
             theta, phi = math.atan2(math.hypot(g[0], g[1]), g[2]), math.atan2(g[0], g[1])
         return np.asarray(self.attitude0.as_matrix() @ self.axes @ euler.dcm(0.0, theta, phi).T)
 
+    def __repr__(self) -> str:
+        m = ", ".join(f"{a:.6g}" for a in self.moments)
+        return (f"<FreeMotion moments=({m}) G={self.G:.6g} T={self.T:.6g} kind={self.kind!r} k2={self.k2:.6g} "
+                f"sigma={self.sigma:+d}>")
+
     @property
     def period(self) -> float:
         r"""Period of the body angular velocity, :math:`4K/\dot u` (``inf`` on the separatrix, 0 for a permanent
