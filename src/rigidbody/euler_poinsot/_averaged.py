@@ -39,7 +39,7 @@ between the precession and the Euler--Poinsot frequency (predicted jumps, after 
 
 from __future__ import annotations
 
-import math
+from math import pi
 from typing import Any
 
 from ..core.ode import Solution
@@ -58,8 +58,8 @@ def averaged(
     eps: Any,
     G0: Any = 1.0,
     k2_0: Any = None,
-    delta0: Any = math.pi / 4,
-    lam0: Any = math.pi / 4,
+    delta0: Any = pi / 4,
+    lam0: Any = pi / 4,
     tau_span: tuple[float, float] = (0.0, 3.0),
     tau_eval: Any = None,
     nu0: Any = 0.0,
