@@ -84,7 +84,7 @@ def averaged(
         plain callable ``torque(omega, C, nu) -> M`` is the whole perturbation: the averaged system is then
         :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle`, :math:`dT/d\tau = \langle\boldsymbol\omega
         \cdot\mathbf M\rangle` with the means from the closed forms of the parts that have them and from the
-        averaging engine otherwise (see :func:`average_torque` and ``docs/euler_poinsot.md``, "Any torque").
+        averaging engine otherwise (see :func:`average_torque` and :ref:`ep-any-torque`).
     eps : float or array_like
         :math:`\varepsilon`, the orbital rate in units of :math:`\Omega_0`; the true anomaly is
         :math:`\nu = \tau/\varepsilon + \nu_0` (Kepler's law for an eccentric ``orbit``). ``eps = 0`` gives

@@ -148,7 +148,7 @@ class Drag:
     Sign convention: the torque is :math:`\mathbf L^r = -I\boldsymbol\omega` (body components), which
     dissipates energy, :math:`\dot T = -\boldsymbol\omega\cdot I\boldsymbol\omega < 0`, when the symmetric
     part of ``I`` is positive definite. This is the sign of the paper's formula (3); its text writes
-    :math:`\mathbf L^r = I\omega` (see ``docs/errata.md``).
+    :math:`\mathbf L^r = I\omega` (see :ref:`errata-euler-poinsot`).
 
     Parameters
     ----------

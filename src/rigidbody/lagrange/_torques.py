@@ -12,7 +12,7 @@ depend on the fast variables only through the nutation angle theta. The slow var
     H' = \varepsilon F_2,\ F_2 = M_2^* + M_3^* r;\quad r' = \varepsilon F_3,\ F_3 = M_3^*/C.
 
 (The paper prints ``F1 = M1* + M3* cos(theta)``: the factor ``sin(theta)`` of (2.1) was dropped; see
-``docs/errata.md``.)
+:ref:`errata-lagrange`.)
 
 The protocol
 ------------
