@@ -167,7 +167,8 @@ class Torque:
 
         Examples
         --------
-        The linear drag has the closed form (3.4), which agrees with the engine's quadrature:
+        The linear drag has the closed form (3.4), which agrees with the engine's quadrature (the rates of the
+        roots ``u1, u2, u3``):
 
         >>> from rigidbody import lagrange
         >>> top, drag = lagrange.PAPER_TOP, lagrange.PAPER_DRAG
@@ -479,7 +480,18 @@ class LinearDrag(Torque):
 
     def closed_means(self, xp: Any, top: Top, s: Any) -> tuple[Any, Any, Any]:
         """(3.4): ``<F> = F(<u>)`` (``F`` is linear in ``u``), evaluated without cancellation from the u chart's
-        gaps (:func:`rigidbody.lagrange._kernel.drag_means`) or the GHr chart's root pair (``drag_means_g``)."""
+        gaps (:func:`rigidbody.lagrange._kernel.drag_means`) or the GHr chart's root pair (``drag_means_g``).
+
+        Examples
+        --------
+        ``F3 = -b r/C`` does not depend on the nutation, so its mean is itself (the spin decays as in (3.3)):
+
+        >>> from rigidbody import lagrange
+        >>> top, drag = lagrange.PAPER_TOP, lagrange.PAPER_DRAG
+        >>> Gz, H, r = lagrange.from_roots(top, 0.0, 0.5, 2.0)
+        >>> print(f"{lagrange.averaged_slow_rates(top, drag, Gz, H, r)[2]:.9f} {-drag.b * r / top.C:.9f}")
+        -0.173205081 -0.173205081
+        """
         if isinstance(s, _k.UState):
             return _k.drag_means(xp, top.A, top.C, top.mgl, self.a, self.b, s)
         return _k.drag_means_g(xp, top.A, top.C, top.mgl, self.a, self.b, s)
