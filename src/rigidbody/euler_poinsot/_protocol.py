@@ -63,8 +63,8 @@ class Torque:
         Returning None (the default) sends the torque to the averaging engine, which evaluates ``__call__``
         on grids of the motion. The path is chosen at the first state of each kind of motion of a run: a
         torque that returns a Mean there must return one at every state of that kind (None later is a
-        ``TypeError`` naming the torque). ``averaging='numerical'`` skips the hook (how a closed form is
-        tested against the engine).
+        ``TypeError`` naming the torque). ``averaging='numerical'`` of :func:`averaged` (``method='numerical'``
+        of :func:`averaged_rates`) skips the hook (how a closed form is tested against the engine).
     ``check_setup(body, orbit) -> None``
         Called at the start of a run (and of :func:`averaged_rates`, :func:`separatrix_crossing`, ...): raise
         a ``ValueError`` if the run's :class:`Body` or :class:`Orbit` differs from those the torque was built
