@@ -426,6 +426,22 @@ class Solution:
         Returns
         -------
         Axes or numpy.ndarray of Axes
+
+        Examples
+        --------
+        An averaged run of the Lagrange top draws its roots and its slow variables; given those Axes back, a
+        second result is drawn over the first:
+
+        >>> import numpy as np
+        >>> from rigidbody import lagrange
+        >>> top, drag = lagrange.Top(A=1.5, C=1.0, mgl=0.5), lagrange.LinearDrag(a=0.125, b=0.1)
+        >>> start = lagrange.integrals(top, 0.0, 0.0, 3**0.5, 0.0, np.pi / 3)
+        >>> axes = lagrange.averaged(top, drag, start, (0.0, 10.0)).plot()
+        >>> [ax.get_ylabel() for ax in axes]
+        ['roots of Q(u)', 'slow variables']
+        >>> _ = lagrange.averaged(top, drag, start, (0.0, 5.0)).plot(axes)
+        >>> [ax.get_lines()[0].get_label() for ax in axes], [len(ax.get_lines()) for ax in axes]
+        (['$u_1$', '$G_z$'], [10, 8])
         """
         return _display.plot_solution(self, ax, backend=self.plot_backend if backend is None else backend,
                                       **kwargs)

@@ -74,7 +74,7 @@ Separatrix (k^2 = 1) and its crossing
     each; ``simulate`` goes through it as well.
 
 All quantities are nondimensional in the paper's section-3 scaling (G0 = 1, A~ = A Omega0/G0,
-I~ = I/(G0 eps^2), orbital rate eps, tau = eps^2 t~); see docs/euler_poinsot.md.
+I~ = I/(G0 eps^2), orbital rate eps, tau = eps^2 t~); see :ref:`ep-scaling`.
 """
 
 from ._algebra import N_star, N_time, T_from, chi, dk2_dtau, drag_rates, k2_equilibria, k2_from, kind_of, spin_ratio

@@ -195,7 +195,7 @@ def chi(body: Body, I: Any) -> float:
     .. math:: \chi = \frac{2I_{22}A_1A_3 - I_{11}A_2A_3 - I_{33}A_1A_2}{(I_{33}A_1 - I_{11}A_3)A_2}.
 
     Only the diagonal of ``I`` enters. For the paper's two drag cases this gives -4.4743 and 3.8523
-    (printed: -4.477 and 3.853; see ``docs/euler_poinsot.md``).
+    (printed: -4.477 and 3.853; see :ref:`errata-euler-poinsot`).
 
     Parameters
     ----------

@@ -39,7 +39,7 @@ between the precession and the Euler--Poinsot frequency (predicted jumps, after 
 
 from __future__ import annotations
 
-import math
+from math import pi
 from typing import Any
 
 from ..core.ode import Solution
@@ -58,8 +58,8 @@ def averaged(
     eps: Any,
     G0: Any = 1.0,
     k2_0: Any = None,
-    delta0: Any = math.pi / 4,
-    lam0: Any = math.pi / 4,
+    delta0: Any = pi / 4,
+    lam0: Any = pi / 4,
     tau_span: tuple[float, float] = (0.0, 3.0),
     tau_eval: Any = None,
     nu0: Any = 0.0,
@@ -84,7 +84,7 @@ def averaged(
         plain callable ``torque(omega, C, nu) -> M`` is the whole perturbation: the averaged system is then
         :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle`, :math:`dT/d\tau = \langle\boldsymbol\omega
         \cdot\mathbf M\rangle` with the means from the closed forms of the parts that have them and from the
-        averaging engine otherwise (see :func:`average_torque` and ``docs/euler_poinsot.md``, "Any torque").
+        averaging engine otherwise (see :func:`average_torque` and :ref:`ep-any-torque`).
     eps : float or array_like
         :math:`\varepsilon`, the orbital rate in units of :math:`\Omega_0`; the true anomaly is
         :math:`\nu = \tau/\varepsilon + \nu_0` (Kepler's law for an eccentric ``orbit``). ``eps = 0`` gives

@@ -248,7 +248,7 @@ def fields(A: tuple[float, float, float], e: float, tau: np.ndarray, y: np.ndarr
 
 #: the angles' absolute tolerance as a fraction of rtol: their local errors add up over the orbits a run with
 #: eps > 0 resolves (~100 per tau unit at eps = 0.005), so each step is held to a tenth (the global error of
-#: delta and lambda then stays near rtol over the paper's spans; see docs/euler_poinsot.md)
+#: delta and lambda then stays near rtol over the paper's spans; see the theory page, :ref:`ep-rtol`)
 ANGLE_FACTOR = 0.1
 
 

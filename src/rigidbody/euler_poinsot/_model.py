@@ -113,7 +113,14 @@ class Body:
 
     @property
     def A(self) -> np.ndarray:
-        """The moments as an array ``[A1, A2, A3]``."""
+        """The moments as an array ``[A1, A2, A3]``.
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> ep.Body(3.2, 2.6, 1.67).A
+        array([3.2 , 2.6 , 1.67])
+        """
         return np.array([self.A1, self.A2, self.A3])
 
 
@@ -153,7 +160,7 @@ class Drag:
     Sign convention: the torque is :math:`\mathbf L^r = -I\boldsymbol\omega` (body components), which
     dissipates energy, :math:`\dot T = -\boldsymbol\omega\cdot I\boldsymbol\omega < 0`, when the symmetric
     part of ``I`` is positive definite. This is the sign of the paper's formula (3); its text writes
-    :math:`\mathbf L^r = I\omega` (see ``docs/errata.md``).
+    :math:`\mathbf L^r = I\omega` (see :ref:`errata-euler-poinsot`).
 
     Parameters
     ----------
@@ -212,7 +219,14 @@ class Drag:
 
     @property
     def diag(self) -> tuple[float, float, float]:
-        """The diagonal entries ``(I11, I22, I33)`` — the only ones the averaged system (6) keeps."""
+        """The diagonal entries ``(I11, I22, I33)`` — the only ones the averaged system (6) keeps.
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> ep.Drag([[2.322, 0.1, 0.0], [0.1, 1.31, 0.0], [0.0, 0.0, 1.425]]).diag
+        (2.322, 1.31, 1.425)
+        """
         return float(self.I[0, 0]), float(self.I[1, 1]), float(self.I[2, 2])
 
     def __hash__(self) -> int:
@@ -274,18 +288,53 @@ class Orbit:
         object.__setattr__(self, "e", e)
 
     def factor(self, nu: float) -> float:
-        """The gravity-gradient factor :math:`(1+e\\cos\\nu)^3/(1-e^2)^3` of (3)."""
+        """The gravity-gradient factor :math:`(1+e\\cos\\nu)^3/(1-e^2)^3` of (3).
+
+        Examples
+        --------
+        It is :math:`(a/r)^3`, :math:`a` the semi-major axis: :math:`1/(1+e)^3` at the apocentre.
+
+        >>> import math
+        >>> from rigidbody import euler_poinsot as ep
+        >>> print(f"{ep.Orbit(e=0.1).factor(math.pi):.6f} {1 / 1.1**3:.6f}")
+        0.751315 0.751315
+        """
         e = self.e
         return (1.0 + e * math.cos(nu)) ** 3 / (1.0 - e * e) ** 3
 
     def nu_rate(self, nu: float) -> float:
-        """:math:`\\dot\\nu/\\omega_0 = (1+e\\cos\\nu)^2/(1-e^2)^{3/2}`."""
+        """:math:`\\dot\\nu/\\omega_0 = (1+e\\cos\\nu)^2/(1-e^2)^{3/2}`.
+
+        Examples
+        --------
+        One turn of the true anomaly takes one orbital period, :math:`2\\pi` in units of :math:`1/\\omega_0`:
+
+        >>> import math
+        >>> from scipy.integrate import quad
+        >>> from rigidbody import euler_poinsot as ep
+        >>> orbit = ep.Orbit(e=0.3)
+        >>> print(f"{quad(lambda nu: 1 / orbit.nu_rate(nu), 0, 2 * math.pi)[0]:.6f} {2 * math.pi:.6f}")
+        6.283185 6.283185
+        """
         e = self.e
         return (1.0 + e * math.cos(nu)) ** 2 / (1.0 - e * e) ** 1.5
 
     @property
     def mean_factor(self) -> float:
-        """Orbit-period mean of ``factor * e_r e_r^T`` divided by diag(1/2, 1/2, 0): :math:`(1-e^2)^{-3/2}`."""
+        """Orbit-period mean of ``factor * e_r e_r^T`` divided by diag(1/2, 1/2, 0): :math:`(1-e^2)^{-3/2}`.
+
+        Examples
+        --------
+        The time mean of :meth:`factor` over the orbit (:math:`dt = d\\nu/\\dot\\nu`):
+
+        >>> import math
+        >>> from scipy.integrate import quad
+        >>> from rigidbody import euler_poinsot as ep
+        >>> orbit = ep.Orbit(e=0.3)
+        >>> mean = quad(lambda nu: orbit.factor(nu) / orbit.nu_rate(nu), 0, 2 * math.pi)[0] / (2 * math.pi)
+        >>> print(f"{mean:.6f} {orbit.mean_factor:.6f}")
+        1.151961 1.151961
+        """
         return (1.0 - self.e**2) ** -1.5
 
 

@@ -115,7 +115,18 @@ class EulerPoinsot:
     # ------------------------------------------------------------------ constructors / properties
     @classmethod
     def from_GT(cls, body: Body, G: float, T: float, sigma: int = 1) -> EulerPoinsot:
-        """The motion with given :math:`G` and :math:`T` (the kind is decided by :math:`G^2` vs :math:`2TA_2`)."""
+        """The motion with given :math:`G` and :math:`T` (the kind is decided by :math:`G^2` vs :math:`2TA_2`).
+
+        Examples
+        --------
+        The energy of a motion gives the motion back:
+
+        >>> from rigidbody import euler_poinsot as ep
+        >>> m = ep.EulerPoinsot(ep.Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
+        >>> back = ep.EulerPoinsot.from_GT(m.body, 1.0, m.T)
+        >>> print(back.kind, f"{back.k2:.9f}")
+        max 0.500000000
+        """
         D = G * G / (2.0 * T)
         kind = "max" if D > body.A2 else "min"
         return cls(body, G, k2_from(body, G, T, kind), kind, sigma)
@@ -173,7 +184,17 @@ class EulerPoinsot:
 
     @property
     def T(self) -> float:
-        """Kinetic energy, the inverse of (5)."""
+        r"""Kinetic energy, the inverse of (5).
+
+        Examples
+        --------
+        :math:`2T = \boldsymbol\omega\cdot\mathbf g` at any instant of the motion:
+
+        >>> from rigidbody import euler_poinsot as ep
+        >>> m = ep.EulerPoinsot(ep.Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
+        >>> print(f"{2 * m.T:.9f} {m.omega(0.7) @ m.g(0.7):.9f}")
+        0.353753236 0.353753236
+        """
         return float(T_from(self.body, self.G, self.k2, self.kind))
 
     def _amps(self) -> tuple[tuple[float, float, float], float]:
@@ -194,22 +215,65 @@ class EulerPoinsot:
 
     @property
     def k(self) -> float:
-        """The modulus :math:`k`."""
+        """The modulus :math:`k`.
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> m = ep.EulerPoinsot(ep.Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
+        >>> print(f"{m.k:.6f}")
+        0.707107
+        """
         return math.sqrt(self.k2)
 
     @property
     def rate(self) -> float:
-        r""":math:`\dot u`, the rate of the elliptic argument."""
+        r""":math:`\dot u`, the rate of the elliptic argument.
+
+        Examples
+        --------
+        :math:`\omega_2` is proportional to :math:`\operatorname{sn}(\dot u\,t, k)` (largest at :math:`\dot u t = K`):
+
+        >>> from rigidbody.core import elliptic as ell
+        >>> from rigidbody import euler_poinsot as ep
+        >>> m = ep.EulerPoinsot(ep.Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
+        >>> w2_max = m.omega(m.K / m.rate)[1]
+        >>> print(f"{m.omega(0.4)[1] / w2_max:.9f} {ell.sn(m.rate * 0.4, m.k):.9f}")
+        0.053136593 0.053136593
+        """
         return self._amps()[1]
 
     @property
     def K(self) -> float:
-        """Complete elliptic integral :math:`K(k)`."""
+        """Complete elliptic integral :math:`K(k)`.
+
+        Examples
+        --------
+        SciPy's ``ellipk`` takes the parameter :math:`m = k^2`:
+
+        >>> from scipy.special import ellipk
+        >>> from rigidbody import euler_poinsot as ep
+        >>> m = ep.EulerPoinsot(ep.Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
+        >>> print(f"{m.K:.9f} {ellipk(0.5):.9f}")
+        1.854074677 1.854074677
+        """
         return float(ell.K(mc=self.mc))
 
     @property
     def period(self) -> float:
-        r"""Period of the body components of :math:`\boldsymbol\omega`: :math:`4K/\dot u`."""
+        r"""Period of the body components of :math:`\boldsymbol\omega`: :math:`4K/\dot u`.
+
+        Examples
+        --------
+        After half a period :math:`\omega_2` and :math:`\omega_3` (:math:`\operatorname{sn}`,
+        :math:`\operatorname{cn}`) have changed sign and :math:`\omega_1` (:math:`\operatorname{dn}`) has not:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> m = ep.EulerPoinsot(ep.Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
+        >>> print(np.round(m.omega(0.3 + m.period / 2) / m.omega(0.3), 12))
+        [ 1. -1. -1.]
+        """
         return 4.0 * self.K / self.rate
 
     # ------------------------------------------------------------------ the motion
@@ -267,7 +331,19 @@ class EulerPoinsot:
         return np.stack([np.asarray(w1, float), np.asarray(w2, float), np.asarray(w3, float)])
 
     def g(self, t: Any, u0: float = 0.0) -> np.ndarray:
-        r"""Body components of the angular momentum :math:`G\alpha_{3j}`, shape ``(3, *t.shape)``."""
+        r"""Body components of the angular momentum :math:`G\alpha_{3j}`, shape ``(3, *t.shape)``.
+
+        Examples
+        --------
+        Its length is :math:`G` at every instant:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> m = ep.EulerPoinsot(ep.Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
+        >>> g = m.g(np.linspace(0.0, m.period, 5))
+        >>> g.shape, np.round(np.linalg.norm(g, axis=0), 12)
+        ((3, 5), array([1., 1., 1., 1., 1.]))
+        """
         return self.body.A.reshape((3,) + (1,) * np.ndim(t)) * self.omega(t, u0)
 
     def angles(self, t: Any, u0: float = 0.0, psi0: float = 0.0) -> tuple[Any, Any, Any]:
@@ -318,7 +394,20 @@ class EulerPoinsot:
         return self.G * (x1 / b.A1 + x2 / b.A2) / (x1 + x2)
 
     def psi_rate_mean(self) -> float:
-        r"""Mean precession rate :math:`\langle\dot\psi\rangle` over a period."""
+        r"""Mean precession rate :math:`\langle\dot\psi\rangle` over a period.
+
+        Examples
+        --------
+        For :math:`k^2 = 0` the body spins about the axis of :math:`A_1` and precesses at :math:`G/A_1`; for
+        :math:`k^2 > 0` the rate lies between :math:`G/A_1` and :math:`G/A_2`:
+
+        >>> from rigidbody import euler_poinsot as ep
+        >>> body = ep.Body(3.2, 2.6, 1.67)
+        >>> print(f"{ep.EulerPoinsot(body, 1.0, 0.0).psi_rate_mean():.9f} {1 / 3.2:.9f}")
+        0.312500000 0.312500000
+        >>> bool(1 / 3.2 < ep.EulerPoinsot(body, 1.0, 0.5).psi_rate_mean() < 1 / 2.6)
+        True
+        """
         n = 2 * avg.n_nodes(mc=self.mc, period="2K")
         return float(np.mean(self._psi_rate_nodes(n)))
 
@@ -341,6 +430,18 @@ class EulerPoinsot:
         -------
         t : numpy.ndarray, shape (n,)
         g : numpy.ndarray, shape (3, n)
+
+        Examples
+        --------
+        Over a period :math:`g_2` and :math:`g_3` (:math:`\\operatorname{sn}`, :math:`\\operatorname{cn}`) average
+        to zero:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> m = ep.EulerPoinsot(ep.Body(3.2, 2.6, 1.67), G=1.0, k2=0.5)
+        >>> t, g = m.nodes(32)
+        >>> t.shape, g.shape, np.round(g.mean(axis=1)[1:], 12) + 0.0
+        ((32,), (3, 32), array([0., 0.]))
         """
         if n is None:
             n = avg.n_nodes(mc=self.mc, period="4K")

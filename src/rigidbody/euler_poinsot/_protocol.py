@@ -63,8 +63,8 @@ class Torque:
         Returning None (the default) sends the torque to the averaging engine, which evaluates ``__call__``
         on grids of the motion. The path is chosen at the first state of each kind of motion of a run: a
         torque that returns a Mean there must return one at every state of that kind (None later is a
-        ``TypeError`` naming the torque). ``averaging='numerical'`` skips the hook (how a closed form is
-        tested against the engine).
+        ``TypeError`` naming the torque). ``averaging='numerical'`` of :func:`averaged` (``method='numerical'``
+        of :func:`averaged_rates`) skips the hook (how a closed form is tested against the engine).
     ``check_setup(body, orbit) -> None``
         Called at the start of a run (and of :func:`averaged_rates`, :func:`separatrix_crossing`, ...): raise
         a ``ValueError`` if the run's :class:`Body` or :class:`Orbit` differs from those the torque was built
@@ -103,15 +103,58 @@ class Torque:
         return TorqueSum((*as_torque(other, "other").parts(), *self.parts()))
 
     def parts(self) -> tuple[Torque, ...]:
-        """The torques this one is the sum of (itself for a single torque)."""
+        """The torques this one is the sum of (itself for a single torque).
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> body = ep.Body(3.2, 2.6, 1.67)
+        >>> drag = ep.LinearDrag([1.0, 1.0, 1.0])
+        >>> drag.parts() == (drag,)
+        True
+        >>> [type(p).__name__ for p in (drag + ep.GravityGradient(body)).parts()]
+        ['LinearDrag', 'GravityGradient']
+        """
         return (self,)
 
     def check_setup(self, body: Any, orbit: Any) -> None:
-        """Refuse a run whose body or orbit differs from the one this torque was built for (by default: none)."""
+        """Refuse a run whose body or orbit differs from the one this torque was built for (by default: none).
+
+        Examples
+        --------
+        :class:`GravityGradient` is built from a body's moments and refuses another body:
+
+        >>> from rigidbody import euler_poinsot as ep
+        >>> gg = ep.GravityGradient(ep.Body(3.2, 2.6, 1.67))
+        >>> gg.check_setup(ep.Body(3.2, 2.6, 1.67), ep.Orbit())   # the same body: accepted
+        >>> try:
+        ...     gg.check_setup(ep.Body(3.0, 2.0, 1.5), ep.Orbit())
+        ... except ValueError:
+        ...     print("refused")
+        refused
+        """
 
     def closed_mean(self, st: State) -> Mean | None:
         """The closed-form average at the slow state ``st``, or None when the torque has none (by default: the
-        averaging engine is used)."""
+        averaging engine is used).
+
+        Examples
+        --------
+        The linear drag's closed form agrees with the engine's average of the same torque:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> body, drag = ep.Body(3.2, 2.6, 1.67), ep.LinearDrag([2.322, 1.31, 1.425])
+        >>> delta, lam = 0.7, 0.3
+        >>> n = np.array([np.sin(delta) * np.cos(lam), np.sin(delta) * np.sin(lam), np.cos(delta)])
+        >>> st = ep.State(body, "max", 1, 1.0, 0.5, n, None, ep.Orbit())
+        >>> mean = drag.closed_mean(st)
+        >>> engine = ep.average_torque(body, drag, 1.0, 0.5, delta, lam, None)
+        >>> print(f"{mean.dT:.9f} {engine.rates['dT']:.9f} {mean.dk2:.9f} {engine.rates['dk2']:.9f}")
+        -0.235227252 -0.235227252 0.001881235 0.001881235
+        >>> ep.Torque().closed_mean(st) is None   # the base class: no closed form, the engine averages
+        True
+        """
         return None
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-import math
+from math import pi
 from typing import Any
 
 from ..core.ode import Solution
@@ -21,8 +21,8 @@ def simulate(
     eps: Any,
     G0: Any = 1.0,
     k2_0: Any = None,
-    delta0: Any = math.pi / 4,
-    lam0: Any = math.pi / 4,
+    delta0: Any = pi / 4,
+    lam0: Any = pi / 4,
     tau_span: tuple[float, float] = (0.0, 3.0),
     tau_eval: Any = None,
     nu0: Any = 0.0,

@@ -69,12 +69,34 @@ class State:
 
     @property
     def Q(self) -> float:
+        r""":math:`G^2 - 2Ta_3` (:math:`a_3` the moment of the axis of the least moment for ``'max'``).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> st = ep.State(ep.Body(3.2, 2.6, 1.67), "max", 1, 1.0, 0.5, np.array([0.0, 0.0, 1.0]), None, ep.Orbit())
+        >>> print(f"{st.Q:.9f} {st.G**2 - 2 * st.T * 1.67:.9f}")
+        0.409232097 0.409232097
+        """
         a1, a2, a3 = self.a
         R = a1 * (a2 - a3) + a3 * (a1 - a2) * self.k2
         return self.G**2 * (a1 - a3) * (a2 - a3) / R
 
     @property
     def T(self) -> float:
+        """The kinetic energy of the motion, the inverse of (5).
+
+        Examples
+        --------
+        The energy of the Euler--Poinsot motion with the same ``G`` and ``k2``:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> st = ep.State(ep.Body(3.2, 2.6, 1.67), "max", 1, 1.0, 0.5, np.array([0.0, 0.0, 1.0]), None, ep.Orbit())
+        >>> print(f"{st.T:.9f} {ep.EulerPoinsot(st.body, 1.0, 0.5).T:.9f}")
+        0.176876618 0.176876618
+        """
         a1, a2, a3 = self.a
         return 0.5 * self.G**2 * (a2 - a3 + (a1 - a2) * self.k2) / (a1 * (a2 - a3) + a3 * (a1 - a2) * self.k2)
 

@@ -99,7 +99,7 @@ def _frozen_array(a: np.ndarray) -> np.ndarray:
 class LinearDrag(_ArrayEq):
     r"""Linear drag :math:`\mathbf M = -I\boldsymbol\omega` with a constant tensor :math:`I` in body axes.
 
-    The drag of Rachinskaya's paper, formula (3) (with the sign that dissipates, see ``docs/errata.md``),
+    The drag of Rachinskaya's paper, formula (3) (with the sign that dissipates, see :ref:`errata-euler-poinsot`),
     and of L. D. Akulenko, D. D. Leshchenko, A. L. Rachinskaya, "Evolution of the satellite fast rotation
     due to the gravitational torque in a dragging medium", Mechanics of Solids 43(2), 173-184 (2008).
     Closed-form averages: :math:`dG/d\tau`, :math:`dT/d\tau` of (6) and the :math:`k^2` equation (8); the
@@ -357,7 +357,7 @@ class ConstantTorque(_ArrayEq):
     body having spherical ellipsoid of inertia and subjected to a constant torque", Celestial Mechanics and
     Dynamical Astronomy 100, 181-189 (2008), doi:10.1007/s10569-007-9112-7, who solves the motion of a body
     with three equal moments exactly. Averaged over the Euler--Poinsot motion (derived here, see
-    ``docs/euler_poinsot.md``, "Any torque"): only the component along the axis of rotation survives,
+    :ref:`ep-any-torque`): only the component along the axis of rotation survives,
     :math:`\langle C\mathbf M\rangle = \mathbf n\,a_1\bar\omega_1 M_{0,1}/G`,
     :math:`\langle\boldsymbol\omega\cdot\mathbf M\rangle = \bar\omega_1M_{0,1}` with
     :math:`\bar\omega_1 = \sigma c_{dn}\pi/2K` (labelled axes: 1 is the axis of :math:`A_1` for ``'max'``,
@@ -446,7 +446,7 @@ class ViscousCavity(_ArrayEq):
     with viscous fluid under the action of the external resistance torque", Mathematics in Engineering,
     Science and Aerospace (2015). We saw only titles and abstracts of these: the form of the torque (from the
     relative angular momentum :math:`-P\dot{\boldsymbol\omega}` of the fluid) and its averages were derived
-    here (``docs/euler_poinsot.md``, "Any torque") and are checked against the engine (which averages the
+    here (:ref:`ep-any-torque`) and are checked against the engine (which averages the
     torque itself) and the full equations. The fluid is internal: :math:`G` is conserved on average
     (:math:`C\mathbf M = d(CP\dot{\boldsymbol\omega})/dt`), the energy is dissipated,
     :math:`\langle\dot T\rangle = -\langle\dot{\boldsymbol\omega}\cdot P\dot{\boldsymbol\omega}\rangle`, so a

@@ -1,7 +1,7 @@
 r"""Perturbed motions of a heavy symmetric top close to the Lagrange case.
 
 After L. D. Akulenko, D. D. Leshchenko, F. L. Chernousko, "Perturbed motions of a rigid body close to
-the Lagrange case", PMM 43(5), 1979 (equation numbers refer to it). Theory page: ``docs/lagrange.md``.
+the Lagrange case", PMM 43(5), 1979 (equation numbers refer to it). Theory page: :doc:`/lagrange`.
 
 Unperturbed motion (Sec. 1)
     :class:`Top`, :func:`integrals` (1.2), :func:`roots` of Q(u) (1.5), :func:`vieta` (1.6),

@@ -12,7 +12,7 @@ depend on the fast variables only through the nutation angle theta. The slow var
     H' = \varepsilon F_2,\ F_2 = M_2^* + M_3^* r;\quad r' = \varepsilon F_3,\ F_3 = M_3^*/C.
 
 (The paper prints ``F1 = M1* + M3* cos(theta)``: the factor ``sin(theta)`` of (2.1) was dropped; see
-``docs/errata.md``.)
+:ref:`errata-lagrange`.)
 
 The protocol
 ------------
@@ -120,13 +120,42 @@ class Torque:
     """
 
     def slow_rates(self, top: Top, Gz: float, H: float, r: float, u: np.ndarray) -> tuple[np.ndarray, ...]:
-        """The (corrected) right-hand sides F1, F2, F3 of (2.7) at ``cos(theta) = u``."""
+        """The (corrected) right-hand sides F1, F2, F3 of (2.7) at ``cos(theta) = u``.
+
+        Examples
+        --------
+        For the linear drag (3.1) at ``phi = 0``, (2.2) gives ``M1* = -a q``, ``M2* = -a (p² + q²)`` and
+        ``M3* = -b r``, so ``F1 = -a q sin(theta) - b r cos(theta)``, ``F2 = M2* + M3* r``, ``F3 = M3*/C``:
+
+        >>> import numpy as np
+        >>> from rigidbody import lagrange
+        >>> top, (a, b) = lagrange.Top(A=1.5, C=1.0, mgl=0.5), (0.125, 0.1)
+        >>> p, q, r, theta = 0.3, 0.2, 1.7, 1.0
+        >>> Gz, H, r = lagrange.integrals(top, p, q, r, 0.0, theta)
+        >>> F = lagrange.LinearDrag(a, b).slow_rates(top, Gz, H, r, np.cos(theta))
+        >>> print(" ".join(f"{x:.9f}" for x in F))
+        -0.112888167 -0.305250000 -0.170000000
+        >>> print(f"{-a * q * np.sin(theta) - b * r * np.cos(theta):.9f} {-a * (p*p + q*q) - b * r * r:.9f}")
+        -0.112888167 -0.305250000
+        """
         raise NotImplementedError
 
     def body_moments(
         self, top: Top, p: float, q: float, r: float, g1: float, g2: float, g3: float
     ) -> tuple[float, float, float]:
-        """Body components (M1, M2, M3) of the torque at a full state (for :func:`simulate`)."""
+        """Body components (M1, M2, M3) of the torque at a full state (for :func:`simulate`).
+
+        ``(g1, g2, g3)`` is the upward vertical in body axes. A torque given by its averaged combinations only
+        (the base class, :class:`StarTorque`) has none and raises a ``TypeError``.
+
+        Examples
+        --------
+        >>> from rigidbody import lagrange
+        >>> top = lagrange.Top(A=1.5, C=1.0, mgl=0.5)
+        >>> M = lagrange.LinearDrag(a=0.125, b=0.1).body_moments(top, 0.4, 0.2, 2.0, 0.0, 0.6, 0.8)
+        >>> print(" ".join(f"{m:.6f}" for m in M))   # (-a p, -a q, -b r)
+        -0.050000 -0.025000 -0.200000
+        """
         raise TypeError(
             f"{type(self).__name__} defines only the averaged combinations (2.2); "
             "the full equations (1.1) need body moments: use ProportionalTorque or VerticalPlaneTorque"
@@ -134,7 +163,21 @@ class Torque:
 
     def closed_means(self, xp: Any, top: Top, s: Any) -> tuple[Any, Any, Any] | None:
         """The nutation means ``<F1>, <F2>, <F3>`` of (2.7) in closed form at the chart state ``s`` (see the
-        module docstring), or None: this torque has none and the averaging engine is used."""
+        module docstring), or None: this torque has none and the averaging engine is used.
+
+        Examples
+        --------
+        The linear drag has the closed form (3.4), which agrees with the engine's quadrature (the rates of the
+        roots ``u1, u2, u3``):
+
+        >>> from rigidbody import lagrange
+        >>> top, drag = lagrange.PAPER_TOP, lagrange.PAPER_DRAG
+        >>> closed = lagrange.averaged_rhs(top, drag, 0.0, 0.5, 2.0)
+        >>> engine = lagrange.averaged_rhs(top, drag, 0.0, 0.5, 2.0, closed_form=False)
+        >>> print(" ".join(f"{a:.9f}" for a in closed)); print(" ".join(f"{b:.9f}" for b in engine))
+        -0.051796079 -0.040169934 -0.348203921
+        -0.051796079 -0.040169934 -0.348203921
+        """
         return None
 
 
@@ -218,7 +261,18 @@ class ProportionalTorque(Torque):
     def body_moments_batch(
         self, top: Top, p: np.ndarray, q: np.ndarray, r: np.ndarray, g1: np.ndarray, g2: np.ndarray, g3: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """:meth:`body_moments` for arrays of batch members."""
+        """:meth:`body_moments` for arrays of batch members.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from rigidbody import lagrange
+        >>> torque = lagrange.ProportionalTorque(lambda Gz, H, r, theta: -0.5 + 0 * theta)   # f = -0.5, M3 = 0
+        >>> M1, M2, M3 = torque.body_moments_batch(lagrange.PAPER_TOP, np.array([0.2, 0.4]), np.array([0.1, 0.3]),
+        ...                                        np.ones(2), np.zeros(2), np.full(2, 0.6), np.full(2, 0.8))
+        >>> M1, M2, M3   # (p f, q f, 0) per member
+        (array([-0.1, -0.2]), array([-0.05, -0.15]), array([0., 0.]))
+        """
         Gz, H, th = _body_slow(top, p, q, r, g1, g2, g3)
         f = np.asarray(self.f(Gz, H, r, th), dtype=float)
         return p * f, q * f, np.broadcast_to(np.asarray(self.M3(Gz, H, r, th), dtype=float), p.shape)
@@ -296,7 +350,21 @@ class VerticalPlaneTorque(Torque):
     def body_moments_batch(
         self, top: Top, p: np.ndarray, q: np.ndarray, r: np.ndarray, g1: np.ndarray, g2: np.ndarray, g3: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """:meth:`body_moments` for arrays of batch members (the equatorial part 0 where ``sin theta = 0``)."""
+        """:meth:`body_moments` for arrays of batch members (the equatorial part 0 where ``sin theta = 0``).
+
+        Examples
+        --------
+        The equatorial part ``F`` along the projection of the vertical, ``(g1, g2)/sin(theta)``, and none for
+        the member whose axis is vertical:
+
+        >>> import numpy as np
+        >>> from rigidbody import lagrange
+        >>> torque = lagrange.VerticalPlaneTorque(lambda Gz, H, r, theta: 0.5 + 0 * theta)   # F = 0.5, M3 = 0
+        >>> M1, M2, M3 = torque.body_moments_batch(lagrange.PAPER_TOP, np.zeros(2), np.zeros(2), np.ones(2),
+        ...                                        np.array([0.36, 0.0]), np.array([0.48, 0.0]), np.array([0.8, 1.0]))
+        >>> np.round(M1, 12), np.round(M2, 12)
+        (array([0.3, 0. ]), array([0.4, 0. ]))
+        """
         Gz, H, th = _body_slow(top, p, q, r, g1, g2, g3)
         st = np.hypot(g1, g2)
         m3 = np.broadcast_to(np.asarray(self.M3(Gz, H, r, th), dtype=float), p.shape)
@@ -412,7 +480,18 @@ class LinearDrag(Torque):
 
     def closed_means(self, xp: Any, top: Top, s: Any) -> tuple[Any, Any, Any]:
         """(3.4): ``<F> = F(<u>)`` (``F`` is linear in ``u``), evaluated without cancellation from the u chart's
-        gaps (:func:`rigidbody.lagrange._kernel.drag_means`) or the GHr chart's root pair (``drag_means_g``)."""
+        gaps (:func:`rigidbody.lagrange._kernel.drag_means`) or the GHr chart's root pair (``drag_means_g``).
+
+        Examples
+        --------
+        ``F3 = -b r/C`` does not depend on the nutation, so its mean is itself (the spin decays as in (3.3)):
+
+        >>> from rigidbody import lagrange
+        >>> top, drag = lagrange.PAPER_TOP, lagrange.PAPER_DRAG
+        >>> Gz, H, r = lagrange.from_roots(top, 0.0, 0.5, 2.0)
+        >>> print(f"{lagrange.averaged_slow_rates(top, drag, Gz, H, r)[2]:.9f} {-drag.b * r / top.C:.9f}")
+        -0.173205081 -0.173205081
+        """
         if isinstance(s, _k.UState):
             return _k.drag_means(xp, top.A, top.C, top.mgl, self.a, self.b, s)
         return _k.drag_means_g(xp, top.A, top.C, top.mgl, self.a, self.b, s)
@@ -425,7 +504,19 @@ class LinearDrag(Torque):
     def body_moments_batch(
         self, top: Top, p: np.ndarray, q: np.ndarray, r: np.ndarray, g1: np.ndarray, g2: np.ndarray, g3: np.ndarray
     ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-        """:meth:`body_moments` for arrays of batch members."""
+        """:meth:`body_moments` for arrays of batch members.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from rigidbody import lagrange
+        >>> M = lagrange.LinearDrag(a=0.125, b=0.1).body_moments_batch(
+        ...     lagrange.PAPER_TOP, np.array([0.4, 0.8]), np.array([0.2, 0.0]), np.array([2.0, 1.0]), *np.zeros((3, 2)))
+        >>> np.round(M, 12)   # (-a p, -a q, -b r) per member
+        array([[-0.05 , -0.1  ],
+               [-0.025, -0.   ],
+               [-0.2  , -0.1  ]])
+        """
         return -self.a * p, -self.a * q, -self.b * r
 
 

@@ -21,7 +21,7 @@ variables over a slow-time span, against the order the theory gives:
 :func:`averaging_error_euler_poinsot` over :math:`(\varepsilon, k^2_0)`
     Rachinskaya's averaged system (9) with the true anomaly kept (:func:`rigidbody.euler_poinsot.averaged`)
     against the full equations (:func:`rigidbody.euler_poinsot.simulate`); order :math:`\varepsilon^2`
-    (docs/euler_poinsot.md, "What the numbers show").
+    (:ref:`ep-numbers`).
 :func:`averaging_error_lagrange` over :math:`(\varepsilon, \theta_0)`
     the first approximation (2.15)/(3.4) of Akulenko, Leshchenko and Chernousko
     (:func:`rigidbody.lagrange.averaged`) against the full equations (1.1)
@@ -36,7 +36,7 @@ their ratios matter (the scale sets the unit of slow time), so the plane is ``r1
 
 .. math:: \frac{dk^2}{d\tau} = -2\left[(r_3 - 1)(k^2 - W) + (1 - r_1)\,k^2 E/K\right],\qquad W = 1 - E/K,
 
-and three lines through ``(1, 1)`` organise the plane (derived here from (7)-(8); see docs/sweeps.md):
+and three lines through ``(1, 1)`` organise the plane (derived here from (7)-(8); see :ref:`sweeps-spin-end`):
 
 - :func:`chi_minus_3_line`, ``r3 = 2 r1 - 1``: there :math:`\chi = -3` in (7); the slope of (8) at
   :math:`k^2 = 0`, :math:`-(r_3 + 1 - 2r_1)`, vanishes: :math:`k^2 = 0` is stable above the line,
@@ -53,7 +53,7 @@ and three lines through ``(1, 1)`` organise the plane (derived here from (7)-(8)
 (:func:`rigidbody.euler_poinsot.k2_equilibria`), the analytic counterpart of the integrated map.
 
 The maps of the figures (``python -m rigidbody figures --only studies``) use the quick grids of
-:data:`GRIDS`; the full grids are for a cluster (docs/sweeps.md says how).
+:data:`GRIDS`; the full grids are for a cluster (:ref:`sweeps-averaging` says how).
 """
 
 from ._averaging import averaging_error_euler_poinsot, averaging_error_lagrange

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from math import pi
 from typing import Any
 
 import numpy as np
@@ -76,8 +77,8 @@ def averaging_error_euler_poinsot(
     I: Any = PAPER_DRAG_CASE1,
     tau_end: float = 0.5,
     n_out: int = 201,
-    delta0: Any = math.pi / 4,
-    lam0: Any = math.pi / 4,
+    delta0: Any = pi / 4,
+    lam0: Any = pi / 4,
 ) -> dict[str, Any]:
     r"""Largest difference between the averaged (9) and the full motion over :math:`\tau \in [0, \tau_{end}]`.
 

@@ -75,12 +75,28 @@ class StudyMap:
 
     @property
     def dims(self) -> tuple[str, ...]:
-        """The grid names, in order."""
+        """The grid names, in order.
+
+        Examples
+        --------
+        >>> from rigidbody import studies
+        >>> m = studies.evaluate(lambda eps, c: {"error": c * eps**2}, {"eps": [0.01, 0.02, 0.04], "c": [1.0, 3.0]})
+        >>> m.dims
+        ('eps', 'c')
+        """
         return tuple(self.coords)
 
     @property
     def shape(self) -> tuple[int, ...]:
-        """The grid's shape."""
+        """The grid's shape.
+
+        Examples
+        --------
+        >>> from rigidbody import studies
+        >>> m = studies.evaluate(lambda eps, c: {"error": c * eps**2}, {"eps": [0.01, 0.02, 0.04], "c": [1.0, 3.0]})
+        >>> m.shape, m.data["error"].shape
+        ((3, 2), (3, 2))
+        """
         return tuple(v.size for v in self.coords.values())
 
     def __getitem__(self, name: str) -> Field:
@@ -106,6 +122,16 @@ class StudyMap:
         Returns
         -------
         xarray.Dataset
+
+        Examples
+        --------
+        >>> from rigidbody import studies
+        >>> m = studies.evaluate(lambda eps, c: {"error": c * eps**2}, {"eps": [0.01, 0.02, 0.04], "c": [1.0, 3.0]})
+        >>> ds = m.to_xarray()
+        >>> dict(ds.sizes), sorted(ds.data_vars)
+        ({'eps': 3, 'c': 2}, ['error', 'message', 'status'])
+        >>> print(f"{float(ds['error'].sel(eps=0.04, c=3.0)):.6f} {3.0 * 0.04**2:.6f}")
+        0.004800 0.004800
         """
         import xarray as xr
 

@@ -18,7 +18,7 @@ sweep resumes where it stopped, computing only the points not finished.
     :func:`rigidbody.lagrange.averaged`): a chunk of points is one batch integration.
 
 Needs the optional dependencies: ``pip install "rigidbody[sweep]"`` (xarray, zarr, dask[distributed],
-tqdm). ``import rigidbody`` does not import any of them. See ``docs/sweeps.md``.
+tqdm). ``import rigidbody`` does not import any of them. See :doc:`/sweeps`.
 """
 
 from ._api import load, sweep

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from math import pi
 from typing import Any
 
 import numpy as np
@@ -96,7 +97,7 @@ def _evolution_outputs(sol: Any, outputs: tuple[str, ...], end_only: bool) -> di
 
 @batched
 def euler_poinsot_averaged(*, body: Any, torque: Any, eps: Any = 0.0, G0: Any = 1.0, k2_0: Any = 0.99,
-                           delta0: Any = np.pi / 4, lam0: Any = np.pi / 4, nu0: Any = 0.0,
+                           delta0: Any = pi / 4, lam0: Any = pi / 4, nu0: Any = 0.0,
                            tau_span: tuple[float, float] = (0.0, 3.0), tau_eval: Any = None,
                            outputs: tuple[str, ...] = ("G", "T", "k2", "delta", "lam"),
                            **options: Any) -> dict[str, np.ndarray]:
