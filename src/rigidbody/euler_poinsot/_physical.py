@@ -291,14 +291,40 @@ class FreeMotion:
     @property
     def period(self) -> float:
         r"""Period of the body angular velocity, :math:`4K/\dot u` (``inf`` on the separatrix, 0 for a permanent
-        rotation)."""
+        rotation).
+
+        Examples
+        --------
+        After one period the body angular velocity is back where it started:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> f = ep.EulerPoinsot.from_state(np.diag([2.0, 1.5, 1.0]), [0.3, 0.2, 1.0])
+        >>> bool(np.allclose(f.omega(f.period), [0.3, 0.2, 1.0], rtol=0.0, atol=1e-14))
+        True
+        """
         if self.uniform:
             return 0.0
         return 4.0 * float(ell.K(mc=self.mc)) / self.rate if self.mc > 0.0 else math.inf
 
     def psi(self, t: Any) -> np.ndarray:
         r"""The precession angle about :math:`\mathbf G` of the labelled polar axis :math:`l_3`, from 0 at ``t = 0``
-        (closed form, :mod:`._precession`)."""
+        (closed form, :mod:`._precession`).
+
+        Examples
+        --------
+        The rate against Landau's :math:`\dot\psi = G(A_1\omega_1^2 + A_2\omega_2^2)/(A_1^2\omega_1^2 +
+        A_2^2\omega_2^2)` (polar axis :math:`A_3` for ``'max'``), by a central difference:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> f = ep.EulerPoinsot.from_state(np.diag([2.0, 1.5, 1.0]), [1.0, 0.2, 0.3])
+        >>> w, A = f.axes.T @ f.omega(1.0), f.moments
+        >>> landau = f.G * (A[0] * w[0]**2 + A[1] * w[1]**2) / (A[0]**2 * w[0]**2 + A[1]**2 * w[1]**2)
+        >>> rate = (f.psi(1.0 + 1e-4) - f.psi(1.0 - 1e-4)) / 2e-4  # truncation h**2/6 |psi'''| ~ 1e-9
+        >>> print(f.kind, abs(rate - landau) < 1e-8)
+        max True
+        """
         t = finite_array(t, "t")
         if self.uniform:
             raise ValueError("psi is not defined for a permanent rotation (kind "
@@ -308,15 +334,45 @@ class FreeMotion:
         return np.asarray(self.G / self._a[2] * t - self._cpsi / self.rate * span)
 
     def omega(self, t: Any) -> np.ndarray:
-        """Angular velocity in the user's body axes at times ``t`` (units of 1/omega), shape ``t.shape + (3,)``."""
+        r"""Angular velocity in the user's body axes at times ``t`` (units of 1/omega), shape ``t.shape + (3,)``.
+
+        Examples
+        --------
+        The kinetic energy :math:`\frac12\boldsymbol\omega\cdot I\boldsymbol\omega` stays at its start value:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> I = np.array([[2.0, 0.1, 0.0], [0.1, 1.5, 0.0], [0.0, 0.0, 1.0]])
+        >>> w = ep.EulerPoinsot.from_state(I, [0.3, 0.2, 1.0]).omega(np.linspace(0.0, 20.0, 5))
+        >>> print(np.round(0.5 * np.einsum("ti,ij,tj->t", w, I, w), 12))
+        [0.626 0.626 0.626 0.626 0.626]
+        """
         t = finite_array(t, "t")
         if self.uniform:
             return np.broadcast_to(self.omega0, (*t.shape, 3)).copy()
         return np.asarray(self._omega_l(t) @ (self.axes @ self._L).T)
 
     def rotation(self, t: Any) -> Rotation:
-        """Attitude (body -> inertial) at times ``t``: one ``Rotation`` for a scalar ``t``, else a stack over the
-        flattened ``t``."""
+        r"""Attitude (body -> inertial) at times ``t``: one ``Rotation`` for a scalar ``t``, else a stack over the
+        flattened ``t``.
+
+        Examples
+        --------
+        The body's angular momentum :math:`I\boldsymbol\omega` turned to the inertial axes is the same vector
+        at every time:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> I = np.diag([2.0, 1.5, 1.0])
+        >>> f = ep.EulerPoinsot.from_state(I, [0.3, 0.2, 1.0])
+        >>> t = np.linspace(0.0, 20.0, 5)
+        >>> print(np.round(f.rotation(t).apply(f.omega(t) @ I), 12))
+        [[0.6 0.3 1. ]
+         [0.6 0.3 1. ]
+         [0.6 0.3 1. ]
+         [0.6 0.3 1. ]
+         [0.6 0.3 1. ]]
+        """
         t = finite_array(t, "t")
         flat = t.reshape(-1)
         if self.uniform:
