@@ -213,7 +213,8 @@ class EddyCurrent(Torque):
 
     def field_square(self, nu: float | None, e: float) -> np.ndarray:
         r""":math:`S = \mathbf B\mathbf B^T` at ``nu``, or its mean over the orbit of eccentricity ``e`` in time
-        for ``nu=None`` (trapezoid rule in the mean anomaly's weights, doubled until it settles; cached)."""
+        for ``nu=None`` (the trapezoid rule in the true anomaly with the time weights, nodes doubled until it
+        settles; cached per eccentricity)."""
         if nu is not None:
             B = self.field_at(nu)
             return np.outer(B, B)
