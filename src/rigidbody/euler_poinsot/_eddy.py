@@ -153,13 +153,9 @@ class EddyCurrent(Torque):
 
     References
     ----------
-    N. Praly, M. Hillion, C. Bonnal, J. Laurent-Varin, N. Petit, "Study on the eddy current damping of the spin
-    dynamics of space debris from the Ariane launcher upper stages", Acta Astronautica 76, 145-153 (2012).
-    N. O. Gómez, S. J. I. Walker, "Eddy currents applied to de-tumbling of space debris: analysis and validation
-    of approximate proposed methods", Acta Astronautica 114 (2015) (the magnetic tensor, :math:`P` of a
-    spherical shell, a cylinder, plates). S. Efimov, D. Pritykin, V. Sidorenko, "Long-term attitude dynamics of
-    space debris in Sun-synchronous orbits: Cassini cycles and chaotic stabilization", Celest. Mech. Dyn. Astron.
-    130, 62 (2018), doi:10.1007/s10569-018-9854-4.
+    :ref:`N. Praly et al. (2012) <ref-praly-2012>`, :ref:`N. O. Gómez, S. J. I. Walker (2015)
+    <ref-gomez-walker-2015>` (the magnetic tensor), :ref:`S. Efimov, D. Pritykin, V. Sidorenko (2018)
+    <ref-efimov-2018>`.
 
     Examples
     --------

@@ -78,6 +78,10 @@ class DipoleField:
         A factor applied to the field in tesla: 1 for tesla, ``1e9`` for nanotesla, ``1/B_ref`` for a field in
         units of :math:`B_{ref}` (the units :class:`EddyCurrent`'s tensor is given in).
 
+    References
+    ----------
+    :ref:`P. Alken et al. (2021) <ref-igrf13>` (IGRF-13).
+
     Examples
     --------
     On a polar circular orbit at the reference radius the field over the north pole (:math:`\nu = \pi/2` with
