@@ -79,8 +79,10 @@ I~ = I/(G0 eps^2), orbital rate eps, tau = eps^2 t~); see :ref:`ep-scaling`.
 
 from ._algebra import N_star, N_time, T_from, chi, dk2_dtau, drag_rates, k2_equilibria, k2_from, kind_of, spin_ratio
 from ._averaged import averaged, averaged_branches
+from ._eddy import EddyCurrent
 from ._engine import TorqueAverage
 from ._full import initial_state
+from ._geomag import IGRF13_G10, IGRF_RADIUS, DipoleField
 from ._model import KINDS, Body, Drag, Orbit
 from ._motion import EulerPoinsot
 from ._options import Solver, Stops
@@ -110,11 +112,15 @@ from ._torques import (
 
 __all__ = [
     "ARCS",
+    "IGRF13_G10",
+    "IGRF_RADIUS",
     "KINDS",
     "REGIONS",
     "Body",
     "ConstantTorque",
+    "DipoleField",
     "Drag",
+    "EddyCurrent",
     "EulerPoinsot",
     "FreeMotion",
     "FunctionTorque",

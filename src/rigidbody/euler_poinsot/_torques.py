@@ -49,9 +49,10 @@ from typing import Any, ClassVar
 import numpy as np
 from scipy import special
 
-from ..core.validate import RESULT_ERRORS, returned
+from ..core.validate import RESULT_ERRORS
 from ._algebra import dk2_labelled, drag_rates_labelled, nstar_labelled
 from ._engine import nu_nodes
+from ._geomag import orbital_field
 from ._model import Body, Orbit, as_drag, as_orbit, check_body, elliptic_ratios
 from ._protocol import FunctionTorque, Torque, TorqueSum, evaluate
 from ._state import Mean, State, amplitudes
@@ -575,11 +576,7 @@ class MagneticDipole(_ArrayEq):
 
     def field_at(self, nu: Any) -> np.ndarray:
         """:math:`\\mathbf B` in the orbital axes at the true anomaly ``nu``, shape ``(..., 3)``."""
-        if callable(self.B):
-            shape = (*np.shape(nu), 3)
-            out = returned(self.B(nu), self.B, shape, role="the field B")
-            return out if out.shape == shape else np.broadcast_to(out, shape)
-        return np.zeros((*np.shape(nu), 3)) + self.B
+        return orbital_field(self.B, nu)
 
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
         Bb = np.einsum("...ij,...i->...j", np.asarray(C, dtype=float), self.field_at(nu))  # C^T B
