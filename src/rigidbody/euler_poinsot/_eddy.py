@@ -198,7 +198,14 @@ class EddyCurrent(Torque):
         return hash(("EddyCurrent", self._key()))
 
     def field_at(self, nu: Any) -> np.ndarray:
-        """:math:`\\mathbf B` in the orbital axes at the true anomaly ``nu``, shape ``(..., 3)``."""
+        """:math:`\\mathbf B` in the orbital axes at the true anomaly ``nu``, shape ``(..., 3)``.
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> ep.EddyCurrent(0.5, [0.0, 0.0, 2.0]).field_at([0.0, 1.0]).tolist()
+        [[0.0, 0.0, 2.0], [0.0, 0.0, 2.0]]
+        """
         return orbital_field(self.B, nu)
 
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:
@@ -210,7 +217,19 @@ class EddyCurrent(Torque):
     def field_square(self, nu: float | None, e: float) -> np.ndarray:
         r""":math:`S = \mathbf B\mathbf B^T` at ``nu``, or its mean over the orbit of eccentricity ``e`` in time
         for ``nu=None`` (the trapezoid rule in the true anomaly with the time weights, nodes doubled until it
-        settles; cached per eccentricity)."""
+        settles; cached per eccentricity).
+
+        Examples
+        --------
+        A constant field has :math:`S = \\mathbf B\\mathbf B^T` at every point and as the orbit's mean:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> eddy = ep.EddyCurrent(0.5, [1.0, 0.0, 2.0])
+        >>> S = eddy.field_square(None, 0.3)
+        >>> bool(np.allclose(S, [[1, 0, 2], [0, 0, 0], [2, 0, 4]], rtol=0, atol=1e-14))
+        True
+        """
         if nu is not None:
             B = self.field_at(nu)
             return np.outer(B, B)
@@ -220,7 +239,17 @@ class EddyCurrent(Torque):
         return cache[e]
 
     def check_setup(self, body: Any, orbit: Orbit) -> None:
-        """Refuse a run on another orbit than the one a :class:`DipoleField` ``B`` was built for."""
+        """Refuse a run on another orbit than the one a :class:`DipoleField` ``B`` was built for.
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> eddy = ep.EddyCurrent(0.5, ep.DipoleField(1.0, 0.0, 7e6))  # built for the circular orbit
+        >>> eddy.check_setup(ep.Body(3.2, 2.6, 1.67), ep.Orbit(0.1))
+        Traceback (most recent call last):
+        ...
+        ValueError: EddyCurrent's field B was built for Orbit(e=0.0), but the run is on Orbit(e=0.1)
+        """
         if isinstance(self.B, DipoleField) and self.B.orbit != orbit:
             raise ValueError(f"EddyCurrent's field B was built for {self.B.orbit!r}, but the run is on {orbit!r}")
 

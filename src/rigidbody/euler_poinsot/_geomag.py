@@ -121,7 +121,20 @@ class DipoleField:
 
     @property
     def axis(self) -> np.ndarray:
-        """The Earth's axis :math:`\\hat{\\mathbf z}` in the orbital axes."""
+        """The Earth's axis :math:`\\hat{\\mathbf z}` in the orbital axes.
+
+        Examples
+        --------
+        On an equatorial orbit the axis is the orbit normal; on a polar orbit with the pericentre at the node
+        it lies in the orbit's plane, a quarter turn from the pericentre:
+
+        >>> import math
+        >>> from rigidbody import euler_poinsot as ep
+        >>> [round(float(x), 12) + 0.0 for x in ep.DipoleField(0.0, 0.0, 7e6).axis]
+        [0.0, 0.0, 1.0]
+        >>> [round(float(x), 12) + 0.0 for x in ep.DipoleField(math.pi / 2, 0.0, 7e6).axis]
+        [0.0, 1.0, 0.0]
+        """
         si = math.sin(self.inclination)
         return np.array([math.sin(self.argp) * si, math.cos(self.argp) * si, math.cos(self.inclination)])
 
