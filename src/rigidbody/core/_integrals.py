@@ -6,16 +6,41 @@ implementation.
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
 from scipy import special
 
-from ._modulus import ArrayLike, as_float_array, float_out, is_real_scalar, moduli
+from ._modulus import ArrayLike, array_modulus, as_float_array, float_out, moduli, scalar_modulus
+from ._periods import complete_dd
+from .kernel import ARRAY, SCALAR
 
-_ellipk = special.ellipk
-_ellipkm1 = special.ellipkm1
-_ellipe = special.ellipe
+
+@functools.lru_cache(maxsize=256)
+def _complete_cached(mch: float, mcl: float) -> tuple[float, float]:
+    """``(K, E)`` of one modulus, rounded once from their double-doubles (``K = inf``, ``E = 1`` at ``mc = 0``)."""
+    if mch == 0.0:
+        return float("inf"), 1.0
+    kh, _, eh, _ = complete_dd(mch, mcl, SCALAR, with_e=True)
+    return kh, eh
+
+
+def complete(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[Any, Any]:
+    """``(K, E)`` of the modulus ``k`` (``m = k**2`` exactly) or of ``mc`` (see :func:`K`), floats or arrays."""
+    mod = scalar_modulus(k, mc)
+    if mod is not None:
+        return _complete_cached(mod[1], mod[2])
+    _, mch, mcl, _ = array_modulus(k, mc)
+    mch, mcl = np.broadcast_arrays(mch, mcl)
+    if mch.size and mch.min() == mch.max() and mcl.min() == mcl.max():
+        ke = _complete_cached(float(mch.flat[0]), float(mcl.flat[0]))
+        return float_out(np.full(mch.shape, ke[0])), float_out(np.full(mch.shape, ke[1]))
+    kk, ee = np.full(mch.shape, np.inf), np.ones(mch.shape)
+    pos = mch > 0.0
+    kh, _, eh, _ = complete_dd(mch[pos], mcl[pos], ARRAY, with_e=True)
+    kk[pos], ee[pos] = kh, eh
+    return float_out(kk), float_out(ee)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -65,15 +90,7 @@ def K(k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
     >>> print(f"{K(mc=1e-12):.9f} {math.log(4e6):.9f}")
     15.201804919 15.201804919
     """
-    if mc is None:
-        if is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
-            return float(_ellipk(k * k))  # type: ignore[operator]
-        m, _, _ = moduli(k, None)
-        return float_out(_ellipk(m))  # cephes forms 1 - m itself: exact for m = k**2 >= 1/2 (Sterbenz)
-    if k is None and is_real_scalar(mc) and 0.0 <= mc <= 1.0:
-        return float(_ellipkm1(mc))
-    _, mca, _ = moduli(k, mc)
-    return float_out(_ellipkm1(mca))
+    return complete(k, mc)[0]
 
 
 def E(k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
@@ -114,16 +131,7 @@ def E(k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
     >>> print(f"{2 * E(k) * K(k) - K(k)**2:.12f} {math.pi / 2:.12f}")
     1.570796326795 1.570796326795
     """
-    # cephes' ellipe(m) is a rational approximation in 1 - m (computed exactly from m = k**2); from mc the
-    # rounding of m = 1 - mc costs |dE/dmc| eps/2 ~ K eps/4, at most 3 ulp down to mc = 1e-20 (E is
-    # well conditioned in mc: E = 1 + mc/4 (ln(16/mc) - 1) + ...), where Carlson's R_F - m/3 R_D loses ~50 ulp
-    if mc is None:
-        if is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
-            return float(_ellipe(k * k))  # type: ignore[operator]
-    elif k is None and is_real_scalar(mc) and 0.0 <= mc <= 1.0:
-        return float(_ellipe(1.0 - mc))
-    m, _, _ = moduli(k, mc)
-    return float_out(_ellipe(m))
+    return complete(k, mc)[1]
 
 
 def _reduce_phi(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -184,7 +192,7 @@ def F(phi: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None
     with np.errstate(divide="ignore", invalid="ignore"):
         val = s * special.elliprf(c2, delta2, 1.0)
         if np.any(j != 0):  # (only there: 0 * K = NaN at k = 1)
-            val = np.where(j != 0, val + 2.0 * j * _ellipkm1(mca), val)
+            val = np.where(j != 0, val + 2.0 * j * complete(k, mc)[0], val)
     # k = 1, |phi| = pi/2 exactly: R_F(0, 0, 1) = inf -> F = +-inf (correct); no NaN can arise otherwise.
     return float_out(val)
 
@@ -243,5 +251,5 @@ def Einc(phi: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
     if np.any(sing):
         val = np.where(sing, s, val)
     if np.any(j != 0):
-        val = val + 2.0 * j * _ellipe(m)
+        val = val + 2.0 * j * complete(k, mc)[1]
     return float_out(val)

@@ -50,12 +50,19 @@ import math
 from typing import Any
 
 import numpy as np
-from scipy import special
 
-from . import kernel
 from ._integrals import E, Einc, F, K
-from ._modulus import ArrayLike, as_float_array, check_modulus, float_out, is_real_scalar, moduli
-from ._nome import jacobi_near, nome, nome_cached
+from ._jacobi import jacobi_arrays, jacobi_scalar
+from ._modulus import (
+    ArrayLike,
+    array_modulus,
+    as_float_array,
+    check_modulus,
+    float_out,
+    is_real_scalar,
+    moduli,
+    scalar_modulus,
+)
 
 __all__ = [
     "E",
@@ -70,63 +77,10 @@ __all__ = [
     "sn",
 ]
 
-#: At and above this complementary parameter :func:`jacobi` calls ``scipy.special.ellipj`` on the argument
-#: as given (no period reduction), with ``dn^2 = mc + m cn^2``; below it, the period-reduced evaluation with
-#: the exact ``mc``. Given ``mc``, SciPy sees ``m = 1 - mc`` rounded by eps/2, a period wrong by ~eps/mc: the
-#: functions move by ~1e-15 at mc = 0.05 and dn, through cn ~ sqrt(mc), by up to ~eps / mc^(3/2) relative;
-#: given ``k``, ``m = k**2`` is the parameter itself and only SciPy's own rounding is left, a few ulp times
-#: the number of periods (tests/core/test_elliptic.py::test_jacobi_from_mc_to_the_rounding_of_u).
-_MC_JACOBI_FROM_MC = 5e-2
-_MC_JACOBI_FROM_K = 1e-2
-#: beyond this abs(u) SciPy's AGM phase 2^n a u overflows to NaN: such an argument (no digit of its phase is
-#: left) is reduced by fmod(u, 4K) first; the near-separatrix route reduces every argument itself
-_U_HUGE = 1e300
-
-_ellipk = special.ellipk
-_ellipj = special.ellipj
-
-
 def m_mc(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[np.ndarray, np.ndarray]:
     """Return the parameter ``m = k**2`` and its complement ``mc = 1 - m`` (validated)."""
     m, mca, _ = moduli(k, mc)
     return m, mca
-
-
-# --------------------------------------------------------------------------------------------------
-# Jacobi functions
-# --------------------------------------------------------------------------------------------------
-def _sech(u: np.ndarray) -> np.ndarray:
-    e = np.exp(-np.abs(u))
-    return 2.0 * e / (1.0 + e * e)
-
-
-def _jacobi_reduced(ua: np.ndarray, m: np.ndarray, mca: np.ndarray
-                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """sn, cn, dn, am of 1-D arrays near the separatrix (mc <= 0.05; mc = 0: the hyperbolic limits)."""
-    out = tuple(np.empty_like(ua) for _ in range(4))
-    sep = mca == 0.0
-    if np.any(sep):
-        us = ua[sep]
-        for o, v in zip(out, (np.tanh(us), _sech(us), _sech(us), 2.0 * np.arctan(np.tanh(0.5 * us)))):
-            o[sep] = v
-    per = ~sep
-    if np.any(per):
-        up, mp, mcp = ua[per], m[per], mca[per]
-        if mcp.size > 1 and mcp.min() == mcp.max():  # one modulus: its constants once
-            mp, mcp = mp[:1], mcp[:1]
-        for o, v in zip(out, jacobi_near(up, mp, mcp, nome(mp, mcp, kernel.ARRAY), kernel.ARRAY)):
-            o[per] = v
-    return out  # type: ignore[return-value]
-
-
-def _jacobi_reduced_scalar(u: float, m: float, mc: float) -> tuple[float, float, float, float]:
-    """:func:`_jacobi_reduced` for one point in Python floats (the array route costs ~100 us per call)."""
-    if mc == 0.0:
-        e = math.exp(-abs(u))
-        sech = 2.0 * e / (1.0 + e * e)
-        return math.tanh(u), sech, sech, 2.0 * math.atan(math.tanh(0.5 * u))
-    s, c, d, a = jacobi_near(u, m, mc, nome_cached(m, mc), kernel.SCALAR)
-    return float(s), float(c), float(d), float(a)
 
 
 def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> tuple[Any, Any, Any, Any]:
@@ -181,48 +135,18 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
     >>> print(*(f"{x:.12f}" for x in jacobi(1.0, 1.0)[:2]), f"{math.tanh(1.0):.12f} {1 / math.cosh(1.0):.12f}")
     0.761594155956 0.648054273664 0.761594155956 0.648054273664
     """
-    if is_real_scalar(u) and abs(u) <= _U_HUGE:  # scalar fast path (right-hand sides of integrators)
-        mcf, mf, fast = -1.0, 0.0, _MC_JACOBI_FROM_K
-        if mc is None:
-            if is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
-                mf = k * k  # type: ignore[operator]
-                mcf = 1.0 - mf
-        elif k is None and is_real_scalar(mc) and 0.0 <= mc <= 1.0:
-            mcf = float(mc)
-            mf, fast = 1.0 - mcf, _MC_JACOBI_FROM_MC
-        if mcf >= fast:
-            s, c, _, a = _ellipj(u, mf)
-            return float(s), float(c), math.sqrt(mcf + mf * (c * c)), float(a)
-        if mcf >= 0.0:
-            return _jacobi_reduced_scalar(float(u), mf, mcf)
+    if is_real_scalar(u) and math.isfinite(u):
+        mod = scalar_modulus(k, mc)
+        if mod is not None:  # one point in Python floats (right-hand sides of integrators)
+            return jacobi_scalar(float(u), *mod)
     ua = as_float_array(u, "u")
-    umax = np.max(np.abs(ua)) if ua.size else 0.0
-    if not umax <= _U_HUGE and not np.all(np.isfinite(ua)):
+    if ua.size and not np.all(np.isfinite(ua)):
         raise ValueError("u must be finite")
-    m, mca, mc_min = moduli(k, mc)
-    fast = _MC_JACOBI_FROM_K if mc is None else _MC_JACOBI_FROM_MC
-    if mc_min >= fast and umax <= _U_HUGE:  # SciPy directly, dn^2 = mc + m cn^2 (see _MC_JACOBI_FROM_K)
-        s, c, _, a = _ellipj(ua, m)
-        return float_out(s), float_out(c), float_out(np.sqrt(mca + m * (c * c))), float_out(a)
-    ua, m, mca = np.broadcast_arrays(ua, m, mca)
-    shape = ua.shape
-    ua, m, mca = ua.ravel(), m.ravel(), mca.ravel()
-    near = mca < fast
-    if np.all(near):
-        out = _jacobi_reduced(ua, m, mca)
-    else:
-        out = (np.empty_like(ua), np.empty_like(ua), np.empty_like(ua), np.empty_like(ua))
-        far = ~near
-        uf = ua[far]
-        if umax > _U_HUGE:
-            uf = np.where(np.abs(uf) > _U_HUGE, np.fmod(uf, 4.0 * _ellipk(m[far])), uf)
-        s, c, _, a = _ellipj(uf, m[far])
-        for o, v in zip(out, (s, c, np.sqrt(mca[far] + m[far] * (c * c)), a)):
-            o[far] = v
-        for o, v in zip(out, _jacobi_reduced(ua[near], m[near], mca[near])):
-            o[near] = v
-    return float_out(out[0].reshape(shape)), float_out(out[1].reshape(shape)), float_out(out[2].reshape(shape)), \
-        float_out(out[3].reshape(shape))
+    parts = np.broadcast_arrays(ua, *array_modulus(k, mc))
+    shape = parts[0].shape
+    out = jacobi_arrays(*(np.ascontiguousarray(p).ravel() for p in parts))
+    s, c, d, a = (float_out(np.asarray(o).reshape(shape)) for o in out)
+    return s, c, d, a
 
 
 _JACOBI_PARAMS = """
