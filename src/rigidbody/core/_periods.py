@@ -78,10 +78,13 @@ def dd_div(ah: Any, al: Any, bh: Any, bl: Any) -> tuple[Any, Any]:
 
 
 def dd_sqrt(ah: Any, al: Any, lib: Any) -> tuple[Any, Any]:
-    """The square root of a double-double ``a > 0`` (one Newton correction of the double root)."""
+    """The square root of a double-double ``a >= 0`` (one Newton correction of the double root)."""
     s = lib.sqrt(ah)
     p, pe = two_prod(s, s)
-    return fast_two_sum(s, (((ah - p) - pe) + al) / (2.0 * s))
+    if lib is math:
+        return (s, 0.0) if s == 0.0 else fast_two_sum(s, (((ah - p) - pe) + al) / (2.0 * s))
+    with np.errstate(divide="ignore", invalid="ignore"):  # (the root of 0 is 0, 0)
+        return fast_two_sum(s, np.where(s == 0.0, 0.0, (((ah - p) - pe) + al) / (2.0 * s)))
 
 
 def mc_of_k(k: Any) -> tuple[Any, Any]:
