@@ -20,7 +20,7 @@ import numpy as np
 
 from ._nome import jacobi_near, nome
 from ._periods import complete_dd
-from ._theta import MC_THETA, jacobi_theta, theta_consts
+from ._theta import MC_THETA, jacobi_theta, jacobi_theta_float, theta_consts
 from .kernel import ARRAY, SCALAR
 
 __all__ = ["jacobi_arrays", "jacobi_scalar"]
@@ -56,7 +56,7 @@ def jacobi_scalar(u: float, m: float, mch: float, mcl: float, k: float) -> tuple
     if mch < MC_THETA:
         s, c, d, a = jacobi_near(u, m, mch, consts, (mch, mcl, k), SCALAR)
     else:
-        s, c, d, a = jacobi_theta(u, consts, (mch, mcl, k), SCALAR)
+        s, c, d, a = jacobi_theta_float(u, consts, (mch, mcl, k))
     return float(s), float(c), float(d), float(a)
 
 

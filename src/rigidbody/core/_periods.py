@@ -25,8 +25,23 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["HALF_PI", "PI", "agm_dd", "complete_dd", "dd_div", "dd_mul", "dd_sqrt", "fast_two_sum", "k_triple",
-           "mc_of_k", "reduce_half_period", "two_prod", "two_sum", "with_parity"]
+__all__ = [
+    "FIX",
+    "HALF_PI",
+    "PI",
+    "agm_dd",
+    "complete_dd",
+    "dd_div",
+    "dd_mul",
+    "dd_sqrt",
+    "fast_two_sum",
+    "k_triple",
+    "mc_of_k",
+    "reduce_half_period",
+    "two_prod",
+    "two_sum",
+    "with_parity",
+]
 
 
 def _dd_const(d: decimal.Decimal) -> tuple[float, float]:
@@ -211,7 +226,7 @@ def k_triple(mch: float, mcl: float, k: float) -> tuple[float, float, float]:
 
 
 #: the reduced argument (or its distance to K) is recomputed with the triple K below this fraction of K
-_FIX = 2.0**-20
+FIX = 2.0**-20
 
 
 def _distance(u: Any, n: Any, k3: tuple[Any, Any, Any]) -> Any:
@@ -259,7 +274,7 @@ def reduce_half_period(u: Any, kh: Any, kl: Any, key: tuple[Any, Any, Any], xp: 
     upper = ah > 0.5 * kh
     vh, vl = two_sum(kh - ah, kl - al)  # K - |r|: the first difference exact where it is used (Sterbenz)
     vh, vl = xp.where(upper, vh, ah), xp.where(upper, vl, al)
-    fix = abs(vh) < _FIX * kh
+    fix = abs(vh) < FIX * kh
     if not xp.any(fix):
         return j, sgn, upper, vh, vl
     sign = xp.where(upper, -sgn, sgn)  # v = sign (u - n K), n = 2j (+ sgn where upper)

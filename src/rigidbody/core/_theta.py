@@ -40,9 +40,10 @@ from typing import Any
 
 import numpy as np
 
-from ._periods import HALF_PI, agm_dd, dd_div, dd_mul, reduce_half_period, with_parity
+from ._periods import FIX, HALF_PI, PI, agm_dd, dd_div, dd_mul, reduce_half_period, two_prod, two_sum, with_parity
+from .kernel import SCALAR
 
-__all__ = ["MC_THETA", "jacobi_theta", "theta_consts"]
+__all__ = ["MC_THETA", "jacobi_theta", "jacobi_theta_float", "theta_consts"]
 
 #: the smallest complementary parameter of this route (q = 0.179 there); below it ``rigidbody.core._nome``
 MC_THETA = 0.05
@@ -96,25 +97,66 @@ def _poly(c: tuple[Any, ...], x: Any) -> Any:
     return c[0] + x * (c[1] + x * (c[2] + x * (c[3] + x * c[4])))
 
 
-def jacobi_theta(u: Any, consts: tuple[Any, ...], key: tuple[Any, Any, Any], xp: Any) -> tuple[Any, Any, Any, Any]:
-    """sn, cn, dn, am for ``mc >= MC_THETA`` (``consts = theta_consts(...)``, ``key`` the modulus exactly: see
-    ``rigidbody.core._periods.reduce_half_period``), ``u`` finite."""
-    lib = np if xp.array else math
-    kh, kl, mh, ml, cs, cc, cd, cs1, cc1, sig, dlt = consts
-    j, sgn, upper, vh, vl = reduce_half_period(u, kh, kl, key, xp)
-    zh, zl = dd_mul(vh, vl, mh, ml)  # zeta = pi v / (2K)
+def _assemble(consts: tuple[Any, ...], sgn: Any, bases: tuple[Any, Any], polys: tuple[Any, Any, Any, Any]
+              ) -> tuple[Any, Any, Any]:
+    """sn, cn, dn of the reduced argument from the bases (sin, cos swapped beyond K/2) and the polynomials
+    (P of sn's base, of cn's base, of the denominator, of dn's numerator): lower, sn = cs S/D, cn = cc C/D;
+    upper, sn = cs C/N, cn = cc S/N. Each is base (1 + w) with w = ((A - 1) + A P - Q) / (1 + Q) small: one
+    rounding on top of the error of sin or cos."""
+    cs, cc, cd, cs1, cc1 = consts[4:9]
+    (bs, bc), (ps, pc, pd, pn) = bases, polys
+    den = 1.0 + pd
+    return (sgn * (bs + bs * ((cs1 + cs * ps - pd) / den)), bc + bc * ((cc1 + cc * pc - pd) / den),
+            cd * (1.0 + (pn - pd) / den))
+
+
+def _zeta(vh: Any, vl: Any, consts: tuple[Any, ...], lib: Any) -> tuple[Any, Any, Any]:
+    """sin and cos of zeta = pi v / (2K) (v a double-double) and x = cos 2 zeta."""
+    zh, zl = dd_mul(vh, vl, consts[2], consts[3])
     sz, cz = lib.sin(zh), lib.cos(zh)
     s, c = sz + cz * zl, cz - sz * zl
-    x = 1.0 - 2.0 * (s * s)  # cos 2 zeta
-    ps, pc = _poly(sig, x), _poly(sig, -x)  # S/sin - 1, C/cos - 1
-    pd, pn = _poly(dlt, x), _poly(dlt, -x)  # D - 1, N - 1
-    # lower: sn = cs S/D, cn = cc C/D; upper: sn = cs C/N, cn = cc S/N. Each is base (1 + w) with
-    # w = ((A - 1) + A P - Q) / (1 + Q) small: one rounding on top of the error of sin or cos
-    ps, pc, pd, pn = xp.where(upper, pc, ps), xp.where(upper, ps, pc), xp.where(upper, pn, pd), xp.where(upper, pd, pn)
-    bs, bc = xp.where(upper, c, s), xp.where(upper, s, c)
-    den = 1.0 + pd
-    sn = sgn * (bs + bs * ((cs1 + cs * ps - pd) / den))
-    cn = bc + bc * ((cc1 + cc * pc - pd) / den)
-    dn = cd * (1.0 + (pn - pd) / den)
+    return s, c, 1.0 - 2.0 * (s * s)
+
+
+def jacobi_theta(u: Any, consts: tuple[Any, ...], key: tuple[Any, Any, Any], xp: Any) -> tuple[Any, Any, Any, Any]:
+    """sn, cn, dn, am for ``mc >= MC_THETA`` (``consts = theta_consts(...)``, ``key`` the modulus exactly: see
+    ``rigidbody.core._periods.reduce_half_period``), ``u`` finite; arrays (any ``xp``)."""
+    sig, dlt = consts[9:]
+    j, sgn, upper, vh, vl = reduce_half_period(u, consts[0], consts[1], key, xp)
+    s, c, x = _zeta(vh, vl, consts, np if xp.array else math)
+    ps, pc, pd, pn = _poly(sig, x), _poly(sig, -x), _poly(dlt, x), _poly(dlt, -x)
+    w = xp.where
+    sn, cn, dn = _assemble(consts, sgn, (w(upper, c, s), w(upper, s, c)),
+                           (w(upper, pc, ps), w(upper, ps, pc), w(upper, pn, pd), w(upper, pd, pn)))
     return with_parity(j, sn, cn, dn, xp)
 
+
+def jacobi_theta_float(u: float, consts: tuple[Any, ...], key: tuple[float, float, float]
+                       ) -> tuple[float, float, float, float]:
+    """:func:`jacobi_theta` for one Python float, written with branches (the right-hand sides of integrators
+    call it: twice as fast as the namespace form)."""
+    kh, kl = consts[0], consts[1]
+    if not abs(u) <= 2.0**30 * kh:  # (far periods and the near-zero fix-up: the general reduction)
+        return jacobi_theta(u, consts, key, SCALAR)
+    j = float(round(u / (2.0 * kh)))
+    p, pe = two_prod(j, 2.0 * kh)
+    rh, e = two_sum(u, -p)
+    rh, rl = two_sum(rh, e - pe - j * (2.0 * kl))
+    sgn = -1.0 if rh < 0.0 else 1.0
+    ah, al = sgn * rh, sgn * rl
+    upper = ah > 0.5 * kh
+    vh, vl = two_sum(kh - ah, kl - al) if upper else (ah, al)
+    if abs(vh) < FIX * kh:
+        return jacobi_theta(u, consts, key, SCALAR)
+    s, c, x = _zeta(vh, vl, consts, math)
+    sig, dlt = consts[9:]
+    ps, pc, pd, pn = _poly(sig, x), _poly(sig, -x), _poly(dlt, x), _poly(dlt, -x)
+    if upper:
+        sn, cn, dn = _assemble(consts, sgn, (c, s), (pc, ps, pn, pd))
+    else:
+        sn, cn, dn = _assemble(consts, sgn, (s, c), (ps, pc, pd, pn))
+    if j == 0.0:
+        return sn, cn, dn, math.atan2(sn, cn)
+    p, pe = two_prod(j, PI[0])
+    am = p + ((pe + j * PI[1]) + math.atan2(sn, cn))
+    return (sn, cn, dn, am) if j % 2.0 == 0.0 else (-sn, -cn, dn, am)
