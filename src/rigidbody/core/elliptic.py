@@ -4,42 +4,41 @@ The papers write :math:`\operatorname{sn}(u, k)`, :math:`K(k)`, :math:`E(k)` wit
 SciPy uses the *parameter* :math:`m = k^2` (``scipy.special.ellipj(u, m)``, ``ellipk(m)``). This module is
 the one place where that conversion happens: every other module calls these functions with ``k``.
 
-Near the separatrix (:math:`k \to 1`) the number :math:`m = k^2` stored as a double has lost the digits of
-:math:`m_c = 1 - k^2` that fix the period :math:`4K \approx 4\ln(4/k')`. Every function therefore also
-accepts the complementary parameter ``mc`` (keyword); pass it whenever you have it. When both ``k`` and
-``mc`` are given they must agree to 1e-12.
+The inputs are taken as exact: the functions are those of the float ``u`` and of the modulus as given, ``k``
+(with :math:`m = k^2` and :math:`m_c = 1 - k^2` formed exactly, not rounded) or the complementary
+parameter ``mc`` (keyword). Near the separatrix (:math:`k \to 1`) a double ``k`` close to 1 carries
+:math:`m_c = 1 - k^2` only to its own spacing; pass ``mc`` whenever you have it. When both ``k`` and ``mc``
+are given they must agree to 1e-12, and ``mc`` rules.
 
 Accuracy
 --------
-* ``K`` is ``scipy.special.ellipk(k**2)`` (cephes forms :math:`1-m` itself, exactly for :math:`m\ge 1/2`) or
-  ``ellipkm1(mc)``; ``E`` is ``scipy.special.ellipe(m)``, :math:`m = k^2` or :math:`1 - m_c`: 2 ulp from
-  ``k``, 4 ulp from ``mc`` down to :math:`m_c = 10^{-20}` (``E`` is well conditioned in :math:`m_c`; Carlson's
-  :math:`R_F - \frac{m}{3}R_D` loses ~50 ulp there to cancellation).
-* ``F``, ``Einc`` use Carlson's symmetric integrals (``scipy.special.elliprf``/``elliprd``) written in
-  ``mc``, accurate to a few ulp including :math:`m_c \to 0`.
-* ``jacobi`` away from the separatrix (:math:`1-k^2 \ge 0.01` given ``k``, :math:`\ge 0.05` given ``mc``)
-  calls ``scipy.special.ellipj`` on the argument as given and forms
-  :math:`\operatorname{dn} = (m_c + m\operatorname{cn}^2)^{1/2}`, a sum of positives (SciPy's
-  :math:`\operatorname{dn} = \operatorname{cn}/\cos(\varphi-\varphi_1)` loses relative accuracy where
-  :math:`\operatorname{cn}\to 0`). Closer to the separatrix it sums the series in the complementary nome
-  :math:`q_1 = e^{-\pi K/K'} \approx m_c/16` (Jacobi's imaginary transformation of the Fourier series; sums
-  of positive hyperbolic terms, three of them for :math:`m_c \le 10^{-12}`) on the argument reduced in
-  double-double arithmetic by the half period :math:`2K` and by :math:`u \mapsto K-u`
-  (:math:`\operatorname{sn}(K-x)=\operatorname{cd}x`, :math:`\operatorname{cn}(K-x)=k'\operatorname{sd}x`,
-  :math:`\operatorname{dn}(K-x)=k'\operatorname{nd}x`), with the period exact in ``mc``
-  (``rigidbody.core._nome``). ``sn``, ``cn``, ``dn`` keep a relative accuracy of a few ulp down to
-  :math:`m_c = 10^{-300}` and below (tested against mpmath at 1e-13), also where they are tiny (``dn``
-  down to :math:`k' = \sqrt{m_c}`, ``cn`` and ``sn`` near their zeros at odd and even multiples :math:`nK`):
-  there the relative error is :math:`n\delta/|u - nK|`, :math:`\delta` the error of the reduced argument per
-  quarter period, ~1e-23 for :math:`m_c \le 10^{-8}` and below :math:`10^{-15}m_c` above (the float ``u``
-  is taken as exact). This also avoids SciPy issue 8480 (``ellipj`` returns values up to 1e26 for
-  :math:`1-m \le 10^{-9}`, :math:`u > K`).
+Against mpmath at 50 digits and more (``tests/core/test_elliptic_ulps.py``; the table of the documentation
+page *Elliptic functions: accuracy and cost*):
+
+* ``sn``, ``cn``, ``dn``, ``am``: within 8 ulp of the exact value everywhere, measured at most 4: any
+  :math:`0 \le m \le 1`, :math:`1 - m` down to :math:`10^{-300}`, ``u`` of either sign, near the zeros of
+  ``sn`` and ``cn`` (the float nearest to :math:`nK` included). The argument is reduced by the half period
+  :math:`2K`, with :math:`K` a double-double (the arithmetic-geometric mean in double-double arithmetic,
+  ``rigidbody.core._periods``), and within :math:`2^{-20}K` of a multiple of :math:`K` by :math:`K` to
+  :math:`2^{-160}`, so that the distance to a zero keeps its digits; beyond :math:`K/2` the functions are
+  evaluated at :math:`v = K - |r|` (:math:`\operatorname{sn}(K - v) = \operatorname{cd}v`,
+  :math:`\operatorname{cn}(K - v) = k'\operatorname{sd}v`, :math:`\operatorname{dn}(K - v) =
+  k'\operatorname{nd}v`). For :math:`m_c \ge 0.05` theta series in the nome :math:`q \le 0.18`
+  (``rigidbody.core._theta``), below it series of positive hyperbolic terms in the complementary nome
+  :math:`q_1 \approx m_c/16` (``rigidbody.core._nome``); each function is a sine, cosine or hyperbolic
+  function times :math:`1 + w`, :math:`w` small, so a few roundings in all. Beyond :math:`|u| = 2^{40}K`
+  the reduced argument loses digits as :math:`u` grows (no digit of the phase is left at :math:`2^{53}K`).
+* ``K``, ``E``: rounded once from double-doubles (the same mean; :math:`E` by Legendre's sum
+  :math:`1 - E/K = \sum 2^{n-1}c_n^2`): 0.5 ulp.
+* ``F``, ``Einc``: Carlson's :math:`R_F`, :math:`R_D` in double-double (``rigidbody.core._carlson``) at
+  :math:`\phi` reduced by :math:`\pi` as a double-double: within 2 ulp, measured 1.4.
 * :math:`k = 1` exactly: :math:`\operatorname{sn}=\tanh u`, :math:`\operatorname{cn}=\operatorname{dn}
   =\operatorname{sech}u`, :math:`\operatorname{am}=\operatorname{gd}u`, :math:`K=\infty`, :math:`E=1`.
 
-Cost: a Python float in gives a Python float out without array overhead (the right-hand sides of
-integrators); on arrays away from the separatrix the functions cost what the SciPy calls cost plus a few
-array operations, near it about what ``ellipj`` costs there (``benchmarks/bench_core.py``).
+Cost: a Python float in gives a Python float out, at about 4-6 us a call (the right-hand sides of
+integrators; the constants of a modulus are cached). On arrays with one modulus ``jacobi`` costs less than
+``scipy.special.ellipj`` (0.8 times on :math:`10^6` arguments); with a modulus per element about 3 times
+(the double-double mean per element). ``benchmarks/bench_elliptic.py`` measures both sides.
 
 Invalid input (``k`` outside [0, 1], non-finite, non-numeric) raises instead of returning NaN.
 """
