@@ -149,9 +149,13 @@ def incomplete(phi: ArrayLike, k: ArrayLike | None, mc: ArrayLike | None, second
     (``rigidbody.core._carlson``): what is left is the rounding of ``sin``, ``cos`` and of the result.
     """
     ph = as_float_array(phi, "phi")
+    if not np.all(np.isfinite(ph)):
+        raise ValueError("phi must be finite")
     parts = np.broadcast_arrays(ph, *array_modulus(k, mc))
     shape = parts[0].shape
     ph, _, mch, mcl, _ = (np.ascontiguousarray(p, dtype=float).ravel() for p in parts)
+    if not ph.size:
+        return np.empty(shape)
     j = np.rint(ph / np.pi)
     p, pe = two_prod(j, PI[0])
     rh, e = two_sum(ph, -p)

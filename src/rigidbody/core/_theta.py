@@ -59,7 +59,7 @@ def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any) -> tuple[Any, ...]:
     Returns
     -------
     tuple
-        ``(K_hi, K_lo, M_hi, M_lo, cs, cc, cd, cs - 1, cc - 1, sig, dlt)``: :math:`K` and :math:`M = \pi/(2K)`
+        ``(K_hi, K_lo, M_hi, M_lo, cs, cc, cd, cs - 1, cc - 1, sig, dlt, m)``: :math:`K` and :math:`M = \pi/(2K)`
         as double-doubles, the constants :math:`T_3/T_1, T_4/T_1, T_4/T_3`, the first two less one (formed
         without cancellation) and the coefficients (of
         :math:`x^0 \dots x^4`) of :math:`S/\sin\zeta - 1` and :math:`D - 1` (:math:`C/\cos\zeta - 1` and
@@ -89,7 +89,7 @@ def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any) -> tuple[Any, ...]:
            -8.0 * q12 + 8.0 * q20, 16.0 * q20)
     dlt = (-2.0 * q4 + 2.0 * q16, -2.0 * q + 6.0 * q9, 4.0 * q4 - 16.0 * q16, -8.0 * q9, 16.0 * q16)
     cd = skp  # T4 / T3 = sqrt(k') (from mc itself: two roundings)
-    return kh, kl, mh, ml, t3 / t1, t4 / t1, cd, (t3m - t1m) / t1, (t4m - t1m) / t1, sig, dlt
+    return kh, kl, mh, ml, t3 / t1, t4 / t1, cd, (t3m - t1m) / t1, (t4m - t1m) / t1, sig, dlt, m
 
 
 def _poly(c: tuple[Any, ...], x: Any) -> Any:
@@ -110,6 +110,18 @@ def _assemble(consts: tuple[Any, ...], sgn: Any, bases: tuple[Any, Any], polys: 
             cd * (1.0 + (pn - pd) / den))
 
 
+#: below this sn^2 (lower branch) cn and dn are taken from sn: their error is then at most a tenth of sn's
+#: (|d cn / cn| = sn^2/cn^2 |d sn / sn|, as much for dn) plus a rounding, and cn(0) = dn(0) = 1 exactly
+_SN2_SMALL = 0.1
+
+
+def _from_sn(sn: Any, cn: Any, dn: Any, m: Any, small: Any, xp: Any) -> tuple[Any, Any]:
+    """cn = sqrt((1 - sn)(1 + sn)), dn = sqrt(1 - m sn^2) where ``small``, else cn, dn as they are."""
+    lib = np if xp.array else math
+    return (xp.where(small, lib.sqrt((1.0 - sn) * (1.0 + sn)), cn),
+            xp.where(small, lib.sqrt(1.0 - m * (sn * sn)), dn))
+
+
 def _zeta(vh: Any, vl: Any, consts: tuple[Any, ...], lib: Any) -> tuple[Any, Any, Any]:
     """sin and cos of zeta = pi v / (2K) (v a double-double) and x = cos 2 zeta."""
     zh, zl = dd_mul(vh, vl, consts[2], consts[3])
@@ -121,13 +133,14 @@ def _zeta(vh: Any, vl: Any, consts: tuple[Any, ...], lib: Any) -> tuple[Any, Any
 def jacobi_theta(u: Any, consts: tuple[Any, ...], key: tuple[Any, Any, Any], xp: Any) -> tuple[Any, Any, Any, Any]:
     """sn, cn, dn, am for ``mc >= MC_THETA`` (``consts = theta_consts(...)``, ``key`` the modulus exactly: see
     ``rigidbody.core._periods.reduce_half_period``), ``u`` finite; arrays (any ``xp``)."""
-    sig, dlt = consts[9:]
+    sig, dlt = consts[9:11]
     j, sgn, upper, vh, vl = reduce_half_period(u, consts[0], consts[1], key, xp)
     s, c, x = _zeta(vh, vl, consts, np if xp.array else math)
     ps, pc, pd, pn = _poly(sig, x), _poly(sig, -x), _poly(dlt, x), _poly(dlt, -x)
     w = xp.where
     sn, cn, dn = _assemble(consts, sgn, (w(upper, c, s), w(upper, s, c)),
                            (w(upper, pc, ps), w(upper, ps, pc), w(upper, pn, pd), w(upper, pd, pn)))
+    cn, dn = _from_sn(sn, cn, dn, consts[11], ~upper & (sn * sn < _SN2_SMALL), xp)
     return with_parity(j, sn, cn, dn, xp)
 
 
@@ -149,12 +162,14 @@ def jacobi_theta_float(u: float, consts: tuple[Any, ...], key: tuple[float, floa
     if abs(vh) < FIX * kh:
         return jacobi_theta(u, consts, key, SCALAR)
     s, c, x = _zeta(vh, vl, consts, math)
-    sig, dlt = consts[9:]
+    sig, dlt = consts[9:11]
     ps, pc, pd, pn = _poly(sig, x), _poly(sig, -x), _poly(dlt, x), _poly(dlt, -x)
     if upper:
         sn, cn, dn = _assemble(consts, sgn, (c, s), (pc, ps, pn, pd))
     else:
         sn, cn, dn = _assemble(consts, sgn, (s, c), (ps, pc, pd, pn))
+        if sn * sn < _SN2_SMALL:
+            cn, dn = _from_sn(sn, cn, dn, consts[11], True, SCALAR)
     if j == 0.0:
         return sn, cn, dn, math.atan2(sn, cn)
     p, pe = two_prod(j, PI[0])
