@@ -28,7 +28,7 @@ def _reference(u, mc):
 def _delta(mc):
     """Bound on the error of the reduced argument per quarter period (the error of the period the argument is
     reduced by): K as a double-double from the double-double arithmetic-geometric mean, measured 6e-32 K at
-    most (core/_periods.py); 2^-100 K is 13x above (within 2^-20 K of a zero the reduction uses K to 2^-160,
+    most (core/_periods.py); 2^-100 K is 13x above (within about 2^-45 K of a zero the reduction uses K to 2^-160,
     far below this)."""
     with mp.workdps(max(30, 20 - math.floor(math.log10(mc)))):
         return float(mp.ellipk(1 - mp.mpf(mc))) * 2.0**-100

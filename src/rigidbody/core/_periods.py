@@ -209,7 +209,7 @@ def k_triple(mch: float, mcl: float, k: float) -> tuple[float, float, float]:
     exactly), as three doubles, to about ``2^-160`` relative.
 
     The mean in 60-digit decimal arithmetic (a few hundred microseconds; cached): what the reduction of an
-    argument within ``2^-20 K`` of a multiple of ``K`` needs, where the double-double ``K`` leaves the
+    argument within about ``2^-45 K`` of a multiple of ``K`` needs, where the double-double ``K`` leaves the
     distance with too few digits.
     """
     with decimal.localcontext() as ctx:
@@ -225,8 +225,10 @@ def k_triple(mch: float, mcl: float, k: float) -> tuple[float, float, float]:
         return k1, k2, float(kd - decimal.Decimal(k1) - decimal.Decimal(k2))
 
 
-#: the reduced argument (or its distance to K) is recomputed with the triple K below this fraction of K
-FIX = 2.0**-20
+#: the reduced argument v (the distance to a multiple n K, n <= 2|j| + 1) is recomputed with the triple K
+#: where |v| < (2|j| + 2) FIX K: the double-double K is within 2^-103 K (measured 6e-32 K), so that elsewhere
+#: the error n 2^-103 K of v is below 2^-55 of it; within, the triple K leaves about 2^-100 of v
+FIX = 2.0**-48
 
 
 def _distance(u: Any, n: Any, k3: tuple[Any, Any, Any]) -> Any:
@@ -257,9 +259,10 @@ def reduce_half_period(u: Any, kh: Any, kl: Any, key: tuple[Any, Any, Any], xp: 
     -------
     tuple
         ``(j, sgn, upper, v_hi, v_lo)``: ``sgn`` the sign of ``r``; ``upper`` where :math:`|r| > K/2`, and then
-        :math:`v = K - |r|`, else :math:`v = |r|`, as a double-double. Where ``v`` is below :math:`2^{-20}K`
-        (near a zero of sn or cn) it is recomputed from :math:`K` to about :math:`2^{-160}`
-        (:func:`k_triple`): relative error about :math:`2^{-100}` for any float ``u`` with :math:`|j| < 2^{40}`.
+        :math:`v = K - |r|`, else :math:`v = |r|`, as a double-double, to :math:`2^{-55}` of itself: where it is
+        below :math:`(2|j| + 2)\,2^{-48}K` (near a zero of sn or cn) it is recomputed from :math:`K` to about
+        :math:`2^{-160}` (:func:`k_triple`, a fraction of a millisecond the first time for a modulus), about
+        :math:`2^{-100}` of itself for :math:`|j| < 2^{40}`.
     """
     lib = np if xp.array else math
     big = abs(u) > 2.0**50 * kh
@@ -274,7 +277,7 @@ def reduce_half_period(u: Any, kh: Any, kl: Any, key: tuple[Any, Any, Any], xp: 
     upper = ah > 0.5 * kh
     vh, vl = two_sum(kh - ah, kl - al)  # K - |r|: the first difference exact where it is used (Sterbenz)
     vh, vl = xp.where(upper, vh, ah), xp.where(upper, vl, al)
-    fix = abs(vh) < FIX * kh
+    fix = abs(vh) < (2.0 * abs(j) + 2.0) * FIX * kh
     if not xp.any(fix):
         return j, sgn, upper, vh, vl
     sign = xp.where(upper, -sgn, sgn)  # v = sign (u - n K), n = 2j (+ sgn where upper)

@@ -159,7 +159,7 @@ def jacobi_theta_float(u: float, consts: tuple[Any, ...], key: tuple[float, floa
     ah, al = sgn * rh, sgn * rl
     upper = ah > 0.5 * kh
     vh, vl = two_sum(kh - ah, kl - al) if upper else (ah, al)
-    if abs(vh) < FIX * kh:
+    if abs(vh) < (2.0 * abs(j) + 2.0) * FIX * kh:
         return jacobi_theta(u, consts, key, SCALAR)
     s, c, x = _zeta(vh, vl, consts, math)
     sig, dlt = consts[9:11]

@@ -19,7 +19,7 @@ page *Elliptic functions: accuracy and cost*):
   :math:`0 \le m \le 1`, :math:`1 - m` down to :math:`10^{-300}`, ``u`` of either sign, near the zeros of
   ``sn`` and ``cn`` (the float nearest to :math:`nK` included). The argument is reduced by the half period
   :math:`2K`, with :math:`K` a double-double (the arithmetic-geometric mean in double-double arithmetic,
-  ``rigidbody.core._periods``), and within :math:`2^{-20}K` of a multiple of :math:`K` by :math:`K` to
+  ``rigidbody.core._periods``), and within about :math:`2^{-45}K` of a multiple of :math:`K` by :math:`K` to
   :math:`2^{-160}`, so that the distance to a zero keeps its digits; beyond :math:`K/2` the functions are
   evaluated at :math:`v = K - |r|` (:math:`\operatorname{sn}(K - v) = \operatorname{cd}v`,
   :math:`\operatorname{cn}(K - v) = k'\operatorname{sd}v`, :math:`\operatorname{dn}(K - v) =
