@@ -79,6 +79,15 @@ def fast_two_sum(a: Any, b: Any) -> tuple[Any, Any]:
     return s, b - (s - a)
 
 
+def _square(a: Any) -> tuple[Any, Any]:
+    """``p + e = a^2`` exactly (:func:`two_prod` with one split)."""
+    p = a * a
+    ca = 134217729.0 * a
+    ah = ca - (ca - a)
+    al = a - ah
+    return p, ((ah * ah - p) + 2.0 * ah * al) + al * al
+
+
 def dd_mul(ah: Any, al: Any, bh: Any, bl: Any) -> tuple[Any, Any]:
     """The product of two double-doubles (relative error about ``2^-104``)."""
     p, pe = two_prod(ah, bh)
@@ -119,8 +128,12 @@ def _agm_step(st: tuple[Any, ...], weight: float, with_e: bool, lib: Any) -> tup
     nh, nl = two_sum(ah, bh)
     nh, nl = fast_two_sum(nh, nl + (al + bl))
     nh, nl = 0.5 * nh, 0.5 * nl  # a_{n+1}
-    ph, pl = dd_mul(ah, al, bh, bl)
-    bh, bl = dd_sqrt(ph, pl, lib)  # b_{n+1}
+    # b_{n+1} = sqrt(a b): the double root of the product, corrected by (a b - s^2) / (2 s) with a b and s^2
+    # exact (a, b > 0 here)
+    p, pe = two_prod(ah, bh)
+    s = lib.sqrt(p)
+    r, re = _square(s)
+    bh, bl = fast_two_sum(s, (((p - r) - re) + (pe + (ah * bl + al * bh))) / (2.0 * s))
     if with_e:  # c_{n+1}^2 = (c_n^2 / (4 a_{n+1}))^2, S += 2^n c_{n+1}^2
         c2h, c2l = dd_div(c2h, c2l, 4.0 * nh, 4.0 * nl)
         c2h, c2l = dd_mul(c2h, c2l, c2h, c2l)
@@ -179,7 +192,8 @@ def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False) -> tuple[Any, ...]
                 break
         else:
             done = t < _T_STOP
-            if np.any(done):
+            if 4 * np.count_nonzero(done) >= done.size:  # (the converged ones leave in groups: a step on a
+                # converged member keeps its mean, and costs less than gathering the arrays for a few)
                 for o, v in zip(out, _agm_close(tuple(x[done] for x in st), t[done], weight)):
                     o[idx[done]] = v
                 idx, st, t = idx[~done], tuple(x[~done] for x in st), t[~done]
