@@ -37,7 +37,7 @@ page *Elliptic functions: accuracy and cost*):
 
 Cost: a Python float in gives a Python float out, at about 4-6 us a call (the right-hand sides of
 integrators; the constants of a modulus are cached). On arrays with one modulus ``jacobi`` costs less than
-``scipy.special.ellipj`` (0.8 times on :math:`10^6` arguments); with a modulus per element about 3 times
+``scipy.special.ellipj`` (0.9 times on :math:`10^6` arguments); with a modulus per element about 3 times
 (the double-double mean per element). ``benchmarks/bench_elliptic.py`` measures both sides.
 
 Invalid input (``k`` outside [0, 1], non-finite, non-numeric) raises instead of returning NaN.
