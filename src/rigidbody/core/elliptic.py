@@ -31,7 +31,7 @@ page *Elliptic functions: accuracy and cost*):
 * ``K``, ``E``: rounded once from double-doubles (the same mean; :math:`E` by Legendre's sum
   :math:`1 - E/K = \sum 2^{n-1}c_n^2`): 0.5 ulp.
 * ``F``, ``Einc``: Carlson's :math:`R_F`, :math:`R_D` in double-double (``rigidbody.core._carlson``) at
-  :math:`\phi` reduced by :math:`\pi` as a double-double: within 2 ulp, measured 1.4.
+  :math:`\phi` reduced by :math:`\pi` as a double-double: within 2 ulp, measured 1.6.
 * :math:`k = 1` exactly: :math:`\operatorname{sn}=\tanh u`, :math:`\operatorname{cn}=\operatorname{dn}
   =\operatorname{sech}u`, :math:`\operatorname{am}=\operatorname{gd}u`, :math:`K=\infty`, :math:`E=1`.
 
