@@ -27,10 +27,11 @@ def _reference(u, mc):
 
 def _delta(mc):
     """Bound on the error of the reduced argument per quarter period (the error of the period the argument is
-    reduced by): ln(1/q1) = ln 16 - ln mc + O(mc) carried in double-double, ln mc to ~1e-22 (measured 2e-23
-    for mc <= 1e-8); the O(mc) terms and theta3^2 - 1 ~ mc/4 rounded once each (~eps mc, measured 2e-16 mc).
-    1e-21 + 1e-15 mc is 50x and 5x above the measured errors."""
-    return 1e-21 + 1e-15 * mc
+    reduced by): K as a double-double from the double-double arithmetic-geometric mean, measured 6e-32 K at
+    most (core/_periods.py); 2^-100 K is 13x above (within about 2^-45 K of a zero the reduction uses K to 2^-160,
+    far below this)."""
+    with mp.workdps(max(30, 20 - math.floor(math.log10(mc)))):
+        return float(mp.ellipk(1 - mp.mpf(mc))) * 2.0**-100
 
 
 def _check(u, mc, got):

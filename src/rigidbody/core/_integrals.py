@@ -6,16 +6,41 @@ implementation.
 
 from __future__ import annotations
 
+import functools
 from typing import Any
 
 import numpy as np
-from scipy import special
 
-from ._modulus import ArrayLike, as_float_array, float_out, is_real_scalar, moduli
+from ._carlson import THIRD, rf_rd_dd
+from ._modulus import ArrayLike, array_modulus, as_float_array, float_out, scalar_modulus
+from ._periods import PI, complete_dd, dd_mul, dd_sqrt, fast_two_sum, two_prod, two_sum
+from .kernel import ARRAY, SCALAR
 
-_ellipk = special.ellipk
-_ellipkm1 = special.ellipkm1
-_ellipe = special.ellipe
+
+@functools.lru_cache(maxsize=256)
+def _complete_cached(mch: float, mcl: float) -> tuple[float, float]:
+    """``(K, E)`` of one modulus, rounded once from their double-doubles (``K = inf``, ``E = 1`` at ``mc = 0``)."""
+    if mch == 0.0:
+        return float("inf"), 1.0
+    kh, _, eh, _ = complete_dd(mch, mcl, SCALAR, with_e=True)
+    return kh, eh
+
+
+def complete(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[Any, Any]:
+    """``(K, E)`` of the modulus ``k`` (``m = k**2`` exactly) or of ``mc`` (see :func:`K`), floats or arrays."""
+    mod = scalar_modulus(k, mc)
+    if mod is not None:
+        return _complete_cached(mod[1], mod[2])
+    _, mch, mcl, _ = array_modulus(k, mc)
+    mch, mcl = np.broadcast_arrays(mch, mcl)
+    if mch.size and mch.min() == mch.max() and mcl.min() == mcl.max():
+        ke = _complete_cached(float(mch.flat[0]), float(mcl.flat[0]))
+        return float_out(np.full(mch.shape, ke[0])), float_out(np.full(mch.shape, ke[1]))
+    kk, ee = np.full(mch.shape, np.inf), np.ones(mch.shape)
+    pos = mch > 0.0
+    kh, _, eh, _ = complete_dd(mch[pos], mcl[pos], ARRAY, with_e=True)
+    kk[pos], ee[pos] = kh, eh
+    return float_out(kk), float_out(ee)
 
 
 # --------------------------------------------------------------------------------------------------
@@ -65,15 +90,7 @@ def K(k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
     >>> print(f"{K(mc=1e-12):.9f} {math.log(4e6):.9f}")
     15.201804919 15.201804919
     """
-    if mc is None:
-        if is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
-            return float(_ellipk(k * k))  # type: ignore[operator]
-        m, _, _ = moduli(k, None)
-        return float_out(_ellipk(m))  # cephes forms 1 - m itself: exact for m = k**2 >= 1/2 (Sterbenz)
-    if k is None and is_real_scalar(mc) and 0.0 <= mc <= 1.0:
-        return float(_ellipkm1(mc))
-    _, mca, _ = moduli(k, mc)
-    return float_out(_ellipkm1(mca))
+    return complete(k, mc)[0]
 
 
 def E(k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
@@ -114,22 +131,74 @@ def E(k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
     >>> print(f"{2 * E(k) * K(k) - K(k)**2:.12f} {math.pi / 2:.12f}")
     1.570796326795 1.570796326795
     """
-    # cephes' ellipe(m) is a rational approximation in 1 - m (computed exactly from m = k**2); from mc the
-    # rounding of m = 1 - mc costs |dE/dmc| eps/2 ~ K eps/4, at most 3 ulp down to mc = 1e-20 (E is
-    # well conditioned in mc: E = 1 + mc/4 (ln(16/mc) - 1) + ...), where Carlson's R_F - m/3 R_D loses ~50 ulp
-    if mc is None:
-        if is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
-            return float(_ellipe(k * k))  # type: ignore[operator]
-    elif k is None and is_real_scalar(mc) and 0.0 <= mc <= 1.0:
-        return float(_ellipe(1.0 - mc))
-    m, _, _ = moduli(k, mc)
-    return float_out(_ellipe(m))
+    return complete(k, mc)[1]
 
 
-def _reduce_phi(phi: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """phi = j*pi + phr with |phr| <= pi/2."""
-    j = np.round(phi / np.pi)
-    return j, phi - j * np.pi
+def _add(a: tuple[Any, Any], b: tuple[Any, Any]) -> tuple[Any, Any]:
+    s, e = two_sum(a[0], b[0])
+    return fast_two_sum(s, e + (a[1] + b[1]))
+
+
+def incomplete(phi: ArrayLike, k: ArrayLike | None, mc: ArrayLike | None, second: bool) -> Any:
+    r""":math:`F(\phi, k)` or (``second``) :math:`E(\phi, k)`, rounded once from double-doubles.
+
+    :math:`\phi = j\pi + \phi_r`, :math:`|\phi_r| \le \pi/2`, reduced with :math:`\pi` as a double-double;
+    :math:`F = s R_F(c^2, \Delta^2, 1) + 2jK` and :math:`E = s R_F - \tfrac{m}{3}s^3 R_D(c^2, \Delta^2, 1) + 2jE`
+    (DLMF 19.25.5, 19.25.7) with :math:`s, c = \sin\phi_r, \cos\phi_r` and
+    :math:`\Delta^2 = c^2 + m_c s^2` (exact in :math:`m_c`), Carlson's integrals in double-double
+    (``rigidbody.core._carlson``): what is left is the rounding of ``sin``, ``cos`` and of the result.
+    """
+    ph = as_float_array(phi, "phi")
+    if not np.all(np.isfinite(ph)):
+        raise ValueError("phi must be finite")
+    parts = np.broadcast_arrays(ph, *array_modulus(k, mc))
+    shape = parts[0].shape
+    ph, _, mch, mcl, _ = (np.ascontiguousarray(p, dtype=float).ravel() for p in parts)
+    if not ph.size:
+        return np.empty(shape)
+    j = np.rint(ph / np.pi)
+    p, pe = two_prod(j, PI[0])
+    rh, e = two_sum(ph, -p)
+    rh, rl = two_sum(rh, e - pe - j * PI[1])
+    sh, ch = np.sin(rh), np.cos(rh)
+    s, c = sh + ch * rl, ch - sh * rl
+    # s^2 + c^2 = 1 exactly: the smaller of s^2, c^2 from its own function, the larger as 1 less it (a
+    # rounded sin beside a rounded cos would move phi by ulp(s)/c, which E(phi) feels near pi/2)
+    near = abs(s) > abs(c)
+    sm = np.where(near, c, s)
+    a2 = two_prod(sm, sm)
+    b2 = two_sum(1.0, -a2[0])
+    b2 = fast_two_sum(b2[0], b2[1] - a2[1])
+    s2 = tuple(np.where(near, b, a) for b, a in zip(b2, a2))
+    c2 = tuple(np.where(near, a, b) for b, a in zip(b2, a2))
+    root = dd_sqrt(s2[0], s2[1], np)
+    sd = (np.where(near, np.copysign(root[0], s), s), np.where(near, np.copysign(root[1], s), 0.0))
+    d2 = _add(c2, dd_mul(mch, mcl, *s2))
+    sing = d2[0] == 0.0  # k = 1 and |phi_r| = pi/2: F infinite, E(phi_r) = sin(phi_r)
+    one = np.ones_like(ph)
+    x = (np.where(sing, 1.0, c2[0]), np.where(sing, 0.0, c2[1]))  # (k = 1, |phi_r| = pi/2: finite stand-ins)
+    y = (np.where(sing, 1.0, d2[0]), np.where(sing, 0.0, d2[1]))
+    ints = rf_rd_dd(x, y, (one, 0.0 * one), ARRAY, second)
+    val = dd_mul(*sd, ints[0], ints[1])
+    if second:
+        mm = two_sum(1.0, -mch)
+        mm = fast_two_sum(mm[0], mm[1] - mcl)
+        t = dd_mul(*dd_mul(*dd_mul(*mm, *THIRD), *sd), *s2)
+        t = dd_mul(*t, ints[2], ints[3])
+        val = _add(val, (-t[0], -t[1]))
+    out = val[0] + val[1]
+    with np.errstate(invalid="ignore"):
+        out = np.where(sing, s if second else np.copysign(np.inf, s), out)
+        if np.any(j != 0):
+            out = np.where(j != 0, out + 2.0 * j * _periods_dd(mch, mcl, second), out)
+    return float_out(out.reshape(shape))
+
+
+def _periods_dd(mch: np.ndarray, mcl: np.ndarray, second: bool) -> np.ndarray:
+    """K (or E) rounded from its double-double, elementwise (inf or 1 where mc = 0)."""
+    pos = mch > 0.0
+    v = complete_dd(np.where(pos, mch, 1.0), np.where(pos, mcl, 0.0), ARRAY, with_e=second)
+    return np.where(pos, (v[2] + v[3]) if second else (v[0] + v[1]), 1.0 if second else np.inf)
 
 
 def F(phi: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
@@ -175,18 +244,7 @@ def F(phi: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None
     >>> print(f"{am(F(1.0, 0.6), 0.6):.12f}")
     1.000000000000
     """
-    ph = as_float_array(phi, "phi")
-    _, mca, _ = moduli(k, mc)
-    j, phr = _reduce_phi(ph)
-    s, c = np.sin(phr), np.cos(phr)
-    c2 = c * c
-    delta2 = c2 + mca * (s * s)  # 1 - m sin^2, exact in mc
-    with np.errstate(divide="ignore", invalid="ignore"):
-        val = s * special.elliprf(c2, delta2, 1.0)
-        if np.any(j != 0):  # (only there: 0 * K = NaN at k = 1)
-            val = np.where(j != 0, val + 2.0 * j * _ellipkm1(mca), val)
-    # k = 1, |phi| = pi/2 exactly: R_F(0, 0, 1) = inf -> F = +-inf (correct); no NaN can arise otherwise.
-    return float_out(val)
+    return incomplete(phi, k, mc, second=False)
 
 
 def Einc(phi: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> Any:
@@ -229,19 +287,4 @@ def Einc(phi: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
     >>> print(f"{Einc(math.pi + 0.3, 0.6) - Einc(0.3, 0.6):.12f} {2 * E(0.6):.12f}")  # one period: 2E
     2.836166788897 2.836166788897
     """
-    ph = as_float_array(phi, "phi")
-    m, mca, _ = moduli(k, mc)
-    j, phr = _reduce_phi(ph)
-    s, c = np.sin(phr), np.cos(phr)
-    c2 = c * c
-    delta2 = c2 + mca * (s * s)
-    sing = (mca == 0.0) & (c2 == 0.0)  # R_F and R_D both diverge; E(+-pi/2, 1) = +-1
-    if np.any(sing):
-        c2 = np.where(sing, 1.0, c2)
-        delta2 = np.where(sing, 1.0, delta2)
-    val = s * special.elliprf(c2, delta2, 1.0) - m / 3.0 * s**3 * special.elliprd(c2, delta2, 1.0)
-    if np.any(sing):
-        val = np.where(sing, s, val)
-    if np.any(j != 0):
-        val = val + 2.0 * j * _ellipe(m)
-    return float_out(val)
+    return incomplete(phi, k, mc, second=True)

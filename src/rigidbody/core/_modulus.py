@@ -10,6 +10,8 @@ from typing import Any
 
 import numpy as np
 
+from ._periods import mc_of_k
+
 ArrayLike = Any
 
 
@@ -107,3 +109,27 @@ def moduli(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[np.ndarray, np.nd
     if np.any(np.abs(m + mca - 1.0) > 1e-12):
         raise ValueError("k and mc are inconsistent: k**2 + mc must equal 1 (to 1e-12)")
     return m, mca, lo
+
+
+def scalar_modulus(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[float, float, float, float] | None:
+    """``(m, mc_hi, mc_lo, k)`` of a valid modulus given as one Python float or int (``k = -1`` when given by
+    ``mc``), else None."""
+    if mc is None:
+        if is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
+            kf = float(k)  # type: ignore[arg-type]  # k is a float or int here
+            return (kf * kf, *mc_of_k(kf), kf)
+    elif k is None and is_real_scalar(mc) and 0.0 <= mc <= 1.0:
+        mcf = float(mc)
+        return 1.0 - mcf, mcf, 0.0, -1.0
+    return None
+
+
+def array_modulus(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[np.ndarray, ...]:
+    """``(m, mc_hi, mc_lo, k)`` as arrays (validated; ``k = -1`` where the modulus is given by ``mc``, which
+    then rules when both are given)."""
+    if mc is None:
+        m, _, _ = moduli(k, None)
+        ka = np.asarray(k, dtype=float)
+        return (m, *mc_of_k(ka), ka)
+    _, mca, _ = moduli(k, mc)
+    return 1.0 - mca, mca, np.zeros_like(mca), np.full_like(mca, -1.0)

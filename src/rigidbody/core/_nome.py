@@ -39,30 +39,15 @@ from typing import Any
 
 import numpy as np
 
+from ._periods import reduce_half_period, two_prod, two_sum, with_parity
 from .kernel import SCALAR
 
-__all__ = ["jacobi_near", "ln_dd", "n_terms", "nome", "nome_cached", "two_prod", "two_sum"]
+__all__ = ["jacobi_near", "ln_dd", "n_terms", "nome", "nome_cached"]
 
 
 def _lib(xp: Any) -> Any:
     """The module whose ``exp, expm1, log1p, sqrt, fmod, frexp`` act on ``xp``'s values."""
     return np if xp.array else math
-
-
-def two_sum(a: Any, b: Any) -> tuple[Any, Any]:
-    """``s + e = a + b`` exactly with ``s = fl(a + b)`` (Knuth's TwoSum)."""
-    s = a + b
-    bb = s - a
-    return s, (a - (s - bb)) + (b - bb)
-
-
-def two_prod(a: Any, b: Any) -> tuple[Any, Any]:
-    """``p + e = a b`` exactly with ``p = fl(a b)`` (Dekker's splitting; for ``|a|, |b| < 1e290``)."""
-    p = a * b
-    ca, cb = 134217729.0 * a, 134217729.0 * b
-    ah, bh = ca - (ca - a), cb - (cb - b)
-    al, bl = a - ah, b - bh
-    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
 
 
 def _dd(d: decimal.Decimal) -> tuple[float, float]:
@@ -113,14 +98,19 @@ def ln_dd(x: Any, xp: Any) -> tuple[Any, Any]:
     return two_sum(h, lo)
 
 
-def nome(m: Any, mc: Any, xp: Any) -> tuple[Any, Any, Any, Any, Any]:
+def nome(m: Any, mc: Any, xp: Any, mcl: Any = 0.0) -> tuple[Any, Any, Any, Any, Any]:
     r"""The complementary nome and what the series need, for :math:`0 < m_c \le 0.05`.
+
+    ``mcl`` is the low part of :math:`m_c` given as a double-double (``1 - k^2`` from ``k``): :math:`q_1`
+    and :math:`\ln(1/q_1)` are proportional to :math:`m_c` and :math:`-\ln m_c` to first order, so it
+    enters as the factor :math:`1 + m_{c,lo}/m_c` (the series' quarter period then matches :math:`K` of the
+    exact :math:`m_c`, not of its rounding).
 
     Returns
     -------
     tuple
         ``(P_hi, P_lo, q, eps, c0)``: :math:`P = \ln(1/q_1) = 2Y` as a double-double, :math:`q_1`,
-        :math:`\vartheta_3(q_1)^2 = 1 + \varepsilon` and :math:`c_0 = (1 + q^2 + q^6 + q^{12})^2`.
+        :math:`\vartheta_3(q_1)^2 = 1 + \varepsilon` and :math:`c_0 - 1`, :math:`c_0 = (1 + q^2 + q^6 + q^{12})^2`.
     """
     lib = _lib(xp)
     k = lib.sqrt(m)
@@ -132,14 +122,16 @@ def nome(m: Any, mc: Any, xp: Any) -> tuple[Any, Any, Any, Any, Any]:
     lam = 0.5 * omsk / (1.0 + sk)
     l4 = (lam * lam) ** 2
     corr = l4 * (2.0 + l4 * (15.0 + 150.0 * l4))
-    q = lam * (1.0 + corr)
+    rel = mcl / mc
+    q = lam * (1.0 + corr) * (1.0 + rel)
     # ln(1/q1) = 4 ln 2 - ln mc + ln(1 - (1-k)/2) + 2 ln(1 - (1-sqrt k)/2) - ln(1 + 2 lam^4 + ...)
     small = lib.log1p(-0.5 * omk) + 2.0 * lib.log1p(-0.5 * omsk) - lib.log1p(corr)
     lh, ll = ln_dd(mc, xp)
     ph, pl = two_sum(_LN16[0], -lh)
-    ph, pl = two_sum(ph, pl + (_LN16[1] - ll + small))
+    ph, pl = two_sum(ph, pl + (_LN16[1] - ll + small - rel))
     t = 2.0 * (q + q**4 + q**9)  # theta3 - 1
-    return ph, pl, q, t * (2.0 + t), (1.0 + q * q + q**6 + q**12) ** 2
+    c = q * q + q**6 + q**12
+    return ph, pl, q, t * (2.0 + t), c * (2.0 + c)
 
 
 def n_terms(e1: float) -> int:
@@ -157,71 +149,74 @@ def nome_cached(m: float, mc: float) -> tuple[float, float, float, float, float]
     return nome(m, mc, SCALAR)
 
 
-def _series(x: Any, lnq: Any, q: Any, eps: Any, c0: Any, xp: Any) -> tuple[Any, Any, Any]:
-    """sn, cn, dn at ``u = theta3^2 x`` for ``-tiny <= x <= ln(1/q)/4`` (every sum of positive terms)."""
+def _tails(xh: Any, lnq: Any, q: Any, xp: Any) -> tuple[Any, Any, Any, Any]:
+    """The sums of the series after their first terms at ``x ~ xh`` (``-tiny <= x <= ln(1/q)/4``), with D, S, N
+    divided by ``e^x / 2``: ``(e^-2x, D - (1 + e^-2x)/(1 + q), S/(1 - e^-2x) - 1/(1 - q), N)``. Each term falls
+    by ``e1 = q e^{2x} <= sqrt(q) <= 0.06``: these are small beside the first terms, and a relative error of
+    a few ulp in them is below an ulp of the whole."""
     lib = _lib(xp)
-    ex = lib.exp(-x)
-    ex2 = ex * ex
+    ex2 = lib.exp(-2.0 * xh)
     ex4 = ex2 * ex2
-    em = -lib.expm1(-2.0 * x)  # 1 - e^{-2x}
-    e1 = lib.exp(lnq + 2.0 * x)  # q e^{2x} <= sqrt(q)
+    e1 = lib.exp(lnq + 2.0 * xh)  # q e^{2x} <= sqrt(q)
     nt = n_terms(float(np.max(e1)) if xp.array else e1)
-    # D, S, N divided by e^x / 2; S's terms q^n e^{2nx} (1 - e^{-(4n+2)x}) = e1^n em g_n, g_n = sum_{i<=2n} ex2^i
-    d_sum = (1.0 + ex2) / (1.0 + q)
-    s_sum = 1.0 / (1.0 - q)
-    n_sum = 0.0
+    # S's terms q^n e^{2nx} (1 - e^{-(4n+2)x}) = e1^n (1 - e^-2x) g_n, g_n = sum_{i<=2n} ex2^i
+    d_tail, s_tail, n_sum = 0.0, 0.0, 0.0
     en, g, qn, p, ex2n = 1.0, 1.0, 1.0, 1.0, 1.0  # e1^n, g_n, q^n, ex2^(2n), ex2^n
     for _ in range(nt):
         en, qn, ex2n = en * e1, qn * q, ex2n * ex2
         g = g + p * ex2 + p * ex4
         p = p * ex4
         q2n = qn * qn
-        d_sum = d_sum + en * (1.0 + p * ex2) / (1.0 + q2n * q)
-        s_sum = s_sum + en * g / (1.0 - q2n * q)
+        d_tail = d_tail + en * (1.0 + p * ex2) / (1.0 + q2n * q)
+        s_tail = s_tail + en * g / (1.0 - q2n * q)
         n_sum = n_sum + (en + qn * ex2n) / (1.0 + q2n)
-    cn = 2.0 * c0 * ex / d_sum
-    return em * s_sum / d_sum, cn, cn * (1.0 + 2.0 * n_sum) / (1.0 + eps)
+    return ex2, d_tail, s_tail, n_sum
 
 
-def jacobi_near(u: Any, m: Any, mc: Any, consts: tuple[Any, Any, Any, Any, Any], xp: Any
+def jacobi_near(u: Any, m: Any, mc: Any, consts: tuple[Any, ...], key: tuple[Any, Any, Any], xp: Any
                 ) -> tuple[Any, Any, Any, Any]:
-    """sn, cn, dn, am for ``0 < mc <= 0.05`` (``consts = nome(m, mc, xp)``).
+    """sn, cn, dn, am for ``0 < mc < 0.05``.
 
-    Relative accuracy a few ulp, also where cn and dn are tiny, when the argument is farther from an odd
-    multiple of K than ~1e-22 (mc <= 1e-12) to ~1e-17 (mc = 0.05) times the number of the multiple divided
-    by the target accuracy; any finite ``u`` gives finite values (beyond ``|u| = 2^53`` no digit of the phase
-    is left).
+    ``consts = nome(m, mc, xp) + (K_hi, K_lo)`` (:math:`K` as a double-double,
+    ``rigidbody.core._periods.complete_dd``), ``key`` the modulus exactly (see
+    ``rigidbody.core._periods.reduce_half_period``, which reduces ``u`` by the half period :math:`2K`).
+    A few ulp of relative accuracy, also where cn and dn are tiny.
     """
-    ph, pl, q, eps, c0 = consts
-    # y = u / theta3^2 = u - u eps / (1 + eps) in double-double
-    yh, yl = two_sum(u, -(u * eps / (1.0 + eps)))
-    # y = j P + r, |r| <= P/2 (P = 2Y: the half period 2K); fmod is exact, j exact below 2^53
-    r0 = _lib(xp).fmod(yh, ph)
-    j = xp.rint((yh - r0) / ph)
-    rh, rl = two_sum(r0, xp.where(abs(yh) < 2.0**53, yl - j * pl, 0.0))
-    s = xp.where(rh > 0.5 * ph, 1.0, xp.where(rh < -0.5 * ph, -1.0, 0.0))
-    rh, rl2 = two_sum(rh, -s * ph)
-    rl = rl + rl2 - s * pl
-    j = j + s
-    sgn = xp.where(rh < 0.0, -1.0, 1.0)
-    ah, al = sgn * rh, sgn * rl  # |r|
-    upper = ah > 0.25 * ph
-    vh, vl = two_sum(0.5 * ph - ah, 0.5 * pl - al)  # Y - |r| (the first difference exact: Sterbenz)
-    xh, xl = two_sum(xp.where(upper, vh, ah), xp.where(upper, vl, al))
-    s0, c0_, d0 = _series(xh, -ph, q, eps, c0, xp)
-    # first order in the low part of the argument: sn' = cn dn, cn' = -sn dn, dn' = -m sn cn
-    du = xl * (1.0 + eps)
-    s0, c0_, d0 = s0 + c0_ * d0 * du, c0_ - s0 * d0 * du, d0 - m * s0 * c0_ * du
-    # below K/2 where sn^2 < 1/2, cn = sqrt((1 - sn)(1 + sn)) and dn = sqrt(1 - m sn^2) carry at most the
-    # error of sn (|d cn| <= |sn/cn| |d sn| <= |d sn|, and as much for dn) plus a rounding, and never exceed
-    # 1: the products of the series gather a few ulp, which showed as cn = dn = 1 + 2 ulp at u ~ 1e-9 K.
-    # (Above K/2 the results are ratios of these, whose shared factors cancel: kept as they are.)
-    lib, small = _lib(xp), (s0 * s0 < 0.5) & (ah <= 0.25 * ph)  # not upper
-    c0_ = xp.where(small, lib.sqrt((1.0 - s0) * (1.0 + s0)), c0_)
-    d0 = xp.where(small, lib.sqrt(1.0 - m * s0 * s0), d0)
-    kp = _lib(xp).sqrt(mc)
-    s1 = xp.where(upper, c0_ / d0, s0)
-    c1 = xp.where(upper, kp * s0 / d0, c0_)
-    d1 = xp.where(upper, kp / d0, d0)
-    par = xp.where(_lib(xp).fmod(j, 2.0) == 0.0, 1.0, -1.0)
-    return par * sgn * s1, par * c1, d1, j * math.pi + xp.atan2(sgn * s1, c1)
+    ph, _, q, eps, c0m, kh, kl = consts
+    j, sgn, upper, vh, vl = reduce_half_period(u, kh, kl, key, xp)
+    # the series' variable x = v / theta3^2 = v - v eps / (1 + eps), as a double-double
+    f = eps / (1.0 + eps)
+    xh, xl = two_sum(vh, -(vh * f))
+    xl = xl + vl * (1.0 - f)
+    ex2, d_tail, s_tail, n_sum = _tails(xh, -ph, q, xp)
+    lib = _lib(xp)
+    # With tau = (1 + q) D_tail / (1 + e^-2x), N2 = 2N and a = c0 (1 + q) - 1, the series give (the shared
+    # factors cancelled) sn = tanh x (1 + q)(1/(1 - q) + S_tail) / (1 + tau), cn = sech x (1 + a) / (1 + tau),
+    # dn = cn (1 + N2) / (1 + eps) below K/2, and beyond it cd = (1 + eps)/(1 + N2),
+    # k' sd = k' sinh x (1 + eps)(1/(1 - q) + S_tail) / (c0 (1 + N2)),
+    # k' nd = k' cosh x (1 + eps)(1 + tau) / ((1 + a)(1 + N2)). Each is base (1 + w), w formed from the small
+    # quantities: one rounding on top of the error of tanh, cosh or sinh.
+    tau = (1.0 + q) * d_tail / (1.0 + ex2)
+    n2 = 2.0 * n_sum
+    a = c0m + q * (1.0 + c0m)
+    g = q / (1.0 - q)
+    st = s_tail * (1.0 + q)
+    lo_d = (a + n2 + a * n2) - (tau + eps + tau * eps)  # dn: (1 + a)(1 + N2) - (1 + tau)(1 + eps)
+    w_up_s = (eps - n2) / (1.0 + n2)
+    w_up_c = ((eps + g + s_tail + eps * (g + s_tail)) - (c0m + n2 + c0m * n2)) / ((1.0 + c0m) * (1.0 + n2))
+    w_up_d = -lo_d / ((1.0 + a) * (1.0 + n2))
+    w_lo_s = (2.0 * g + st - tau) / (1.0 + tau)
+    w_lo_c = (a - tau) / (1.0 + tau)
+    w_lo_d = lo_d / ((1.0 + tau) * (1.0 + eps))
+    ch, sh = lib.cosh(xh), lib.sinh(xh)
+    ch, sh = ch + xl * sh, sh + xl * ch  # first order in the low part of x
+    th, sech = sh / ch, 1.0 / ch
+    th = xp.where(xh < 0.5, lib.tanh(xh) + xl * (sech * sech), th)  # (tanh near 0, where sh / ch is ~1 ulp)
+    kp = lib.sqrt(mc)
+    bs = xp.where(upper, 1.0, th)
+    bc = xp.where(upper, kp * sh, sech)
+    bd = xp.where(upper, kp * ch, sech)
+    sn = bs + bs * xp.where(upper, w_up_s, w_lo_s)
+    cn = bc + bc * xp.where(upper, w_up_c, w_lo_c)
+    dn = bd + bd * xp.where(upper, w_up_d, w_lo_d)
+    return with_parity(j, sgn * sn, cn, dn, xp)

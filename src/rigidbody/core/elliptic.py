@@ -4,42 +4,41 @@ The papers write :math:`\operatorname{sn}(u, k)`, :math:`K(k)`, :math:`E(k)` wit
 SciPy uses the *parameter* :math:`m = k^2` (``scipy.special.ellipj(u, m)``, ``ellipk(m)``). This module is
 the one place where that conversion happens: every other module calls these functions with ``k``.
 
-Near the separatrix (:math:`k \to 1`) the number :math:`m = k^2` stored as a double has lost the digits of
-:math:`m_c = 1 - k^2` that fix the period :math:`4K \approx 4\ln(4/k')`. Every function therefore also
-accepts the complementary parameter ``mc`` (keyword); pass it whenever you have it. When both ``k`` and
-``mc`` are given they must agree to 1e-12.
+The inputs are taken as exact: the functions are those of the float ``u`` and of the modulus as given, ``k``
+(with :math:`m = k^2` and :math:`m_c = 1 - k^2` formed exactly, not rounded) or the complementary
+parameter ``mc`` (keyword). Near the separatrix (:math:`k \to 1`) a double ``k`` close to 1 carries
+:math:`m_c = 1 - k^2` only to its own spacing; pass ``mc`` whenever you have it. When both ``k`` and ``mc``
+are given they must agree to 1e-12, and ``mc`` rules.
 
 Accuracy
 --------
-* ``K`` is ``scipy.special.ellipk(k**2)`` (cephes forms :math:`1-m` itself, exactly for :math:`m\ge 1/2`) or
-  ``ellipkm1(mc)``; ``E`` is ``scipy.special.ellipe(m)``, :math:`m = k^2` or :math:`1 - m_c`: 2 ulp from
-  ``k``, 4 ulp from ``mc`` down to :math:`m_c = 10^{-20}` (``E`` is well conditioned in :math:`m_c`; Carlson's
-  :math:`R_F - \frac{m}{3}R_D` loses ~50 ulp there to cancellation).
-* ``F``, ``Einc`` use Carlson's symmetric integrals (``scipy.special.elliprf``/``elliprd``) written in
-  ``mc``, accurate to a few ulp including :math:`m_c \to 0`.
-* ``jacobi`` away from the separatrix (:math:`1-k^2 \ge 0.01` given ``k``, :math:`\ge 0.05` given ``mc``)
-  calls ``scipy.special.ellipj`` on the argument as given and forms
-  :math:`\operatorname{dn} = (m_c + m\operatorname{cn}^2)^{1/2}`, a sum of positives (SciPy's
-  :math:`\operatorname{dn} = \operatorname{cn}/\cos(\varphi-\varphi_1)` loses relative accuracy where
-  :math:`\operatorname{cn}\to 0`). Closer to the separatrix it sums the series in the complementary nome
-  :math:`q_1 = e^{-\pi K/K'} \approx m_c/16` (Jacobi's imaginary transformation of the Fourier series; sums
-  of positive hyperbolic terms, three of them for :math:`m_c \le 10^{-12}`) on the argument reduced in
-  double-double arithmetic by the half period :math:`2K` and by :math:`u \mapsto K-u`
-  (:math:`\operatorname{sn}(K-x)=\operatorname{cd}x`, :math:`\operatorname{cn}(K-x)=k'\operatorname{sd}x`,
-  :math:`\operatorname{dn}(K-x)=k'\operatorname{nd}x`), with the period exact in ``mc``
-  (``rigidbody.core._nome``). ``sn``, ``cn``, ``dn`` keep a relative accuracy of a few ulp down to
-  :math:`m_c = 10^{-300}` and below (tested against mpmath at 1e-13), also where they are tiny (``dn``
-  down to :math:`k' = \sqrt{m_c}`, ``cn`` and ``sn`` near their zeros at odd and even multiples :math:`nK`):
-  there the relative error is :math:`n\delta/|u - nK|`, :math:`\delta` the error of the reduced argument per
-  quarter period, ~1e-23 for :math:`m_c \le 10^{-8}` and below :math:`10^{-15}m_c` above (the float ``u``
-  is taken as exact). This also avoids SciPy issue 8480 (``ellipj`` returns values up to 1e26 for
-  :math:`1-m \le 10^{-9}`, :math:`u > K`).
+Against mpmath at 50 digits and more (``tests/core/test_elliptic_ulps.py``; the table of the documentation
+page *Elliptic functions: accuracy and cost*):
+
+* ``sn``, ``cn``, ``dn``, ``am``: within 8 ulp of the exact value everywhere, measured at most 4: any
+  :math:`0 \le m \le 1`, :math:`1 - m` down to :math:`10^{-300}`, ``u`` of either sign, near the zeros of
+  ``sn`` and ``cn`` (the float nearest to :math:`nK` included). The argument is reduced by the half period
+  :math:`2K`, with :math:`K` a double-double (the arithmetic-geometric mean in double-double arithmetic,
+  ``rigidbody.core._periods``), and within about :math:`2^{-45}K` of a multiple of :math:`K` by :math:`K` to
+  :math:`2^{-160}`, so that the distance to a zero keeps its digits; beyond :math:`K/2` the functions are
+  evaluated at :math:`v = K - |r|` (:math:`\operatorname{sn}(K - v) = \operatorname{cd}v`,
+  :math:`\operatorname{cn}(K - v) = k'\operatorname{sd}v`, :math:`\operatorname{dn}(K - v) =
+  k'\operatorname{nd}v`). For :math:`m_c \ge 0.05` theta series in the nome :math:`q \le 0.18`
+  (``rigidbody.core._theta``), below it series of positive hyperbolic terms in the complementary nome
+  :math:`q_1 \approx m_c/16` (``rigidbody.core._nome``); each function is a sine, cosine or hyperbolic
+  function times :math:`1 + w`, :math:`w` small, so a few roundings in all. Beyond :math:`|u| = 2^{40}K`
+  the reduced argument loses digits as :math:`u` grows (no digit of the phase is left at :math:`2^{53}K`).
+* ``K``, ``E``: rounded once from double-doubles (the same mean; :math:`E` by Legendre's sum
+  :math:`1 - E/K = \sum 2^{n-1}c_n^2`): 0.5 ulp.
+* ``F``, ``Einc``: Carlson's :math:`R_F`, :math:`R_D` in double-double (``rigidbody.core._carlson``) at
+  :math:`\phi` reduced by :math:`\pi` as a double-double: within 2 ulp, measured 1.6.
 * :math:`k = 1` exactly: :math:`\operatorname{sn}=\tanh u`, :math:`\operatorname{cn}=\operatorname{dn}
   =\operatorname{sech}u`, :math:`\operatorname{am}=\operatorname{gd}u`, :math:`K=\infty`, :math:`E=1`.
 
-Cost: a Python float in gives a Python float out without array overhead (the right-hand sides of
-integrators); on arrays away from the separatrix the functions cost what the SciPy calls cost plus a few
-array operations, near it about what ``ellipj`` costs there (``benchmarks/bench_core.py``).
+Cost: a Python float in gives a Python float out, at about 4-6 us a call (the right-hand sides of
+integrators; the constants of a modulus are cached). On arrays with one modulus ``jacobi`` costs less than
+``scipy.special.ellipj`` (0.9 times on :math:`10^6` arguments); with a modulus per element about 3 times
+(the double-double mean per element). ``benchmarks/bench_elliptic.py`` measures both sides.
 
 Invalid input (``k`` outside [0, 1], non-finite, non-numeric) raises instead of returning NaN.
 """
@@ -50,12 +49,19 @@ import math
 from typing import Any
 
 import numpy as np
-from scipy import special
 
-from . import kernel
 from ._integrals import E, Einc, F, K
-from ._modulus import ArrayLike, as_float_array, check_modulus, float_out, is_real_scalar, moduli
-from ._nome import jacobi_near, nome, nome_cached
+from ._jacobi import jacobi_arrays, jacobi_scalar
+from ._modulus import (
+    ArrayLike,
+    array_modulus,
+    as_float_array,
+    check_modulus,
+    float_out,
+    is_real_scalar,
+    moduli,
+    scalar_modulus,
+)
 
 __all__ = [
     "E",
@@ -70,63 +76,10 @@ __all__ = [
     "sn",
 ]
 
-#: At and above this complementary parameter :func:`jacobi` calls ``scipy.special.ellipj`` on the argument
-#: as given (no period reduction), with ``dn^2 = mc + m cn^2``; below it, the period-reduced evaluation with
-#: the exact ``mc``. Given ``mc``, SciPy sees ``m = 1 - mc`` rounded by eps/2, a period wrong by ~eps/mc: the
-#: functions move by ~1e-15 at mc = 0.05 and dn, through cn ~ sqrt(mc), by up to ~eps / mc^(3/2) relative;
-#: given ``k``, ``m = k**2`` is the parameter itself and only SciPy's own rounding is left, a few ulp times
-#: the number of periods (tests/core/test_elliptic.py::test_jacobi_from_mc_to_the_rounding_of_u).
-_MC_JACOBI_FROM_MC = 5e-2
-_MC_JACOBI_FROM_K = 1e-2
-#: beyond this abs(u) SciPy's AGM phase 2^n a u overflows to NaN: such an argument (no digit of its phase is
-#: left) is reduced by fmod(u, 4K) first; the near-separatrix route reduces every argument itself
-_U_HUGE = 1e300
-
-_ellipk = special.ellipk
-_ellipj = special.ellipj
-
-
 def m_mc(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[np.ndarray, np.ndarray]:
     """Return the parameter ``m = k**2`` and its complement ``mc = 1 - m`` (validated)."""
     m, mca, _ = moduli(k, mc)
     return m, mca
-
-
-# --------------------------------------------------------------------------------------------------
-# Jacobi functions
-# --------------------------------------------------------------------------------------------------
-def _sech(u: np.ndarray) -> np.ndarray:
-    e = np.exp(-np.abs(u))
-    return 2.0 * e / (1.0 + e * e)
-
-
-def _jacobi_reduced(ua: np.ndarray, m: np.ndarray, mca: np.ndarray
-                    ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """sn, cn, dn, am of 1-D arrays near the separatrix (mc <= 0.05; mc = 0: the hyperbolic limits)."""
-    out = tuple(np.empty_like(ua) for _ in range(4))
-    sep = mca == 0.0
-    if np.any(sep):
-        us = ua[sep]
-        for o, v in zip(out, (np.tanh(us), _sech(us), _sech(us), 2.0 * np.arctan(np.tanh(0.5 * us)))):
-            o[sep] = v
-    per = ~sep
-    if np.any(per):
-        up, mp, mcp = ua[per], m[per], mca[per]
-        if mcp.size > 1 and mcp.min() == mcp.max():  # one modulus: its constants once
-            mp, mcp = mp[:1], mcp[:1]
-        for o, v in zip(out, jacobi_near(up, mp, mcp, nome(mp, mcp, kernel.ARRAY), kernel.ARRAY)):
-            o[per] = v
-    return out  # type: ignore[return-value]
-
-
-def _jacobi_reduced_scalar(u: float, m: float, mc: float) -> tuple[float, float, float, float]:
-    """:func:`_jacobi_reduced` for one point in Python floats (the array route costs ~100 us per call)."""
-    if mc == 0.0:
-        e = math.exp(-abs(u))
-        sech = 2.0 * e / (1.0 + e * e)
-        return math.tanh(u), sech, sech, 2.0 * math.atan(math.tanh(0.5 * u))
-    s, c, d, a = jacobi_near(u, m, mc, nome_cached(m, mc), kernel.SCALAR)
-    return float(s), float(c), float(d), float(a)
 
 
 def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = None) -> tuple[Any, Any, Any, Any]:
@@ -181,48 +134,18 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
     >>> print(*(f"{x:.12f}" for x in jacobi(1.0, 1.0)[:2]), f"{math.tanh(1.0):.12f} {1 / math.cosh(1.0):.12f}")
     0.761594155956 0.648054273664 0.761594155956 0.648054273664
     """
-    if is_real_scalar(u) and abs(u) <= _U_HUGE:  # scalar fast path (right-hand sides of integrators)
-        mcf, mf, fast = -1.0, 0.0, _MC_JACOBI_FROM_K
-        if mc is None:
-            if is_real_scalar(k) and 0.0 <= k <= 1.0:  # type: ignore[operator]  # k is a float or int here
-                mf = k * k  # type: ignore[operator]
-                mcf = 1.0 - mf
-        elif k is None and is_real_scalar(mc) and 0.0 <= mc <= 1.0:
-            mcf = float(mc)
-            mf, fast = 1.0 - mcf, _MC_JACOBI_FROM_MC
-        if mcf >= fast:
-            s, c, _, a = _ellipj(u, mf)
-            return float(s), float(c), math.sqrt(mcf + mf * (c * c)), float(a)
-        if mcf >= 0.0:
-            return _jacobi_reduced_scalar(float(u), mf, mcf)
+    if is_real_scalar(u) and math.isfinite(u):
+        mod = scalar_modulus(k, mc)
+        if mod is not None:  # one point in Python floats (right-hand sides of integrators)
+            return jacobi_scalar(float(u), *mod)
     ua = as_float_array(u, "u")
-    umax = np.max(np.abs(ua)) if ua.size else 0.0
-    if not umax <= _U_HUGE and not np.all(np.isfinite(ua)):
+    if ua.size and not np.all(np.isfinite(ua)):
         raise ValueError("u must be finite")
-    m, mca, mc_min = moduli(k, mc)
-    fast = _MC_JACOBI_FROM_K if mc is None else _MC_JACOBI_FROM_MC
-    if mc_min >= fast and umax <= _U_HUGE:  # SciPy directly, dn^2 = mc + m cn^2 (see _MC_JACOBI_FROM_K)
-        s, c, _, a = _ellipj(ua, m)
-        return float_out(s), float_out(c), float_out(np.sqrt(mca + m * (c * c))), float_out(a)
-    ua, m, mca = np.broadcast_arrays(ua, m, mca)
-    shape = ua.shape
-    ua, m, mca = ua.ravel(), m.ravel(), mca.ravel()
-    near = mca < fast
-    if np.all(near):
-        out = _jacobi_reduced(ua, m, mca)
-    else:
-        out = (np.empty_like(ua), np.empty_like(ua), np.empty_like(ua), np.empty_like(ua))
-        far = ~near
-        uf = ua[far]
-        if umax > _U_HUGE:
-            uf = np.where(np.abs(uf) > _U_HUGE, np.fmod(uf, 4.0 * _ellipk(m[far])), uf)
-        s, c, _, a = _ellipj(uf, m[far])
-        for o, v in zip(out, (s, c, np.sqrt(mca[far] + m[far] * (c * c)), a)):
-            o[far] = v
-        for o, v in zip(out, _jacobi_reduced(ua[near], m[near], mca[near])):
-            o[near] = v
-    return float_out(out[0].reshape(shape)), float_out(out[1].reshape(shape)), float_out(out[2].reshape(shape)), \
-        float_out(out[3].reshape(shape))
+    parts = np.broadcast_arrays(ua, *array_modulus(k, mc))
+    shape = parts[0].shape
+    out = jacobi_arrays(*(np.ascontiguousarray(p).ravel() for p in parts))
+    s, c, d, a = (float_out(np.asarray(o).reshape(shape)) for o in out)
+    return s, c, d, a
 
 
 _JACOBI_PARAMS = """
