@@ -24,6 +24,10 @@ Euler--Poinsot motion (unperturbed)
 ``EulerPoinsot.from_state(inertia, omega, attitude) -> FreeMotion``
     the torque-free motion of any body (two equal moments, the sphere, on the separatrix, at rest) from a
     physical state: ``.omega(t)``, ``.rotation(t)`` (a SciPy ``Rotation``), the paper's variables.
+``Spacecraft(inertia, omega, attitude, orbit=KeplerOrbit(...))``
+    a spacecraft's state and orbit in SI units: ``.averaged(t_span, ...)`` and ``.simulate(t_span, ...)`` with
+    torques in SI units (gravity gradient, drag, magnet, constant), results in SI units
+    (:class:`SpacecraftSolution`); ``.paper`` the paper's nondimensional start (:class:`PaperStart`).
 ``k2_from(body, G, T, kind)``, ``T_from(body, G, k2, kind)``, ``kind_of(body, G, T)``
     formula (5), its counterpart for rotation about the A3 axis, and their inverses.
 
@@ -81,6 +85,7 @@ from ._algebra import N_star, N_time, T_from, chi, dk2_dtau, drag_rates, k2_equi
 from ._averaged import averaged, averaged_branches
 from ._engine import TorqueAverage
 from ._full import initial_state
+from ._kepler import MU_EARTH, R_EARTH, KeplerOrbit
 from ._model import KINDS, Body, Drag, Orbit
 from ._motion import EulerPoinsot
 from ._options import Solver, Stops
@@ -96,6 +101,7 @@ from ._separatrix import (
     separatrix_limits,
 )
 from ._simulate import simulate
+from ._spacecraft import PaperStart, Spacecraft, SpacecraftSolution
 from ._state import Mean, State
 from ._torques import (
     ConstantTorque,
@@ -111,7 +117,9 @@ from ._torques import (
 __all__ = [
     "ARCS",
     "KINDS",
+    "MU_EARTH",
     "REGIONS",
+    "R_EARTH",
     "Body",
     "ConstantTorque",
     "Drag",
@@ -119,16 +127,20 @@ __all__ = [
     "FreeMotion",
     "FunctionTorque",
     "GravityGradient",
+    "KeplerOrbit",
     "LinearDrag",
     "MagneticDipole",
     "Mean",
     "N_star",
     "N_time",
     "Orbit",
+    "PaperStart",
     "Separatrix",
     "SeparatrixCrossing",
     "SeparatrixLimits",
     "Solver",
+    "Spacecraft",
+    "SpacecraftSolution",
     "State",
     "Stops",
     "T_from",
