@@ -67,6 +67,19 @@ class PaperStart:
         The principal axes (columns) in the user's body axes.
     to_inertial : scipy.spatial.transform.Rotation
         :math:`Ox_i` -> the user's inertial frame.
+
+    Examples
+    --------
+    The paper's moments are the physical ones in units of :math:`G_0/\Omega_0`, and a torque of
+    ``torque_unit`` N m is 1 in the module's equations:
+
+    >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
+    >>> p = Spacecraft([12.0, 10.0, 7.0], [0.0, 0.0, 0.1], orbit=KeplerOrbit(mean_motion=1e-3)).paper
+    >>> A = (p.body.A1, p.body.A2, p.body.A3)
+    >>> print(", ".join(f"{a:.6f}" for a in A), f"eps = {p.eps:.6f}", p.kind, p.k2_0)
+    1.714286, 1.428571, 1.000000 eps = 0.010000 min 0.0
+    >>> print(f"{p.torque_unit:.1e} N m, {p.tau_per_second:.1e} per second")
+    7.0e-06 N m, 1.0e-05 per second
     """
 
     body: Body
@@ -141,6 +154,16 @@ class SpacecraftSolution:
         :class:`Body` does not describe).
     start : PaperStart or None
         The scaling (``None`` as ``paper``).
+
+    Examples
+    --------
+    The gravity gradient alone keeps :math:`G` and :math:`T` on average; it turns :math:`\mathbf G`:
+
+    >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
+    >>> sc = Spacecraft([12.0, 10.0, 7.0], [0.08, 0.01, 0.06], orbit=KeplerOrbit(altitude=500e3))
+    >>> sol = sc.averaged((0.0, 86400.0), [0.0, 86400.0])
+    >>> print(sol.status, f"{sol.G[-1] / sol.G[0]:.12f} {sol.T[-1] / sol.T[0]:.12f}", sol.momentum.shape)
+    0 1.000000000000 1.000000000000 (2, 3)
     """
 
     t: np.ndarray
