@@ -109,6 +109,25 @@ def test_a_faster_clock_scales_time_and_rates():
     assert slow.G[-1] <= 0.9 * slow.G[0]  # the drag acted
 
 
+def test_orbit_averaged_limit_is_within_eps_of_the_run_with_the_true_anomaly():
+    sc = ep.Spacecraft([12.0, 10.0, 7.0], [0.08, 0.01, 0.06], orbit=ep.KeplerOrbit(altitude=500e3, e=0.01))
+    t = np.linspace(0.0, 3 * 86400.0, 4)  # tau = 0.9: G turns by 27 degrees about the orbit normal
+    drag = [2e-5, 2e-5, 2e-5]
+    along, limit = sc.averaged((0.0, t[-1]), t, drag=drag), sc.averaged((0.0, t[-1]), t, drag=drag,
+                                                                         orbit_averaged=True)
+    eps = sc.paper.eps
+    # G and T do not feel the gravity gradient on average, so they agree to the integrators' tolerance (rtol 1e-10
+    # relative per step: 1e-9); the direction differs by the orbital-frequency oscillation, O(eps) (measured 0.3 eps)
+    assert limit.G == pytest.approx(along.G, rel=1e-9, abs=0)
+    turn = np.arctan2(np.linalg.norm(np.cross(along.momentum, limit.momentum), axis=1),
+                      np.einsum("ij,ij->i", along.momentum, limit.momentum))
+    assert turn.max() <= eps
+    moved = np.arctan2(np.linalg.norm(np.cross(along.momentum[0], along.momentum[-1])),
+                       along.momentum[0] @ along.momentum[-1])
+    assert moved >= 20 * eps
+    assert np.all(limit.nu == 0.0)  # nu0 = 0: the true anomaly is averaged out
+
+
 def test_orbit_in_si_units():
     # the mean motion of a 500 km orbit: sqrt(mu/a^3), a = R_earth + 500 km (WGS 84, IERS 2010 mu)
     orbit = ep.KeplerOrbit(altitude=500e3)
@@ -204,3 +223,7 @@ def test_bad_input_is_refused_naming_the_parameter():
         sc.averaged((0.0, 10.0), eps=0.0)
     with pytest.raises(ValueError, match="t_eval must be finite"):
         sc.averaged((0.0, 10.0), [0.0, np.nan])
+    with pytest.raises(ValueError, match=r"t_eval must lie within t_span = \(0.0, 10.0\), got \[0.0, 20.0\]"):
+        sc.simulate((0.0, 10.0), [0.0, 20.0])
+    with pytest.raises(ValueError, match="t_span must be finite with end >= start"):
+        sc.averaged((10.0, 0.0))

@@ -29,6 +29,7 @@ from scipy.spatial.transform import Rotation
 from ..core.ode import Solution
 from ..core.validate import finite_array, span
 from ._averaged import averaged
+from ._checks import check_tau_eval
 from ._full import initial_state
 from ._kepler import KeplerOrbit
 from ._model import Body, Orbit, frame_y
@@ -141,7 +142,8 @@ class SpacecraftSolution:
         :math:`\mathbf G` in the inertial frame, shape ``(len(t), 3)`` (N m s).
     k2, kind, sigma, delta, lam, nu : numpy.ndarray
         The paper's slow variables: modulus squared, kind of motion, sense, the direction of :math:`\mathbf G` in
-        the orbital axes :math:`Ox_i` (rad; ``lam`` continuous) and the true anomaly.
+        the orbital axes :math:`Ox_i` (rad; ``lam`` continuous) and the true anomaly (constant ``nu0`` with
+        ``orbit_averaged=True``, where it is averaged out).
     omega : numpy.ndarray or None
         ``simulate``: the angular velocity in the user's body axes, ``(len(t), 3)`` (rad/s).
     attitude : scipy.spatial.transform.Rotation or None
@@ -207,7 +209,8 @@ def _refusal(motion: FreeMotion) -> str:
     return (f"the body has two or three equal principal moments ({A}): averaged and simulate need A1 > A2 > A3 "
             "(Body) and do not treat symmetric bodies yet; the torque-free motion is given in closed form "
             "(no torques, or EulerPoinsot.from_state); with a torque, give a near-symmetric body (moments "
-            "differing by a relative 1e-6, say), whose motion tends to the symmetric one")
+            "differing by a relative 1e-6, say), whose motion tends to the symmetric one (simulate follows it; "
+            "averaged stops where its nutation is too slow for the averaging)")
 
 
 class Spacecraft:
@@ -311,6 +314,18 @@ class Spacecraft:
         Torque or None
             :class:`GravityGradient`, :class:`LinearDrag`, :class:`MagneticDipole`, :class:`ConstantTorque` of the
             paper's start (:attr:`paper`), summed.
+
+        Examples
+        --------
+        A drag tensor of :math:`G_0\varepsilon^2` N m s is the paper's :math:`\tilde I = 1`:
+
+        >>> import numpy as np
+        >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
+        >>> sc = Spacecraft([12.0, 10.0, 7.0], [0.0, 0.0, 0.1], orbit=KeplerOrbit(mean_motion=1e-3))
+        >>> p = sc.paper
+        >>> drag = sc.torque(gravity_gradient=False, drag=np.array([1.0, 2.0, 3.0]) * p.G_unit * p.eps**2)
+        >>> print([f"{x:.6f}" for x in drag.I.diagonal()])
+        ['1.000000', '2.000000', '3.000000']
         """
         if not isinstance(gravity_gradient, bool):
             raise TypeError(f"gravity_gradient must be True or False, got {gravity_gradient!r}")
@@ -418,8 +433,12 @@ class Spacecraft:
         """One run: the paper's problem through ``run`` (:func:`averaged` or :func:`simulate`), or the closed form
         of a torque-free body that :class:`Body` does not describe; the state is that at ``t_span[0]``."""
         t0, t1 = span(t_span, "t_span")
+        try:  # the rule of the runs' output times, in seconds
+            check_tau_eval(t_eval, (t0, t1))
+        except (TypeError, ValueError) as exc:
+            raise type(exc)(str(exc).replace("tau_", "t_")) from None
         if t_eval is not None:
-            t_eval = finite_array(t_eval, "t_eval").reshape(-1)
+            t_eval = np.asarray(t_eval, dtype=float).reshape(-1)
         M = self.torque(**torques)
         if M is None and self.motion.paper is None:
             t = np.linspace(t0, t1, 101) if t_eval is None else t_eval
