@@ -232,7 +232,7 @@ class Spacecraft:
     Attributes
     ----------
     motion : FreeMotion
-        The torque-free motion (times in s), with the attitude relative to the orbital axes :math:`Ox_i`.
+        The torque-free motion (times in s; ``rotation(t)`` body -> the inertial frame).
     inertia : numpy.ndarray
         The tensor in the user's body axes (3x3).
     orbit : KeplerOrbit
@@ -264,8 +264,10 @@ class Spacecraft:
         if not isinstance(orbit, KeplerOrbit):
             raise TypeError(f"orbit must be a KeplerOrbit (SI units), got {orbit!r}")
         self.orbit = orbit
-        R = orbit.to_inertial().inv() * as_attitude(attitude)  # body -> Ox_i
+        R = as_attitude(attitude)
         self.motion = EulerPoinsot.from_state(inertia, omega, R)
+        # the same motion relative to the orbital axes, which the paper's start is read from
+        self._in_orbit_axes = EulerPoinsot.from_state(inertia, omega, orbit.to_inertial().inv() * R)
         J = finite_array(inertia, "inertia")
         self.inertia = np.diag(J) if J.shape == (3,) else J
 
@@ -278,7 +280,7 @@ class Spacecraft:
     def paper(self) -> PaperStart:
         """The paper's nondimensional start (a ``ValueError`` for a body or state it does not describe: two equal
         moments, on the separatrix, at rest)."""
-        m = self.motion
+        m = self._in_orbit_axes
         ep = m.paper
         if ep is None:
             raise ValueError(f"Spacecraft: {_refusal(m)}")
@@ -472,14 +474,14 @@ class Spacecraft:
         """The torque-free motion of a body the paper's problem does not describe, in closed form."""
         m = self.motion
         ones = np.ones(len(t))
-        delta, lam = _angles(m.momentum / m.G) if m.G > 0.0 else (0.0, 0.0)
+        delta, lam = _angles(self._in_orbit_axes.momentum / m.G) if m.G > 0.0 else (0.0, 0.0)
         G, T = m.G * ones, m.T * ones
         return SpacecraftSolution(
-            t, G, T, _spin(T, G), np.outer(ones, self.orbit.to_inertial().apply(m.momentum)), m.k2 * ones,
+            t, G, T, _spin(T, G), np.outer(ones, m.momentum), m.k2 * ones,
             np.full(len(t), m.kind), np.full(len(t), m.sigma), delta * ones, lam * ones,
             self.orbit.true_anomaly(t - t0), 0, "the torque-free motion in closed form (FreeMotion)", None,
             m.omega(t - t0) if with_attitude else None,
-            self.orbit.to_inertial() * m.rotation(t - t0) if with_attitude else None)
+            m.rotation(t - t0) if with_attitude else None)
 
 
 #: What the spacecraft's state, orbit and the body-frame equations set (not options of its runs).
