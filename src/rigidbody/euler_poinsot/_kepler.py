@@ -108,16 +108,50 @@ class KeplerOrbit:
 
     @property
     def period(self) -> float:
-        """The orbital period :math:`2\\pi/n` in s."""
+        r"""The orbital period :math:`2\pi/n` in s.
+
+        Examples
+        --------
+        Kepler's third law: the geostationary radius, 42164 km, gives one sidereal day (86164 s):
+
+        >>> from rigidbody.euler_poinsot import KeplerOrbit
+        >>> print(f"{KeplerOrbit(radius=42164.17e3).period:.0f} s")
+        86164 s
+        """
         return 2.0 * math.pi / self.n
 
     def to_inertial(self) -> Rotation:
-        """The rotation :math:`Ox_i` -> inertial (the identity without ``orientation``)."""
+        """The rotation :math:`Ox_i` -> inertial (the identity without ``orientation``).
+
+        Examples
+        --------
+        On an orbit of inclination 90 degrees with its ascending node on the inertial x axis the orbit normal
+        is :math:`-y`:
+
+        >>> from scipy.spatial.transform import Rotation
+        >>> from rigidbody.euler_poinsot import KeplerOrbit
+        >>> polar = Rotation.from_euler("ZXZ", [0.0, 90.0, 0.0], degrees=True)
+        >>> orbit = KeplerOrbit(altitude=500e3, orientation=polar)
+        >>> print([f"{x:+.3f}" for x in orbit.to_inertial().apply([0.0, 0.0, 1.0])])
+        ['+0.000', '-1.000', '+0.000']
+        """
         return Rotation.identity() if self.orientation is None else self.orientation
 
     def true_anomaly(self, t: Any) -> np.ndarray:
         r"""The true anomaly (rad, continuous) at times ``t`` (s) after the start, from Kepler's equation
-        :math:`E - e\sin E = M_0 + nt` (Newton's method; :math:`\nu = \nu_0 + nt` on a circular orbit)."""
+        :math:`E - e\sin E = M_0 + nt` (Newton's method; :math:`\nu = \nu_0 + nt` on a circular orbit).
+
+        Examples
+        --------
+        From the pericentre, half a period later the body is at the apocentre, one period later back at the
+        pericentre, one turn on:
+
+        >>> import math
+        >>> from rigidbody.euler_poinsot import KeplerOrbit
+        >>> orbit = KeplerOrbit(mean_motion=1e-3, e=0.3)
+        >>> print([f"{nu / math.pi:.12f}" for nu in orbit.true_anomaly([0.0, orbit.period / 2, orbit.period])])
+        ['0.000000000000', '1.000000000000', '2.000000000000']
+        """
         t = np.asarray(t, dtype=float)
         e, nu0 = self.e, self.nu0
         if e == 0.0:
@@ -134,10 +168,23 @@ class KeplerOrbit:
         return np.asarray(E + 2.0 * np.arctan2(b * np.sin(E), 1.0 - b * np.cos(E)))
 
     def field_in_orbit_axes(self, B: Any) -> Any:
-        """A field given in the inertial frame (3 components, or a function of the true anomaly returning
+        r"""A field given in the inertial frame (3 components, or a function of the true anomaly returning
         ``(..., 3)``) in the orbital axes :math:`Ox_i`, as :class:`MagneticDipole` takes it (unchanged without
         ``orientation``; a function's result of another shape is passed on for :class:`MagneticDipole` to
-        refuse)."""
+        refuse).
+
+        Examples
+        --------
+        A field along the inertial :math:`z` axis on an orbit inclined by 30 degrees: in the orbital axes it has
+        :math:`\cos 30^\circ` along the orbit normal:
+
+        >>> from scipy.spatial.transform import Rotation
+        >>> from rigidbody.euler_poinsot import KeplerOrbit
+        >>> inclined = Rotation.from_euler("ZXZ", [0.0, 30.0, 0.0], degrees=True)
+        >>> orbit = KeplerOrbit(altitude=500e3, orientation=inclined)
+        >>> print([f"{b:+.6f}" for b in orbit.field_in_orbit_axes([0.0, 0.0, 1.0])])
+        ['+0.000000', '+0.500000', '+0.866025']
+        """
         if self.orientation is None:
             return B
         back = self.orientation.inv().as_matrix()

@@ -2,7 +2,7 @@ r"""A spacecraft's physical state in SI units, mapped onto Rachinskaya's nondime
 (its ``averaged`` and ``simulate``), the paper's start :class:`PaperStart` and the results in SI units
 :class:`SpacecraftSolution`.
 
-The scaling (section 3 of the paper, as the module uses it; ``docs/euler_poinsot.md``, "Scaling"): the unit of
+The scaling (section 3 of the paper, as the module uses it; :doc:`/euler_poinsot`, "Scaling"): the unit of
 rate is :math:`\Omega_0 = |\boldsymbol\omega(0)|` (the paper's definition), the unit of angular momentum
 :math:`G_0 = |\mathbf G(0)|`, so :math:`\tilde G_0 = 1`, :math:`\tilde A_i = A_i\Omega_0/G_0`,
 :math:`\tilde{\boldsymbol\omega} = \boldsymbol\omega/\Omega_0`, :math:`\tilde T = T/(G_0\Omega_0)`; the orbital
@@ -102,25 +102,73 @@ class PaperStart:
 
     @property
     def tau_per_second(self) -> float:
-        r""":math:`d\tau/dt = \varepsilon^2\Omega_0` (1/s)."""
+        r""":math:`d\tau/dt = \varepsilon^2\Omega_0` (1/s).
+
+        Examples
+        --------
+        A spin of 0.1 rad/s on an orbit of mean motion 0.001 rad/s (:math:`\varepsilon = 0.01`): one unit of the
+        slow time is :math:`1/(10^{-4}\cdot 0.1)` s, a little under 28 hours:
+
+        >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
+        >>> p = Spacecraft([12.0, 10.0, 7.0], [0.1, 0.0, 0.0], orbit=KeplerOrbit(mean_motion=1e-3)).paper
+        >>> print(f"{1.0 / p.tau_per_second / 3600.0:.4f} h")
+        27.7778 h
+        """
         return self.eps**2 * self.Omega0
 
     @property
     def torque_unit(self) -> float:
-        r"""The torque (N m) that is 1 in the module's scaling: :math:`G_0\varepsilon^2\Omega_0`."""
+        r"""The torque (N m) that is 1 in the module's scaling: :math:`G_0\varepsilon^2\Omega_0`.
+
+        Examples
+        --------
+        It changes :math:`G` by :math:`G_0` in one unit of the slow time (:math:`d\tilde G/d\tau = 1`):
+
+        >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
+        >>> p = Spacecraft([12.0, 10.0, 7.0], [0.1, 0.0, 0.0], orbit=KeplerOrbit(mean_motion=1e-3)).paper
+        >>> print(f"{p.torque_unit / p.tau_per_second:.6f} N m s = G0 = {p.G_unit:.6f} N m s")
+        1.200000 N m s = G0 = 1.200000 N m s
+        """
         return self.G_unit * self.eps**2 * self.Omega0
 
     def physical(self, g: Any, R: Any) -> tuple[np.ndarray, Rotation]:
         r"""The angular velocity (rad/s, user's body axes) and the attitude (body -> inertial) of the paper's
         body components :math:`\tilde{\mathbf g}` (shape ``(..., 3)``) and attitudes ``R`` (principal axes ->
-        :math:`Ox_i`, a ``Rotation``)."""
+        :math:`Ox_i`, a ``Rotation``).
+
+        Examples
+        --------
+        The paper's :math:`\tilde{\mathbf g} = (1, 0, 0)` along the axis of the largest moment, in the user's
+        units: a spin of :math:`G_0/A_1` rad/s about the axis of :math:`A_1`, here the user's first axis:
+
+        >>> from scipy.spatial.transform import Rotation
+        >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
+        >>> p = Spacecraft([12.0, 10.0, 7.0], [0.1, 0.0, 0.0], orbit=KeplerOrbit(mean_motion=1e-3)).paper
+        >>> omega, R = p.physical([1.0, 0.0, 0.0], Rotation.identity())
+        >>> print([f"{w:.6f}" for w in omega], f"{p.G_unit / 12.0:.6f}")
+        ['0.100000', '0.000000', '0.000000'] 0.100000
+        """
         A = np.array([self.body.A1, self.body.A2, self.body.A3])
         omega = self.Omega0 * (np.asarray(g, dtype=float) / A) @ self.axes.T
         return omega, self.to_inertial * R * Rotation.from_matrix(self.axes.T)
 
     def state(self) -> tuple[np.ndarray, Rotation]:
         """The physical state the paper's start describes: the angular velocity (rad/s, user's body axes) and the
-        attitude (body -> inertial), through :func:`initial_state` (the start of :func:`simulate`)."""
+        attitude (body -> inertial), through :func:`initial_state` (the start of :func:`simulate`).
+
+        Examples
+        --------
+        The round trip physical -> paper -> physical gives the state back to rounding:
+
+        >>> import numpy as np
+        >>> from scipy.spatial.transform import Rotation
+        >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
+        >>> R = Rotation.from_euler("zyx", [0.3, -1.0, 2.0])
+        >>> sc = Spacecraft([12.0, 10.0, 7.0], [0.03, -0.08, 0.05], R, orbit=KeplerOrbit(altitude=700e3))
+        >>> omega, attitude = sc.paper.state()
+        >>> print(np.abs(omega - [0.03, -0.08, 0.05]).max() < 1e-15, (attitude * R.inv()).magnitude() < 1e-13)
+        True True
+        """
         st = initial_state(self.body, self.G0, self.k2_0, self.delta0, self.lam0, kind=self.kind, u0=self.u0,
                            psi0=self.psi0, sigma=self.sigma)
         return self.physical(st["g"], Rotation.from_matrix(st["R"]))
@@ -241,8 +289,8 @@ class Spacecraft:
     -----
     Frames: the torques act in the orbital axes :math:`Ox_i` of the paper (:math:`x_1` to the pericentre,
     :math:`x_3` along the orbit normal); the user's inertial frame is :math:`Ox_i` turned by
-    ``orbit.orientation``. Units and scaling: module docstring of ``rigidbody.euler_poinsot._spacecraft`` and
-    ``docs/euler_poinsot.md``, "From a spacecraft's state".
+    ``orbit.orientation``. Units and scaling: :doc:`/euler_poinsot`, "From a spacecraft's state", and the how-to
+    :doc:`/howto/spacecraft`.
 
     Examples
     --------
