@@ -24,6 +24,10 @@ Euler--Poinsot motion (unperturbed)
 ``EulerPoinsot.from_state(inertia, omega, attitude) -> FreeMotion``
     the torque-free motion of any body (two equal moments, the sphere, on the separatrix, at rest) from a
     physical state: ``.omega(t)``, ``.rotation(t)`` (a SciPy ``Rotation``), the paper's variables.
+``Spacecraft(inertia, omega, attitude, orbit=KeplerOrbit(...))``
+    a spacecraft's state and orbit in SI units: ``.averaged(t_span, ...)`` and ``.simulate(t_span, ...)`` with
+    torques in SI units (gravity gradient, drag, magnet, constant), results in SI units
+    (:class:`SpacecraftSolution`); ``.paper`` the paper's nondimensional start (:class:`PaperStart`).
 ``k2_from(body, G, T, kind)``, ``T_from(body, G, k2, kind)``, ``kind_of(body, G, T)``
     formula (5), its counterpart for rotation about the A3 axis, and their inverses.
 
@@ -83,6 +87,7 @@ from ._eddy import EddyCurrent
 from ._engine import TorqueAverage
 from ._full import initial_state
 from ._geomag import IGRF13_G10, IGRF_RADIUS, DipoleField
+from ._kepler import MU_EARTH, R_EARTH, KeplerOrbit
 from ._model import KINDS, Body, Drag, Orbit
 from ._motion import EulerPoinsot
 from ._options import Solver, Stops
@@ -98,6 +103,7 @@ from ._separatrix import (
     separatrix_limits,
 )
 from ._simulate import simulate
+from ._spacecraft import PaperStart, Spacecraft, SpacecraftSolution
 from ._state import Mean, State
 from ._torques import (
     ConstantTorque,
@@ -115,7 +121,9 @@ __all__ = [
     "IGRF13_G10",
     "IGRF_RADIUS",
     "KINDS",
+    "MU_EARTH",
     "REGIONS",
+    "R_EARTH",
     "Body",
     "ConstantTorque",
     "DipoleField",
@@ -125,16 +133,20 @@ __all__ = [
     "FreeMotion",
     "FunctionTorque",
     "GravityGradient",
+    "KeplerOrbit",
     "LinearDrag",
     "MagneticDipole",
     "Mean",
     "N_star",
     "N_time",
     "Orbit",
+    "PaperStart",
     "Separatrix",
     "SeparatrixCrossing",
     "SeparatrixLimits",
     "Solver",
+    "Spacecraft",
+    "SpacecraftSolution",
     "State",
     "Stops",
     "T_from",
