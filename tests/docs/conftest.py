@@ -40,6 +40,7 @@ def build_site(tmp_path_factory: pytest.TempPathFactory) -> Callable[[dict[str, 
         toctree = "\n".join(pages)
         (src / "index.md").write_text(f"# Pages\n\n```{{toctree}}\n{toctree}\n```\n", encoding="utf-8")
         for name, text in pages.items():
+            (src / f"{name}.md").parent.mkdir(parents=True, exist_ok=True)  # a page in a folder: howto/...
             (src / f"{name}.md").write_text(text, encoding="utf-8")
         env = dict(os.environ,
                    PYTHONPATH=os.pathsep.join(p for p in (str(ROOT / "src"), os.environ.get("PYTHONPATH")) if p))

@@ -8,8 +8,8 @@ thin spherical shell) and :math:`\mathbf B` the field in the orbital axes. The t
 :math:`\boldsymbol\omega` and quadratic in :math:`\mathbf b`, so its average over the precession angle
 :math:`\psi` about :math:`\mathbf G` needs only :math:`S = \mathbf B\mathbf B^T` (held :math:`\nu`) or its
 mean over the orbit in time (``nu=None``), and its average over the elliptic phase only the moments of the
-angular velocity of degree 2 and 4 (:func:`omega_moments`). The derivation is in
-``docs/euler_poinsot.md``, "Eddy currents".
+angular velocity of degree 2 and 4 (:func:`omega_moments`). The derivation is in :ref:`ep-eddy` (the
+theory page).
 """
 
 from __future__ import annotations
