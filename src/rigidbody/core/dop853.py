@@ -119,6 +119,11 @@ def crossed(g_old: Any, g_new: Any, direction: float) -> Any:
     -------
     bool or ndarray of bool
 
+    See Also
+    --------
+    settle_events : which roots of a step count and where the step ends.
+    rigidbody.core.ode.integrate : the single-run integrator that applies the rule.
+
     Examples
     --------
     >>> crossed(-1.0, 0.0, 0), crossed(0.0, 1.0, 0), crossed(1.0, -1.0, +1)
@@ -315,6 +320,11 @@ def settle_events(xp: Any, roots: list[Any], terminal: list[bool], t_end: Any) -
         Index of the event that ends the step, -1 where none does.
     counted : list of bool or ndarray of bool
         Per event, whether its root counts.
+
+    See Also
+    --------
+    crossed : when an event function has crossed zero within a step.
+    rigidbody.core.batch.integrate_batch : the vectorised integrator that applies it.
 
     Examples
     --------

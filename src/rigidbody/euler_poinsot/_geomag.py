@@ -78,6 +78,11 @@ class DipoleField:
         A factor applied to the field in tesla: 1 for tesla, ``1e9`` for nanotesla, ``1/B_ref`` for a field in
         units of :math:`B_{ref}` (the units :class:`EddyCurrent`'s tensor is given in).
 
+    See Also
+    --------
+    EddyCurrent : the torque it is a field for.
+    MagneticDipole : a permanent magnet in a field.
+
     References
     ----------
     :ref:`P. Alken et al. (2021) <ref-igrf13>` (IGRF-13).

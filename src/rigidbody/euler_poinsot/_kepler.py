@@ -64,6 +64,11 @@ class KeplerOrbit:
     period : float
         :math:`2\pi/n` in s.
 
+    See Also
+    --------
+    Orbit : the paper's nondimensional orbit (eccentricity only).
+    Spacecraft : the state and orbit a run starts from.
+
     Examples
     --------
     The International Space Station's orbit, 400 km up, goes round in 92.6 minutes:

@@ -173,6 +173,11 @@ class FreeMotion:
     uniform : bool
         Whether the motion is a permanent rotation (the angular velocity an eigenvector of the inertia).
 
+    See Also
+    --------
+    EulerPoinsot : the paper's torque-free motion in its own variables.
+    Spacecraft : the same start state on an orbit, with torques, in SI units.
+
     Examples
     --------
     An axisymmetric satellite (two equal moments) precesses regularly: the symmetry-axis rate stays, the

@@ -69,6 +69,11 @@ class PaperStart:
     to_inertial : scipy.spatial.transform.Rotation
         :math:`Ox_i` -> the user's inertial frame.
 
+    See Also
+    --------
+    Spacecraft : builds it (``Spacecraft.paper``).
+    averaged, simulate : the functions its arguments are for.
+
     Examples
     --------
     The paper's moments are the physical ones in units of :math:`G_0/\Omega_0`, and a torque of
@@ -205,6 +210,11 @@ class SpacecraftSolution:
     start : PaperStart or None
         The scaling (``None`` as ``paper``).
 
+    See Also
+    --------
+    Spacecraft.averaged, Spacecraft.simulate : the runs that return it.
+    rigidbody.core.ode.Solution : the nondimensional result inside it.
+
     Examples
     --------
     The gravity gradient alone keeps :math:`G` and :math:`T` on average; it turns :math:`\mathbf G`:
@@ -284,6 +294,11 @@ class Spacecraft:
     inertia : numpy.ndarray
         The tensor in the user's body axes (3x3).
     orbit : KeplerOrbit
+
+    See Also
+    --------
+    EulerPoinsot.from_state : the torque-free motion alone.
+    averaged, simulate : the nondimensional runs it calls.
 
     Notes
     -----

@@ -129,6 +129,11 @@ def sweep(
         When some points were not computed (their worker died twice computing them, or their task
         failed as a whole): they have status -1; a re-run with the same store computes them.
 
+    See Also
+    --------
+    rigidbody.studies.evaluate : the same grid in-process into NumPy arrays (base install).
+    load : read a sweep's Zarr store back.
+
     Examples
     --------
     >>> from rigidbody.sweep import sweep
