@@ -25,26 +25,16 @@ from ..core.validate import positive, real
 from ._algebra import K2_SPIN_CAP
 from ._branches import check_branch
 from ._checks import check_averaging, check_sigma
-from ._closedbatch import ClosedRun, check_members, closed_batch, drag_equivalent, drag_members
+from ._closed import ClosedSetup, drag_equivalent, drag_members, run_closed
 from ._full import initial_state, run_full
 from ._fullbatch import FullRun, full_batch
-from ._members import FIELDS, common_checks, drag_batch, member_inputs, one_by_one
+from ._members import FIELDS, check_members, common_checks, drag_batch, member_inputs, one_by_one
 from ._model import as_orbit
 from ._run import run_averaged
+from ._start import StartRules
 from ._torques import probe, resolve
 
 __all__ = ["averaged_batch", "simulate_batch"]
-
-
-
-
-
-
-
-
-
-
-
 
 
 def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any,
@@ -79,10 +69,10 @@ def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
         raise ValueError("a batch of drag tensors is integrated with the closed forms (averaging='auto')")
     if tensors is not None:
         I, T = drag_members(mem, tensors)
-        run = ClosedRun(body, I, T, orb, float(opts["rtol"]), k2_max, min_spin, sigma, branch,
-                        np.random.default_rng(opts["seed"]))
-        check_members(mem, run)
-        return closed_batch(run, mem, (t0, t1), te)
+        run = ClosedSetup(body, I, T, orb, float(opts["rtol"]), k2_max, min_spin, sigma, branch,
+                          np.random.default_rng(opts["seed"]))
+        check_members(mem, StartRules(body, k2_max, min_spin))
+        return run_closed(run, mem, (t0, t1), te, False)
 
     # the engine path: member by member through the single run (its adaptive quadrature is per state)
     one = {k: v for k, v in opts.items() if k not in ("T0", "kind")}
@@ -91,7 +81,7 @@ def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
              kind: str) -> Solution:
         return run_averaged(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, kind=kind, T0=None, **one)
 
-    return one_by_one(call, mem, te, FIELDS, kind=mem.kind)
+    return one_by_one(call, mem, te, FIELDS, "euler_poinsot.averaged", kind=mem.kind)
 
 
 def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,
@@ -128,11 +118,8 @@ def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
                             T0=None, **one)
 
         names = ("G", "T", "k2", "delta", "lam", "nu", "n", "kind", "sigma")
-        return one_by_one(call, mem, te, names, u0=ph, psi0=ps, kind=mem.kind)
-    # the single run's checks, member by member
-    zero = np.zeros(1)
-    crun = ClosedRun(body, (zero, zero, zero), np.zeros((1, 3, 3)), orb, float(opts["rtol"]), k2_max, min_spin)
-    check_members(mem, crun, True, ph, ps)
+        return one_by_one(call, mem, te, names, "euler_poinsot.simulate", u0=ph, psi0=ps, kind=mem.kind)
+    check_members(mem, StartRules(body, k2_max, min_spin, True), ph, ps)  # the single run's checks, member by member
     run = FullRun(body, what, tq, orb, mem.kind, sigma, float(opts["rtol"]), float(opts["atol"]), k2_max, min_spin,
                   K2_SPIN_CAP if k2_max is None else 1.0)
     if what == "torque":  # one evaluation at a valid member's start, with the single run's message on failure
