@@ -47,3 +47,34 @@ def test_a_batch_member_alone_in_its_kind_runs_as_its_single_call():
         assert list(sol.kind[i]) == list(one.kind)
         for f in ("G", "T", "k2", "lam"):
             np.testing.assert_allclose(getattr(sol, f)[i], getattr(one, f), rtol=1e-9, atol=1e-12, err_msg=f)
+
+
+CASE1 = np.diag([2.322, 1.31, 1.425])
+
+
+def test_a_full_batch_member_alone_runs_as_its_single_call_through_the_branch_cut():
+    # member 1 is refused (G0 < 0), so member 0 is alone in its mode: the scalar integrator inside the batch. Its
+    # lambda passes through the branch cut of the azimuth at -pi (located by the cut events, also on the scalar
+    # route: a member that loses them is off by 2 pi, or fails). The single call runs the same scalar DOP853 with
+    # the same steps, so the two agree to rounding; 1e-9 relative leaves room for the output's interpolation.
+    te = np.linspace(0.0, 0.3, 7)
+    kw = dict(k2_0=0.9, delta0=1.2, lam0=-3.1, tau_span=(0.0, 0.3), tau_eval=te)
+    one = ep.simulate(BODY, CASE1, 0.05, 1.0, **kw)
+    sol = ep.simulate(BODY, CASE1, 0.05, np.array([1.0, -1.0]), **kw)
+    assert one.lam[-1] < -np.pi < one.lam[0]  # the case crosses the cut
+    assert sol.status.tolist() == [0, -1] and "G0 must be positive" in sol.message[1]
+    for f in ("G", "T", "k2", "delta", "lam"):
+        np.testing.assert_allclose(getattr(sol, f)[0], getattr(one, f), rtol=1e-9, atol=1e-12, err_msg=f)
+
+
+def test_a_batch_of_the_angles_form_refuses_a_member_whose_start_is_singular():
+    # the 'angles' formulation runs member by member (a mode per member); a member at sin(delta) = 0 gets the
+    # single call's ValueError as its message (status -1) and the other runs as its single call (same route)
+    te = np.linspace(0.0, 0.01, 3)
+    kw = dict(k2_0=0.9, lam0=0.3, tau_span=(0.0, 0.01), tau_eval=te, formulation="angles")
+    with pytest.raises(ValueError, match="singular at sin\\(delta\\) = 0") as exc:
+        ep.simulate(BODY, CASE1, 0.02, delta0=0.0, **kw)
+    sol = ep.simulate(BODY, CASE1, 0.02, delta0=np.array([0.0, 0.8]), **kw)
+    one = ep.simulate(BODY, CASE1, 0.02, delta0=0.8, **kw)
+    assert sol.status.tolist() == [-1, 0] and sol.message[0] == str(exc.value)
+    np.testing.assert_allclose(sol.G[1], one.G, rtol=1e-12, atol=0)  # the same run: equal to rounding

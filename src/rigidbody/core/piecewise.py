@@ -19,7 +19,7 @@ its output and what its events mean.
 from __future__ import annotations
 
 import math
-from collections.abc import Hashable, Sequence
+from collections.abc import Hashable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Protocol
 
@@ -27,6 +27,7 @@ import numpy as np
 
 from .batch import integrate_batch, member_records
 from .ode import Event, Solution, integrate
+from .validate import RESULT_ERRORS
 
 __all__ = ["Continue", "MemberRecords", "PieceEnd", "PieceSpec", "PiecewiseProblem", "Stop", "run_pieces"]
 
@@ -142,11 +143,15 @@ class MemberRecords:
     hnext: np.ndarray
 
     @classmethod
-    def start(cls, modes: Sequence[Any], t0: float) -> MemberRecords:
-        """Members starting at ``t0`` in ``modes`` (None: a member refused at the start, status -1)."""
+    def start(cls, modes: Sequence[Any], t0: float, refused: Mapping[int, str] | None = None) -> MemberRecords:
+        """Members starting at ``t0`` in ``modes``; ``refused``: index -> message of the members refused at the
+        start (status -1, no mode)."""
         B = len(modes)
         status, message, event, nfev, t_final = member_records(B, t0)
-        return cls(status, message, event, nfev, t_final, list(modes), np.full(B, float(t0)), np.full(B, math.nan))
+        modes = list(modes)
+        for i, msg in (refused or {}).items():
+            message[i], modes[i] = msg, None
+        return cls(status, message, event, nfev, t_final, modes, np.full(B, float(t0)), np.full(B, math.nan))
 
     def finish(self, i: int, status: int, message: str, event: str | None, t: float) -> None:
         self.status[i], self.message[i], self.event[i], self.t_final[i] = status, message, event, t
@@ -165,20 +170,21 @@ def _groups(modes: list[Any]) -> dict[Any, list[int]]:
 def _integrate(problem: PiecewiseProblem, mode: Any, members: list[int], rec: MemberRecords, t1: float,
                strict: bool) -> tuple[Solution, PieceEnd] | None:
     """One piece of a group: the scalar integrator for one member, the vectorised one for more. A single
-    member's ``ValueError`` at its start (a right-hand side not finite there) raises for a single run
-    (``strict``) and ends the member with status -1 in a batch."""
+    member's ``ValueError`` at its start (the problem refuses its state, a user's function fails there, a
+    right-hand side not finite there) raises for a single run (``strict``) and ends the member with status -1
+    and the message in a batch."""
     if len(members) == 1:
         i = members[0]
         tau = float(rec.tau[i])
-        spec = problem.piece(mode, members, True, rec.tau[members])
         h = float(rec.hnext[i])
-        py = spec.method == "DOP853"
         try:
+            spec = problem.piece(mode, members, True, rec.tau[members])
+            py = spec.method == "DOP853"
             sol = integrate(spec.fun, (tau, t1), spec.y0, t_eval=spec.t_eval, rtol=spec.rtol, atol=spec.atol,
                             method=spec.method, dense_output=spec.dense, events=spec.events, time_name="tau",
                             args=spec.args, engine="python" if py else "scipy",
                             first_step=None if (math.isnan(h) or not py) else h)
-        except ValueError as exc:
+        except (ValueError, *RESULT_ERRORS) as exc:
             if strict:
                 raise
             rec.finish(i, -1, str(exc), None, tau)

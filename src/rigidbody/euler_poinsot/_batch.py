@@ -26,8 +26,8 @@ from ._algebra import K2_SPIN_CAP
 from ._branches import check_branch
 from ._checks import check_averaging, check_sigma
 from ._closed import ClosedSetup, drag_equivalent, drag_members, run_closed
-from ._full import initial_state, run_full
-from ._fullbatch import FullRun, full_batch
+from ._full import initial_state
+from ._fullrun import FullRun, run_full_members
 from ._members import FIELDS, check_members, common_checks, drag_batch, member_inputs, one_by_one
 from ._model import as_orbit
 from ._run import run_averaged
@@ -109,24 +109,16 @@ def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
     what, tq = resolve(torque)
     if what == "torque":
         tq.check_setup(body, orb)
-    if opts["formulation"] == "angles" or opts["method"] != "DOP853":
-        one = {k: v for k, v in opts.items() if k not in ("T0", "kind", "u0", "psi0")}
-
-        def call(eps_: float, G0_: float, k2_: float, d0: float, l0: float, n0: float, te_: np.ndarray,
-                 u0: float, psi0: float, kind: str) -> Solution:
-            return run_full(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, u0=u0, psi0=psi0, kind=kind,
-                            T0=None, **one)
-
-        names = ("G", "T", "k2", "delta", "lam", "nu", "n", "kind", "sigma")
-        return one_by_one(call, mem, te, names, "euler_poinsot.simulate", u0=ph, psi0=ps, kind=mem.kind)
     check_members(mem, StartRules(body, k2_max, min_spin, True), ph, ps)  # the single run's checks, member by member
     run = FullRun(body, what, tq, orb, mem.kind, sigma, float(opts["rtol"]), float(opts["atol"]), k2_max, min_spin,
-                  K2_SPIN_CAP if k2_max is None else 1.0)
-    if what == "torque":  # one evaluation at a valid member's start, with the single run's message on failure
+                  K2_SPIN_CAP if k2_max is None else 1.0, opts["formulation"], opts["method"])
+    if what == "torque" and run.formulation == "body" and run.method == "DOP853":
+        # the members integrated together: one evaluation at a valid member's start, with the single run's message
+        # on failure (member by member, each member's start probes it)
         good = [i for i in range(mem.eps.size) if i not in mem.refused]
         if good:
             i = good[0]
             st = initial_state(body, float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]), float(mem.lam0[i]),
                                kind=mem.kind[i], u0=float(ph[i]), psi0=float(ps[i]), sigma=sigma)
             probe(tq, st["g"] / body.A, st["R"], float(mem.nu0[i]))
-    return full_batch(run, mem, ph, ps, (t0, t1), te)
+    return run_full_members(run, mem, ph, ps, (t0, t1), te, False)

@@ -349,9 +349,6 @@ def run_closed(run: ClosedSetup, mem: Members, tau_span: tuple[float, float], te
     of batch shape ``()``; an error at a piece's start raises; the output on ``te``, the ``tau_eval`` of the call,
     or on the integrator's steps when it is None); otherwise ``te`` is the batch's common output grid."""
     pb = ClosedProblem(run, mem, te, single)
-    rec = MemberRecords.start([None if i in mem.refused else pb.mode(i) for i in range(mem.eps.size)],
-                              float(tau_span[0]))
-    for i, msg in mem.refused.items():
-        rec.message[i] = msg
+    rec = MemberRecords.start([pb.mode(i) for i in range(mem.eps.size)], float(tau_span[0]), mem.refused)
     run_pieces(pb, rec, float(tau_span[1]), strict=single)
     return pb.result(rec)
