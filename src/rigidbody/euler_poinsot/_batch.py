@@ -26,13 +26,13 @@ from ._algebra import K2_SPIN_CAP
 from ._branches import check_branch
 from ._checks import check_averaging, check_sigma
 from ._closed import ClosedSetup, drag_equivalent, drag_members, run_closed
+from ._enginerun import EngineSetup, run_engine
 from ._full import initial_state
 from ._fullrun import FullRun, run_full_members
-from ._members import FIELDS, check_members, common_checks, drag_batch, member_inputs, one_by_one
+from ._members import check_members, common_checks, drag_batch, member_inputs
 from ._model import as_orbit
-from ._run import run_averaged
 from ._start import StartRules
-from ._torques import probe, resolve
+from ._torques import drag_as_torque, probe, resolve
 
 __all__ = ["averaged_batch", "simulate_batch"]
 
@@ -42,7 +42,8 @@ def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
     """The batch branch of :func:`rigidbody.euler_poinsot.averaged`.
 
     ``opts`` holds the keyword options of the call (validated here as the single run validates them); the members
-    of the engine path run one by one through the single run.
+    run through the piecewise driver as the single run does: the closed forms together, the engine member by
+    member.
     """
     t0, t1, te = common_checks(body, tau_span, tau_eval, opts)
     orb = as_orbit(opts["orbit"])
@@ -74,14 +75,14 @@ def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
         check_members(mem, StartRules(body, k2_max, min_spin))
         return run_closed(run, mem, (t0, t1), te, False)
 
-    # the engine path: member by member through the single run (its adaptive quadrature is per state)
-    one = {k: v for k, v in opts.items() if k not in ("T0", "kind")}
-
-    def call(eps_: float, G0_: float, k2_: float, d0: float, l0: float, n0: float, te_: np.ndarray,
-             kind: str) -> Solution:
-        return run_averaged(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, kind=kind, T0=None, **one)
-
-    return one_by_one(call, mem, te, FIELDS, "euler_poinsot.averaged", kind=mem.kind)
+    # a torque object: the averaging engine (per state), member by member through the driver
+    tq = tq if what == "torque" else drag_as_torque(tq, body, orb)
+    drift_tol = None if opts["drift_tol"] is None else positive(opts["drift_tol"], "drift_tol")
+    resonance_tol = None if opts["resonance_tol"] is None else positive(opts["resonance_tol"], "resonance_tol")
+    check_members(mem, StartRules(body, k2_max, min_spin))
+    erun = EngineSetup(tq, body, orb, sigma, float(opts["rtol"]), float(opts["atol"]), opts["method"], k2_max, min_spin,
+                       opts["averaging"], float(opts["quad_tol"]), drift_tol, resonance_tol, branch, opts["seed"])
+    return run_engine(erun, mem, (t0, t1), te, False)
 
 
 def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,

@@ -15,13 +15,13 @@ from typing import Any
 import numpy as np
 
 from ..core.ode import Solution
-from ..core.validate import RESULT_ERRORS, span
+from ..core.validate import span
 from ._checks import check_tol
 from ._model import Body, check_body, check_kind
 from ._start import StartRules, check_start, initial_kind
 
 __all__ = ["FIELDS", "Members", "assemble", "batch_grid", "check_members", "common_checks", "drag_batch", "is_batch",
-           "member_inputs", "one_by_one"]
+           "member_inputs"]
 
 
 #: the output fields of an averaged run
@@ -211,25 +211,6 @@ def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: 
                           t_events={k: v.reshape(batch_shape) for k, v in events.items()},
                           nfev=nfev.reshape(batch_shape), t_final=t_final.reshape(batch_shape),
                           **reports)
-
-
-def one_by_one(call: Any, mem: Members, te: np.ndarray, names: tuple[str, ...], producer: str,
-               **per_member: np.ndarray) -> Solution:
-    """Each member by its own single call ``call(eps, G0, k2_0, delta0, lam0, nu0, tau_eval=..., **extra)``; a
-    ``ValueError`` (or a torque's output refused at the member's start) refuses that member (status -1, its
-    message)."""
-    out: list[Solution | str] = []
-    for i in range(mem.eps.size):
-        if i in mem.refused:
-            out.append(mem.refused[i])
-            continue
-        extra = {k: (v[i] if v.dtype == object else float(v[i])) for k, v in per_member.items()}
-        try:
-            out.append(call(float(mem.eps[i]), float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]),
-                            float(mem.lam0[i]), float(mem.nu0[i]), te, **extra))
-        except (ValueError, *RESULT_ERRORS) as exc:
-            out.append(str(exc))
-    return assemble(out, mem.batch_shape, te, names, producer)
 
 
 def common_checks(body: Any, tau_span: Any, tau_eval: Any, opts: dict[str, Any]) -> tuple[float, float, np.ndarray]:
