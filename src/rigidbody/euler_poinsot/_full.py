@@ -354,7 +354,7 @@ class FullSingle:
         """The single-run result on ``tau_eval`` (the integrator's steps without it), lambda unwrapped along the
         steps, a torque's failure named in the message."""
         self.misfire.settle(res)
-        return finish_output(res, tau_eval, self.make_fields, self.lam0, self.nvec)
+        return finish_output(res, tau_eval, self.make_fields, self.lam0, self.nvec, producer="euler_poinsot.simulate")
 
 
 def full_single(body: Body, what: str, tq: Any, orb: Orbit, eps: float, G0: float, k2_0: float, delta0: float,

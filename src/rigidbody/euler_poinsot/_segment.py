@@ -469,10 +469,9 @@ def _join_charts(pieces: list[_Chart]) -> Solution:
                    f"{_SIN_OFF:g}..{_SIN_ON:g}); integration stopped")
     dense = PiecewiseDense([p.raw.time[0] for p in pieces], [lambda t, p=p: p.common(p.raw.sol(t)) for p in pieces],
                             n_c)
-    res = Solution(last.time_name, np.concatenate(times), np.concatenate(ys, axis=1), {}, status, message, event, te,
-                   ye, dense, sum(p.raw.nfev for p in pieces))
-    res.last_step = last.last_step
-    return res
+    return Solution.build(producer="euler_poinsot.averaged", time_name=last.time_name, time=np.concatenate(times),
+                          y=np.concatenate(ys, axis=1), status=status, message=message, event=event, t_events=te,
+                          y_events=ye, dense=dense, nfev=sum(p.raw.nfev for p in pieces), last_step=last.last_step)
 
 
 def rotation_number(body: Body, kind: str, k2: Any) -> Any:
@@ -547,7 +546,9 @@ def finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
             nu = (tau - seg.tau0) / eps + seg.nu0
         else:
             nu = y[5]
-        return _slow_fields(A, y, nvec, nu)
+        out = _slow_fields(A, y, nvec, nu)
+        out["kind"], out["sigma"] = np.full(tau.shape, seg.kind), np.full(tau.shape, seg.sigma)
+        return out
 
     resonances = _resonances(seg) if eps > 0.0 and setup.resonance_tol is not None else []
     status, message, event = res.status, res.message, res.event
@@ -560,10 +561,10 @@ def finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
         # an order too high to compute its coefficient, and a bound that does not show it harmless
         message = stop_message("resonance_bound" if cut["bound"] else "resonance", tau=cut["tau"], rho=cut["rho"],
                                jump=cut["jump"], resonance_tol=setup.resonance_tol)
-        res = Solution(res.time_name, tcut, ycut, {}, status, message, event, res.t_events, res.y_events,
-                       res.sol, res.nfev)
+        res = Solution.build(producer="euler_poinsot.averaged", time_name=res.time_name, time=tcut, y=ycut,
+                             status=status, message=message, event=event, t_events=res.t_events,
+                             y_events=res.y_events, dense=res.sol, nfev=res.nfev)
         resonances = [r for r in resonances if r["tau"] <= cut["tau"]]
-    out = finish_output(res, tau_eval, make_fields, lam0, nvec, lambda tau, y: seg.lam(tau))
     # the quadrature error along the run (relative to the size of the averaged torque), at the first and the
     # last state (each estimate costs a few right-hand sides on the calibration grid)
     qerr = 0.0
@@ -579,19 +580,8 @@ def finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
             GT = st.G / max(st.T, 1e-300)
             size = float(np.abs(m.L).max()) + abs(m.dT) * GT + 1e-300
             qerr = max(qerr, max(float(np.abs(e.L).max()), abs(e.dT) * GT, abs(e.dk2) * st.G) / size)
-    data = {f: getattr(out, f) for f in out.fields}
-    data["kind"] = np.full(out.time.shape, seg.kind)
-    data["sigma"] = np.full(out.time.shape, seg.sigma)
-    return _with(out, data, {"quad_error": qerr, "resonances": resonances})
-
-
-def _with(sol: Solution, data: dict[str, Any], extra: dict[str, Any]) -> Solution:
-    """A Solution with extra scalar attributes (kept out of the array fields)."""
-    new = Solution(sol.time_name, sol.time, sol.y, data, sol.status, sol.message, sol.event, sol.t_events,
-                   sol.y_events, sol.sol, sol.nfev)
-    for k, v in extra.items():
-        setattr(new, k, v)
-    return new
+    return finish_output(res, tau_eval, make_fields, lam0, nvec, lambda tau, y: seg.lam(tau),
+                         producer="euler_poinsot.averaged", quad_error=qerr, resonances=resonances)
 
 
 #: a slow state and its means in a torque object's right-hand side: G, k2, n1, n2, n3, nu, L1, L2, L3, dT, dk2
