@@ -263,7 +263,7 @@ class ClosedProblem:
         """One run's piece: its fields evaluated where asked from its dense output."""
         c = self.ctx
         assert c is not None
-        region: Region = (c.kind, int(self.sigma[0]))
+        region = Region(c.kind, int(self.sigma[0]))
 
         def fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
             return self.fields(tau, y, ctx=c)
@@ -305,8 +305,9 @@ class ClosedProblem:
             return dk2_labelled(An, Idn, K2_SWITCH)
 
         tq = drag_as_torque(Drag(run.tensors[i]), run.body, run.orbit)
-        region, stop = cross_separatrix(run.body, tq, run.orbit, (mode[0], int(self.sigma[i])), tc, G, delta, lam, n,
-                                        nu, run.branch, run.rng, self.crossings[i], dk2_at)
+        source = Region(mode[0], int(self.sigma[i]))
+        region, stop = cross_separatrix(run.body, tq, run.orbit, source, tc, G, delta, lam, n, nu, run.branch, run.rng,
+                                        self.crossings[i], dk2_at)
         if not self.single:
             self.tev["separatrix"][i] = np.array([x["tau"] for x in self.crossings[i]])
         if region is None:

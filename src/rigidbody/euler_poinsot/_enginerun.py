@@ -98,7 +98,7 @@ class _Member(RunOptions):
         def common(y: np.ndarray) -> np.ndarray:
             return np.vstack([y[0], y[1], y[2:5] / np.linalg.norm(y[2:5], axis=0)])
 
-        self.kinds.append(Piece(seg.res, (kr.kind, kr.sigma), finish, common, kr.pieces[0].lam_start))
+        self.kinds.append(Piece(seg.res, Region(kr.kind, kr.sigma), finish, common, kr.pieces[0].lam_start))
         self.kr = None
 
     def dk2_at(self, region: Region, G: float, n: np.ndarray, nu: float | None) -> float:
@@ -130,7 +130,7 @@ class EngineProblem:
         # simulate take it, also when tau_span starts after 0); on an eccentric orbit nu is a state starting at nu0
         nu_start = nu0 + self.t0 / eps if eps > 0.0 and run.orbit.e == 0.0 else nu0
         d0, l0 = float(mem.delta0[i]), float(mem.lam0[i])
-        m.next = ((str(mem.kind[i]), run.sigma), self.t0, float(mem.G0[i]), float(mem.k2_0[i]),
+        m.next = (Region(str(mem.kind[i]), run.sigma), self.t0, float(mem.G0[i]), float(mem.k2_0[i]),
                   np.array(unit_of_angles(d0, l0)), nu_start, l0, self.k2_stop)
         return m
 
