@@ -78,3 +78,22 @@ def test_a_batch_of_the_angles_form_refuses_a_member_whose_start_is_singular():
     one = ep.simulate(BODY, CASE1, 0.02, delta0=0.8, **kw)
     assert sol.status.tolist() == [-1, 0] and sol.message[0] == str(exc.value)
     np.testing.assert_allclose(sol.G[1], one.G, rtol=1e-12, atol=0)  # the same run: equal to rounding
+
+
+def test_a_batch_of_a_torque_object_runs_each_member_as_its_single_call_through_the_separatrix():
+    # the engine route (a torque object that is not the drag tensor's meaning): a mode per member on the scalar
+    # integrator, a crossing a continued event; each member must be its single call (the same route and steps, so
+    # equal to rounding; 1e-12 relative leaves room for nothing else), crossings and reports included
+    tq = ep.LinearDrag(UPWARD)
+    te = np.linspace(0.0, 1.5, 16)
+    kw = dict(tau_span=(0.0, 1.5), tau_eval=te, k2_max=None, min_spin_ratio=0.0)
+    k2 = np.array([0.3, 0.95])
+    sol = ep.averaged(BODY, tq, 0.0, 1.0, k2, 0.8, 0.3, **kw)
+    assert [len(c) for c in sol.crossings] == [0, 1]  # one member crosses into 'min', the other does not
+    for i in range(2):
+        one = ep.averaged(BODY, tq, 0.0, 1.0, float(k2[i]), 0.8, 0.3, **kw)
+        assert sol.status[i] == one.status and sol.message[i] == one.message
+        assert [c["region"] for c in sol.crossings[i]] == [c["region"] for c in one.crossings]
+        assert list(sol.kind[i]) == list(one.kind)
+        for f in ("G", "T", "k2", "lam"):
+            np.testing.assert_allclose(getattr(sol, f)[i], getattr(one, f), rtol=1e-12, atol=0, err_msg=f)

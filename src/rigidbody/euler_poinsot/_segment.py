@@ -210,7 +210,7 @@ def _axisymmetric(av: Averager, st: State, tol: float = 1e-9) -> bool:
 
 def _mean_functions(setup: Setup, kind: str, sigma: int, z: float, c: float, tau0: float, nu0: float, inu: int,
                     misfire: Misfire) -> tuple[Any, Any]:
-    """The averaged torque at a state of either chart of :func:`integrate_kind` (``mean_at``, on floats, the last
+    """The averaged torque at a state of either chart of :class:`KindRun` (``mean_at``, on floats, the last
     call remembered) and as a (State, Mean) pair (``pair``, for the drift event)."""
     exp, sqrt, sin, cos = math.exp, math.sqrt, math.sin, math.cos
     eps, orb, body, av = setup.eps, setup.orbit, setup.body, setup.averager
