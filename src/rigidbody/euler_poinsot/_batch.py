@@ -23,16 +23,17 @@ import numpy as np
 from ..core.ode import Solution
 from ..core.validate import positive, real
 from ._algebra import K2_SPIN_CAP
+from ._boundary import as_torque, drag_equivalent
 from ._branches import check_branch
 from ._checks import check_averaging, check_sigma
-from ._closed import ClosedSetup, drag_equivalent, drag_members, run_closed
+from ._closed import ClosedSetup, drag_members, run_closed
 from ._enginerun import EngineSetup, run_engine
 from ._full import initial_state
 from ._fullrun import FullRun, run_full_members
 from ._members import check_members, common_checks, drag_batch, member_inputs
 from ._model import as_orbit
 from ._start import StartRules
-from ._torques import drag_as_torque, probe, resolve
+from ._torques import probe
 
 __all__ = ["averaged_batch", "simulate_batch"]
 
@@ -61,11 +62,9 @@ def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
     mem = member_inputs(body, eps, G0, k2_0, delta0, lam0, nu0, opts["T0"], opts["kind"],
                         () if tensors is None else tensors.shape[:-2])
     if tensors is None:
-        what, tq = resolve(torque)
-        if what == "drag" and opts["averaging"] == "auto":
-            tensors = tq.I
-        elif what == "torque" and opts["averaging"] == "auto":
-            tensors = drag_equivalent(tq, body, orb)  # the paper's two torques as objects: the same closed forms
+        tq, drag = as_torque(torque, body, orb)
+        if opts["averaging"] == "auto":  # a drag tensor, or the paper's two torques as objects: the closed forms
+            tensors = drag.I if drag is not None else drag_equivalent(tq, body, orb)
     elif opts["averaging"] != "auto":
         raise ValueError("a batch of drag tensors is integrated with the closed forms (averaging='auto')")
     if tensors is not None:
@@ -76,7 +75,6 @@ def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
         return run_closed(run, mem, (t0, t1), te, False)
 
     # a torque object: the averaging engine (per state), member by member through the driver
-    tq = tq if what == "torque" else drag_as_torque(tq, body, orb)
     drift_tol = None if opts["drift_tol"] is None else positive(opts["drift_tol"], "drift_tol")
     resonance_tol = None if opts["resonance_tol"] is None else positive(opts["resonance_tol"], "resonance_tol")
     check_members(mem, StartRules(body, k2_max, min_spin))
@@ -107,13 +105,13 @@ def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
         ps = np.broadcast_to(np.asarray(psi0, dtype=float), mem.batch_shape).reshape(-1)
     except ValueError:
         raise ValueError(f"u0 and psi0 must broadcast to the batch shape {mem.batch_shape}") from None
-    what, tq = resolve(torque)
-    if what == "torque":
-        tq.check_setup(body, orb)
+    tq, _ = as_torque(torque, body, orb)
+    tq.check_setup(body, orb)
     check_members(mem, StartRules(body, k2_max, min_spin, True), ph, ps)  # the single run's checks, member by member
-    run = FullRun(body, what, tq, orb, mem.kind, sigma, float(opts["rtol"]), float(opts["atol"]), k2_max, min_spin,
+    run = FullRun(body, drag_equivalent(tq, body, orb), tq, orb, mem.kind, sigma, float(opts["rtol"]),
+                  float(opts["atol"]), k2_max, min_spin,
                   K2_SPIN_CAP if k2_max is None else 1.0, opts["formulation"], opts["method"])
-    if what == "torque" and run.formulation == "body" and run.method == "DOP853":
+    if run.tensor is None and run.formulation == "body" and run.method == "DOP853":
         # the members integrated together: one evaluation at a valid member's start, with the single run's message
         # on failure (member by member, each member's start probes it)
         good = [i for i in range(mem.eps.size) if i not in mem.refused]

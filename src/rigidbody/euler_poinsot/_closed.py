@@ -30,9 +30,9 @@ from ._model import Body, Drag, Orbit, labelled, relabel
 from ._regions import Region
 from ._separatrix import K2_SWITCH
 from ._stops import stop_message
-from ._torques import GravityGradient, LinearDrag, drag_as_torque
+from ._torques import drag_as_torque
 
-__all__ = ["ClosedSetup", "drag_equivalent", "drag_members", "run_closed"]
+__all__ = ["ClosedSetup", "drag_members", "run_closed"]
 
 PRODUCER = "euler_poinsot.averaged"
 
@@ -89,21 +89,6 @@ def drag_members(mem: Members, tensors: np.ndarray) -> tuple[tuple[np.ndarray, n
         except ValueError as exc:
             mem.refused.setdefault(i, str(exc))
     return (diag[:, 0], diag[:, 1], diag[:, 2]), T
-
-
-def drag_equivalent(torque: Any, body: Body, orbit: Orbit) -> np.ndarray | None:
-    """The drag tensor whose meaning (linear drag plus the gravity gradient) a torque object has, or None: a sum
-    of :class:`LinearDrag` parts and one :class:`GravityGradient` of this body and orbit in the module's scaling
-    (``omega0 = 1``). Such a run integrates the closed forms of the drag tensor."""
-    parts = torque.parts()
-    gg = [p for p in parts if isinstance(p, GravityGradient)]
-    lin = [p for p in parts if isinstance(p, LinearDrag)]
-    if len(gg) != 1 or not lin or len(gg) + len(lin) != len(parts):
-        return None
-    g = gg[0]
-    if g.omega0 != 1.0 or g.body != body or g.orbit != orbit:
-        return None
-    return np.sum([np.asarray(p.I, dtype=float) for p in lin], axis=0)
 
 
 @dataclass

@@ -34,6 +34,7 @@ from ..core import euler
 from ..core.ode import Event, Solution
 from ..core.validate import RESULT_ERRORS, real, span
 from ._algebra import K2_SPIN_CAP, nutation_frequency
+from ._boundary import as_torque, drag_equivalent
 from ._checks import check_tau_eval, check_tol
 from ._model import Body, Orbit, as_orbit, check_body, frame_y, relabel
 from ._motion import EulerPoinsot
@@ -41,7 +42,7 @@ from ._output import finish_output
 from ._protocol import Misfire, evaluate
 from ._start import StartRules, check_start, initial_kind
 from ._stops import stop_message
-from ._torques import probe, resolve
+from ._torques import probe
 
 __all__ = ["FullSingle", "check_full", "full_single", "initial_state"]
 
@@ -357,13 +358,14 @@ class FullSingle:
         return finish_output(res, tau_eval, self.make_fields, self.lam0, self.nvec, producer="euler_poinsot.simulate")
 
 
-def full_single(body: Body, what: str, tq: Any, orb: Orbit, eps: float, G0: float, k2_0: float, delta0: float,
+def full_single(body: Body, tensor: Any, tq: Any, orb: Orbit, eps: float, G0: float, k2_0: float, delta0: float,
                 lam0: float, nu0: float, *, kind: str, u0: float, psi0: float, sigma: int, formulation: str,
                 k2_max: float | None, min_spin_ratio: float, cuts: bool = False) -> FullSingle:
-    """The full equations of one member whose start is checked (a torque object is probed there: its failure
-    raises)."""
-    generic = what == "torque"
-    Im = np.zeros((3, 3)) if generic else tq.I
+    """The full equations of one member whose start is checked: the torque object ``tq`` written out with the drag
+    tensor ``tensor`` when it is one's meaning (drag plus gravity gradient), else evaluated through its protocol
+    (probed at the start: its failure raises)."""
+    generic = tensor is None
+    Im = np.zeros((3, 3)) if generic else np.asarray(tensor, dtype=float)
     A1, A2, A3 = body.A1, body.A2, body.A3
     Aall = (A1, A2, A3)
     Alab = relabel(kind, (A1, A2, A3))
@@ -443,7 +445,8 @@ def check_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any
     Returns
     -------
     tuple
-        ``what, torque, orbit, kind, k2_max, min_spin_ratio, (eps, G0, k2_0, delta0, lam0, nu0), u0, psi0``.
+        ``tensor, torque, orbit, kind, k2_max, min_spin_ratio, (eps, G0, k2_0, delta0, lam0, nu0), u0, psi0``:
+        the torque as an object, with the drag tensor whose meaning it has (or None).
     """
     check_body(body)
     k2_0, kind = initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
@@ -453,11 +456,11 @@ def check_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any
     if formulation not in ("body", "angles"):
         raise ValueError(f"formulation must be 'body' or 'angles', got {formulation!r}")
     orb = as_orbit(orbit)
-    what, tq = resolve(torque)
-    if what == "torque":
-        tq.check_setup(body, orb)
+    tq, _ = as_torque(torque, body, orb)
+    tq.check_setup(body, orb)
     k2_max = None if k2_max is None else real(k2_max, "k2_max")
     min_spin_ratio = real(min_spin_ratio, "min_spin_ratio")
     rules = StartRules(body, k2_max, min_spin_ratio, full=True)
     start = check_start(rules, kind, eps, G0, k2_0, delta0, lam0, nu0, u0, psi0)
-    return what, tq, orb, kind, k2_max, min_spin_ratio, start, real(u0, "u0"), real(psi0, "psi0")
+    return (drag_equivalent(tq, body, orb), tq, orb, kind, k2_max, min_spin_ratio, start, real(u0, "u0"),
+            real(psi0, "psi0"))

@@ -43,12 +43,13 @@ PRODUCER = "euler_poinsot.simulate"
 
 @dataclass
 class FullRun:
-    """What the members share: body, torque (``what`` 'drag' with the tensor, or 'torque' with the object),
+    """What the members share: body, the drag tensor whose meaning the torque has (its formula written out) or None,
+    the torque object,
     orbit, the initial kind of each member (an array) and the sense of motion, tolerances and the terminal
     checks."""
 
     body: Body
-    what: str
+    tensor: np.ndarray | None
     torque: Any
     orbit: Orbit
     kind: np.ndarray
@@ -117,7 +118,7 @@ class FullProblem:
         run, mem = self.run, self.mem
         if scalar:
             i = members[0]
-            one = full_single(run.body, run.what, run.torque, run.orbit, float(mem.eps[i]), float(mem.G0[i]),
+            one = full_single(run.body, run.tensor, run.torque, run.orbit, float(mem.eps[i]), float(mem.G0[i]),
                               float(mem.k2_0[i]), float(mem.delta0[i]), float(mem.lam0[i]), float(mem.nu0[i]),
                               kind=str(run.kind[i]), u0=float(self.u0[i]), psi0=float(self.psi0[i]), sigma=run.sigma,
                               formulation=run.formulation, k2_max=run.k2_max, min_spin_ratio=run.min_spin_ratio,
@@ -280,9 +281,9 @@ def _rhs(run: FullRun, t_bad: np.ndarray) -> Any:
     torque object through its vectorised protocol; where it turns non-finite, the time is noted in ``t_bad``)."""
     A1, A2, A3 = run.body.A1, run.body.A2, run.body.A3
     e = run.orbit.e
-    drag = run.what == "drag"
+    drag = run.tensor is not None
     if drag:
-        (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = np.asarray(run.torque.I, dtype=float).tolist()
+        (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = np.asarray(run.tensor, dtype=float).tolist()
 
     def rhs(t: np.ndarray, y: np.ndarray, ie: np.ndarray, ie2: np.ndarray, nu0: np.ndarray, *lab: np.ndarray
             ) -> np.ndarray:
@@ -364,14 +365,14 @@ def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, 
              min_spin_ratio: float) -> Solution:
     """One run of the full equations (the single call of :func:`rigidbody.euler_poinsot.simulate`): the inputs
     checked (:func:`._full.check_full`), then a batch of one through the driver."""
-    what, tq, orb, kind, k2_max, min_spin_ratio, start, u0, psi0 = check_full(
+    tensor, tq, orb, kind, k2_max, min_spin_ratio, start, u0, psi0 = check_full(
         body, torque, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, kind=kind, T0=T0, orbit=orbit, u0=u0,
         psi0=psi0, formulation=formulation, rtol=rtol, atol=atol, k2_max=k2_max, min_spin_ratio=min_spin_ratio)
     one = np.ones(1)
     eps, G0, k2_0, delta0, lam0, nu0 = start
     mem = Members((), eps * one, G0 * one, k2_0 * one, delta0 * one, lam0 * one, nu0 * one,
                   np.array([kind], dtype=object))
-    run = FullRun(body, what, tq, orb, mem.kind, sigma, rtol, atol, k2_max, min_spin_ratio,
+    run = FullRun(body, tensor, tq, orb, mem.kind, sigma, rtol, atol, k2_max, min_spin_ratio,
                   K2_SPIN_CAP if k2_max is None else 1.0, formulation, method)
     return run_full_members(run, mem, u0 * one, psi0 * one, (float(tau_span[0]), float(tau_span[1])), tau_eval,
                             True)

@@ -9,6 +9,7 @@ import numpy as np
 
 from ..core.ode import Solution
 from ..core.validate import positive, real, span
+from ._boundary import as_torque
 from ._branches import check_branch
 from ._checks import check_averaging, check_sigma, check_tau_eval, check_tol
 from ._closed import ClosedSetup, run_closed
@@ -17,7 +18,6 @@ from ._members import Members
 from ._model import Orbit, as_orbit, check_body
 from ._separatrix import K2_SWITCH
 from ._start import StartRules, check_start, initial_kind
-from ._torques import drag_as_torque, resolve
 
 __all__ = ["run_averaged"]
 
@@ -41,7 +41,7 @@ def run_averaged(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: A
     drift_tol = None if drift_tol is None else positive(drift_tol, "drift_tol")
     resonance_tol = None if resonance_tol is None else positive(resonance_tol, "resonance_tol")
     branch = check_branch(branch)
-    what, tq = resolve(torque)
+    tq, drag = as_torque(torque, body, orb)
     through = k2_max is None
     k2_stop = K2_SWITCH if through else real(k2_max, "k2_max")
     min_spin_ratio = real(min_spin_ratio, "min_spin_ratio")
@@ -50,13 +50,12 @@ def run_averaged(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: A
     one = np.ones(1)
     mem = Members((), eps * one, G0 * one, k2_0 * one, delta0 * one, lam0 * one, nu0 * one,
                   np.array([kind], dtype=object))
-    if what == "drag" and averaging != "numerical":  # the closed forms (9) of the paper
-        d = tq.diag
+    if drag is not None and averaging != "numerical":  # the closed forms (9) of the paper
+        d = drag.diag
         rng = np.random.default_rng(seed) if branch == "random" else None  # the only branch rule that draws
-        run = ClosedSetup(body, (d[0] * one, d[1] * one, d[2] * one), np.asarray(tq.I, dtype=float)[None], orb,
+        run = ClosedSetup(body, (d[0] * one, d[1] * one, d[2] * one), np.asarray(drag.I, dtype=float)[None], orb,
                           float(rtol), None if through else k2_stop, min_spin_ratio, sigma, branch, rng, method)
         return run_closed(run, mem, (float(tau_span[0]), float(tau_span[1])), tau_eval, True)
-    tq = tq if what == "torque" else drag_as_torque(tq, body, orb)
     erun = EngineSetup(tq, body, orb, sigma, rtol, atol, method, None if through else k2_stop, min_spin_ratio,
                        averaging, quad_tol, drift_tol, resonance_tol, branch, seed)
     return run_engine(erun, mem, (float(tau_span[0]), float(tau_span[1])), tau_eval, True)

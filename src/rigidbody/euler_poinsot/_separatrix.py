@@ -70,12 +70,12 @@ import numpy as np
 
 from ..core import euler
 from ..core.validate import real
+from ._boundary import as_torque
 from ._engine import nu_nodes
 from ._model import Body, Orbit, as_orbit, check_body
 from ._protocol import evaluate
 from ._regions import ARCS, REGIONS, Arc, Region, check_arc, check_region, next_arc, region_arcs
 from ._state import frame
-from ._torques import drag_as_torque, resolve
 
 __all__ = ["ARCS", "REGIONS", "Separatrix", "SeparatrixCrossing", "SeparatrixLimits", "separatrix_crossing",
            "separatrix_limits"]
@@ -180,9 +180,7 @@ class Separatrix:
 # --------------------------------------------------------------------------------------------------
 def _torque_fn(torque: Any, body: Body, orbit: Orbit) -> TorqueFn:
     """The whole perturbation as a torque object: a drag tensor means drag plus the gravity-gradient torque."""
-    what, tq = resolve(torque)
-    if what == "drag":
-        tq = drag_as_torque(tq, body, orbit)
+    tq, _ = as_torque(torque, body, orbit)
     tq.check_setup(body, orbit)
     return tq
 
