@@ -103,6 +103,12 @@ class _Context:
     ie: np.ndarray
     delta0: np.ndarray
     nu0: np.ndarray
+    e: float
+
+    def fields(self, tau: np.ndarray, y: np.ndarray, sub: Any = slice(None)) -> dict[str, np.ndarray]:
+        """The output fields of members ``sub`` of the piece's group from raw states ``y`` of shape
+        ``(m, n_state, n_t)``."""
+        return _k.fields(self.A, self.e, tau, y, self.z[sub], self.limit, self.delta0[sub], self.nu0[sub], self.ie[sub])
 
 
 class ClosedProblem:
@@ -113,10 +119,11 @@ class ClosedProblem:
         self.run, self.mem, self.te, self.single = run, mem, te, single
         self.continues: tuple[str, ...] = ("separatrix",) if run.through else ()
         B = mem.eps.size
-        self.kind = mem.kind.copy()
+        # the members' current state (the start of their next piece), updated at their crossings: the run's own
+        # arrays (``mem`` is made for the run)
+        self.kind = mem.kind
         self.sigma = np.full(B, float(run.sigma))
-        self.G, self.k2 = mem.G0.copy(), mem.k2_0.copy()
-        self.dl, self.lm, self.nus = mem.delta0.copy(), mem.lam0.copy(), mem.nu0.copy()
+        self.G, self.k2, self.dl, self.lm, self.nus = mem.G0, mem.k2_0, mem.delta0, mem.lam0, mem.nu0.copy()
         self.crossings: list[list[dict[str, Any]]] = [[] for _ in range(B)]
         self.pieces: list[Piece] = []
         self.ctx: _Context | None = None
@@ -139,27 +146,40 @@ class ClosedProblem:
     # ---- the pieces ----------------------------------------------------------------------------------------
     def piece(self, mode: tuple[str, bool], members: list[int], scalar: bool, tau: np.ndarray) -> PieceSpec:
         kind, limit = mode
+        if scalar:
+            return self._scalar_piece(kind, limit, members[0], float(tau[0]))
         idx = np.array(members)
         A, Id = self.run.labelled(kind, idx)
         eps, nu0 = self.mem.eps[idx], self.mem.nu0[idx]
         y0, z = _k.initial_state(0.0 if limit else eps, self.G[idx], self.k2[idx], self.dl[idx], self.lm[idx],
                                  self.nus[idx], self.run.orbit.e)
         ie = np.zeros(idx.size) if limit else 1.0 / eps
-        self.ctx = _Context(kind, limit, members, A, z, ie, self.dl[idx], nu0)
-        co = _k.DragCoefficients(A, Id)
+        self.ctx = _Context(kind, limit, members, A, z, ie, self.dl[idx], nu0, self.run.orbit.e)
         rt: Any
         rt, at = _k.tolerances(self.run.rtol, y0.shape[1])
         hl = 0.75 * self.run.orbit.mean_factor * np.cos(self.dl[idx])
-        if not scalar:
-            fun, events = self._vector(A, limit)
-            args = (*co.args(), z, *((hl,) if limit else (ie, nu0)))
-            return PieceSpec(fun, y0, rt, at, events, args, self.te)
-        py = self.run.method == "DOP853"
-        c = tuple(float(v[0]) for v in co.args())
-        rhs = _k.scalar_rhs(A, c, float(z[0]), self.run.orbit.e, limit, float(hl[0]), float(ie[0]), float(nu0[0]))
-        te = None if self.single else self.te[self.te >= tau[0]]
-        return PieceSpec(rhs, y0[0].tolist(), rt if py else _k.RTOL_FLOOR, at,
-                         self._scalar_events(A, float(z[0]), limit, float(ie[0])), (), te, True, self.run.method)
+        fun, events = self._vector(A, limit)
+        args = (*_k.DragCoefficients(A, Id).args(), z, *((hl,) if limit else (ie, nu0)))
+        return PieceSpec(fun, y0, rt, at, events, args, self.te)
+
+    def _scalar_piece(self, kind: str, limit: bool, i: int, tau: float) -> PieceSpec:
+        """One member's piece on floats (the closed forms folded into a closure, :func:`._kernel.scalar_rhs`)."""
+        run, mem = self.run, self.mem
+        A, Id = run.labelled(kind, i)
+        eps, nu0, dl = float(mem.eps[i]), float(mem.nu0[i]), float(self.dl[i])
+        y0, z_a = _k.initial_state(0.0 if limit else eps, float(self.G[i]), float(self.k2[i]), dl, float(self.lm[i]),
+                                   float(self.nus[i]), run.orbit.e)
+        z = float(z_a)
+        ie = 0.0 if limit else 1.0 / eps
+        self.ctx = _Context(kind, limit, [i], A, np.array([z]), np.array([ie]), np.array([dl]), np.array([nu0]),
+                            run.orbit.e)
+        rt: Any
+        rt, at = _k.tolerances(run.rtol, y0.size)
+        c = tuple(float(v) for v in _k.DragCoefficients(A, Id).args())
+        rhs = _k.scalar_rhs(A, c, z, run.orbit.e, limit, 0.75 * run.orbit.mean_factor * math.cos(dl), ie, nu0)
+        te = None if self.single else self.te[self.te >= tau]
+        return PieceSpec(rhs, y0.tolist(), rt if run.method == "DOP853" else _k.RTOL_FLOOR, at,
+                         self._scalar_events(A, z, limit, ie), (), te, True, run.method)
 
     def _scalar_events(self, A: tuple[float, float, float], z: float, limit: bool, ie: float) -> list[Event]:
         lnk_stop = math.log(self.run.k2_stop)
@@ -195,13 +215,10 @@ class ClosedProblem:
         events.append(Event(slow, "slow_rotation", True, -1.0, stop_message("slow_rotation", min_spin_ratio=r)))
         return rhs_orb, events
 
-    def fields(self, tau: np.ndarray, y: np.ndarray, sub: Any = slice(None), ctx: _Context | None = None
-               ) -> dict[str, np.ndarray]:
-        """The output fields of a piece (``ctx``; default the one just integrated) for members ``sub`` of its group
-        from raw states ``y`` of shape ``(m, n_state, n_t)``."""
-        c = self.ctx if ctx is None else ctx
-        assert c is not None
-        return _k.fields(c.A, self.run.orbit.e, tau, y, c.z[sub], c.limit, c.delta0[sub], c.nu0[sub], c.ie[sub])
+    def fields(self, tau: np.ndarray, y: np.ndarray, sub: Any = slice(None)) -> dict[str, np.ndarray]:
+        """The output fields of the piece just integrated (members ``sub`` of its group)."""
+        assert self.ctx is not None
+        return self.ctx.fields(tau, y, sub)
 
     # ---- the output ----------------------------------------------------------------------------------------
     def record(self, mode: tuple[str, bool], members: list[int], sol: Solution, end: PieceEnd) -> None:
@@ -249,9 +266,7 @@ class ClosedProblem:
         c = self.ctx
         assert c is not None
         region = Region(c.kind, int(self.sigma[0]))
-
-        def fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
-            return self.fields(tau, y, ctx=c)
+        fields = c.fields  # the piece's own constants (not the problem's: no reference cycle through it)
 
         def common(y: np.ndarray) -> np.ndarray:
             f = fields(np.zeros(np.shape(y)[-1]), y[None])
