@@ -165,20 +165,20 @@ class ClosedProblem:
     def _scalar_piece(self, kind: str, limit: bool, i: int, tau: float) -> PieceSpec:
         """One member's piece on floats (the closed forms folded into a closure, :func:`._kernel.scalar_rhs`)."""
         run, mem = self.run, self.mem
-        A, Id = run.labelled(kind, i)
+        A = labelled(run.body, kind)
+        Id = relabel(kind, (float(run.I[0][i]), float(run.I[1][i]), float(run.I[2][i])))
         eps, nu0, dl = float(mem.eps[i]), float(mem.nu0[i]), float(self.dl[i])
-        y0, z_a = _k.initial_state(0.0 if limit else eps, float(self.G[i]), float(self.k2[i]), dl, float(self.lm[i]),
-                                   float(self.nus[i]), run.orbit.e)
-        z = float(z_a)
+        y0, z = _k.initial_state(0.0 if limit else eps, float(self.G[i]), float(self.k2[i]), dl, float(self.lm[i]),
+                                 float(self.nus[i]), run.orbit.e)
         ie = 0.0 if limit else 1.0 / eps
         self.ctx = _Context(kind, limit, [i], A, np.array([z]), np.array([ie]), np.array([dl]), np.array([nu0]),
                             run.orbit.e)
         rt: Any
-        rt, at = _k.tolerances(run.rtol, y0.size)
-        c = tuple(float(v) for v in _k.DragCoefficients(A, Id).args())
+        rt, at = _k.tolerances(run.rtol, len(y0))
+        c = _k.DragCoefficients(A, Id).args()
         rhs = _k.scalar_rhs(A, c, z, run.orbit.e, limit, 0.75 * run.orbit.mean_factor * math.cos(dl), ie, nu0)
         te = None if self.single else self.te[self.te >= tau]
-        return PieceSpec(rhs, y0.tolist(), rt if run.method == "DOP853" else _k.RTOL_FLOOR, at,
+        return PieceSpec(rhs, y0, rt if run.method == "DOP853" else _k.RTOL_FLOOR, at,
                          self._scalar_events(A, z, limit, ie), (), te, True, run.method)
 
     def _scalar_events(self, A: tuple[float, float, float], z: float, limit: bool, ie: float) -> list[Event]:
