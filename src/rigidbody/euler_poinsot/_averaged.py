@@ -26,11 +26,11 @@ Any torque
 ----------
 With a torque object (``rigidbody.euler_poinsot.LinearDrag``, ..., or a plain function) the integrator evolves
 :math:`(\ln G, \ln(k^2 + c), \mathbf n[, \nu])` (the direction of :math:`\mathbf G` as the angles
-:math:`(\delta, \lambda)` or the unit vector :math:`\mathbf n`, see :func:`._segment.integrate_kind`) with
+:math:`(\delta, \lambda)` or the unit vector :math:`\mathbf n`, see :class:`._segment.KindRun`) with
 :math:`d(G\mathbf n)/d\tau = \langle C\mathbf M\rangle` and the :math:`k^2` rate of :mod:`._engine` (DOP853 on
 Python floats, as for a drag tensor: ``rtol`` is the relative accuracy of :math:`G` and :math:`k^2`, the direction
 is held to ``rtol/10`` per step), the means from the closed forms of the torque's parts where they exist and from the
-averaging engine otherwise (its grid chosen once, at the start). ``integrate_kind`` integrates
+averaging engine otherwise (its grid chosen once, at the start). ``KindRun`` integrates
 one kind of motion from given :math:`(G, k^2, \mathbf n)`: a run that reaches the separatrix can be
 restarted in the other kind with :math:`G`, :math:`T`, :math:`\mathbf n` continuous. With
 :math:`\varepsilon > 0` the run checks the drift per Euler--Poinsot period (event) and the resonances

@@ -23,28 +23,19 @@ import numpy as np
 from ..core.ode import Solution
 from ..core.validate import positive, real
 from ._algebra import K2_SPIN_CAP
+from ._boundary import as_torque, drag_equivalent
 from ._branches import check_branch
 from ._checks import check_averaging, check_sigma
-from ._closedbatch import ClosedRun, check_members, closed_batch, drag_equivalent, drag_members
-from ._full import initial_state, run_full
-from ._fullbatch import FullRun, full_batch
-from ._members import FIELDS, common_checks, drag_batch, member_inputs, one_by_one
+from ._closed import ClosedSetup, drag_members, run_closed
+from ._enginerun import EngineSetup, run_engine
+from ._full import initial_state
+from ._fullrun import FullRun, run_full_members
+from ._members import check_members, common_checks, drag_batch, member_inputs
 from ._model import as_orbit
-from ._run import run_averaged
-from ._torques import probe, resolve
+from ._start import StartRules
+from ._torques import probe
 
 __all__ = ["averaged_batch", "simulate_batch"]
-
-
-
-
-
-
-
-
-
-
-
 
 
 def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any,
@@ -52,7 +43,8 @@ def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
     """The batch branch of :func:`rigidbody.euler_poinsot.averaged`.
 
     ``opts`` holds the keyword options of the call (validated here as the single run validates them); the members
-    of the engine path run one by one through the single run.
+    run through the piecewise driver as the single run does: the closed forms together, the engine member by
+    member.
     """
     t0, t1, te = common_checks(body, tau_span, tau_eval, opts)
     orb = as_orbit(opts["orbit"])
@@ -70,28 +62,25 @@ def averaged_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
     mem = member_inputs(body, eps, G0, k2_0, delta0, lam0, nu0, opts["T0"], opts["kind"],
                         () if tensors is None else tensors.shape[:-2])
     if tensors is None:
-        what, tq = resolve(torque)
-        if what == "drag" and opts["averaging"] == "auto":
-            tensors = tq.I
-        elif what == "torque" and opts["averaging"] == "auto":
-            tensors = drag_equivalent(tq, body, orb)  # the paper's two torques as objects: the same closed forms
+        tq, drag = as_torque(torque, body, orb)
+        if opts["averaging"] == "auto":  # a drag tensor, or the paper's two torques as objects: the closed forms
+            tensors = drag.I if drag is not None else drag_equivalent(tq, body, orb)
     elif opts["averaging"] != "auto":
         raise ValueError("a batch of drag tensors is integrated with the closed forms (averaging='auto')")
     if tensors is not None:
         I, T = drag_members(mem, tensors)
-        run = ClosedRun(body, I, T, orb, float(opts["rtol"]), k2_max, min_spin, sigma, branch,
-                        np.random.default_rng(opts["seed"]))
-        check_members(mem, run)
-        return closed_batch(run, mem, (t0, t1), te)
+        run = ClosedSetup(body, I, T, orb, float(opts["rtol"]), k2_max, min_spin, sigma, branch,
+                          np.random.default_rng(opts["seed"]))
+        check_members(mem, StartRules(body, k2_max, min_spin))
+        return run_closed(run, mem, (t0, t1), te, False)
 
-    # the engine path: member by member through the single run (its adaptive quadrature is per state)
-    one = {k: v for k, v in opts.items() if k not in ("T0", "kind")}
-
-    def call(eps_: float, G0_: float, k2_: float, d0: float, l0: float, n0: float, te_: np.ndarray,
-             kind: str) -> Solution:
-        return run_averaged(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, kind=kind, T0=None, **one)
-
-    return one_by_one(call, mem, te, FIELDS, kind=mem.kind)
+    # a torque object: the averaging engine (per state), member by member through the driver
+    drift_tol = None if opts["drift_tol"] is None else positive(opts["drift_tol"], "drift_tol")
+    resonance_tol = None if opts["resonance_tol"] is None else positive(opts["resonance_tol"], "resonance_tol")
+    check_members(mem, StartRules(body, k2_max, min_spin))
+    erun = EngineSetup(tq, body, orb, sigma, float(opts["rtol"]), float(opts["atol"]), opts["method"], k2_max, min_spin,
+                       opts["averaging"], float(opts["quad_tol"]), drift_tol, resonance_tol, branch, opts["seed"])
+    return run_engine(erun, mem, (t0, t1), te, False)
 
 
 def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,
@@ -116,30 +105,19 @@ def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
         ps = np.broadcast_to(np.asarray(psi0, dtype=float), mem.batch_shape).reshape(-1)
     except ValueError:
         raise ValueError(f"u0 and psi0 must broadcast to the batch shape {mem.batch_shape}") from None
-    what, tq = resolve(torque)
-    if what == "torque":
-        tq.check_setup(body, orb)
-    if opts["formulation"] == "angles" or opts["method"] != "DOP853":
-        one = {k: v for k, v in opts.items() if k not in ("T0", "kind", "u0", "psi0")}
-
-        def call(eps_: float, G0_: float, k2_: float, d0: float, l0: float, n0: float, te_: np.ndarray,
-                 u0: float, psi0: float, kind: str) -> Solution:
-            return run_full(body, torque, eps_, G0_, k2_, d0, l0, (t0, t1), te_, n0, u0=u0, psi0=psi0, kind=kind,
-                            T0=None, **one)
-
-        names = ("G", "T", "k2", "delta", "lam", "nu", "n", "kind", "sigma")
-        return one_by_one(call, mem, te, names, u0=ph, psi0=ps, kind=mem.kind)
-    # the single run's checks, member by member
-    zero = np.zeros(1)
-    crun = ClosedRun(body, (zero, zero, zero), np.zeros((1, 3, 3)), orb, float(opts["rtol"]), k2_max, min_spin)
-    check_members(mem, crun, True, ph, ps)
-    run = FullRun(body, what, tq, orb, mem.kind, sigma, float(opts["rtol"]), float(opts["atol"]), k2_max, min_spin,
-                  K2_SPIN_CAP if k2_max is None else 1.0)
-    if what == "torque":  # one evaluation at a valid member's start, with the single run's message on failure
+    tq, _ = as_torque(torque, body, orb)
+    tq.check_setup(body, orb)
+    check_members(mem, StartRules(body, k2_max, min_spin, True), ph, ps)  # the single run's checks, member by member
+    run = FullRun(body, drag_equivalent(tq, body, orb), tq, orb, mem.kind, sigma, float(opts["rtol"]),
+                  float(opts["atol"]), k2_max, min_spin,
+                  K2_SPIN_CAP if k2_max is None else 1.0, opts["formulation"], opts["method"])
+    if run.tensor is None and run.formulation == "body" and run.method == "DOP853":
+        # the members integrated together: one evaluation at a valid member's start, with the single run's message
+        # on failure (member by member, each member's start probes it)
         good = [i for i in range(mem.eps.size) if i not in mem.refused]
         if good:
             i = good[0]
             st = initial_state(body, float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]), float(mem.lam0[i]),
                                kind=mem.kind[i], u0=float(ph[i]), psi0=float(ps[i]), sigma=sigma)
             probe(tq, st["g"] / body.A, st["R"], float(mem.nu0[i]))
-    return full_batch(run, mem, ph, ps, (t0, t1), te)
+    return run_full_members(run, mem, ph, ps, (t0, t1), te, False)

@@ -31,9 +31,10 @@ from typing import Any
 import numpy as np
 
 from ..core import euler
-from ..core.ode import Event, Solution, integrate
+from ..core.ode import Event, Solution
 from ..core.validate import RESULT_ERRORS, real, span
 from ._algebra import K2_SPIN_CAP, nutation_frequency
+from ._boundary import as_torque, drag_equivalent
 from ._checks import check_tau_eval, check_tol
 from ._model import Body, Orbit, as_orbit, check_body, frame_y, relabel
 from ._motion import EulerPoinsot
@@ -41,9 +42,9 @@ from ._output import finish_output
 from ._protocol import Misfire, evaluate
 from ._start import StartRules, check_start, initial_kind
 from ._stops import stop_message
-from ._torques import probe, resolve
+from ._torques import probe
 
-__all__ = ["initial_state", "run_full"]
+__all__ = ["FullSingle", "check_full", "full_single", "initial_state"]
 
 
 def initial_state(
@@ -337,31 +338,34 @@ def _angles_form(c: _Common) -> tuple[Any, ...]:
     return rhs, y0, GT, nvec, G_D, body_dir, extra_events
 
 
-def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,
-             tau_eval: Any, nu0: Any, *, kind: str | None, T0: Any, orbit: Orbit | None, u0: Any, psi0: Any,
-             sigma: int, formulation: str, rtol: float, atol: float, method: str, k2_max: float | None,
-             min_spin_ratio: float) -> Solution:
-    """One run of the full equations (the single call of :func:`rigidbody.euler_poinsot.simulate`; a batch runs
-    its ``'angles'`` members through it)."""
-    check_body(body)
-    k2_0, kind = initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
-    span(tau_span, "tau_span")
-    check_tau_eval(tau_eval, tau_span)
-    check_tol(rtol, atol)
-    if formulation not in ("body", "angles"):
-        raise ValueError(f"formulation must be 'body' or 'angles', got {formulation!r}")
-    orb = as_orbit(orbit)
-    what, tq = resolve(torque)
-    generic = what == "torque"
-    if generic:
-        tq.check_setup(body, orb)
-        Im = np.zeros((3, 3))
-    else:
-        Im = tq.I
-    k2_max = None if k2_max is None else real(k2_max, "k2_max")
-    min_spin_ratio = real(min_spin_ratio, "min_spin_ratio")
-    rules = StartRules(body, k2_max, min_spin_ratio, full=True)
-    eps, G0, k2_0, delta0, lam0, nu0 = check_start(rules, kind, eps, G0, k2_0, delta0, lam0, nu0, u0, psi0)
+@dataclass
+class FullSingle:
+    """One member's full equations on floats: right-hand side, start, events (with ``cuts``: the passages of the
+    azimuth of G through its branch cut, recorded for a member of a batch), and its output fields."""
+
+    rhs: Any
+    y0: list[float]
+    events: list[Event]
+    make_fields: Any
+    nvec: Any
+    misfire: Misfire
+    lam0: float
+
+    def finish(self, res: Solution, tau_eval: Any) -> Solution:
+        """The single-run result on ``tau_eval`` (the integrator's steps without it), lambda unwrapped along the
+        steps, a torque's failure named in the message."""
+        self.misfire.settle(res)
+        return finish_output(res, tau_eval, self.make_fields, self.lam0, self.nvec, producer="euler_poinsot.simulate")
+
+
+def full_single(body: Body, tensor: Any, tq: Any, orb: Orbit, eps: float, G0: float, k2_0: float, delta0: float,
+                lam0: float, nu0: float, *, kind: str, u0: float, psi0: float, sigma: int, formulation: str,
+                k2_max: float | None, min_spin_ratio: float, cuts: bool = False) -> FullSingle:
+    """The full equations of one member whose start is checked: the torque object ``tq`` written out with the drag
+    tensor ``tensor`` when it is one's meaning (drag plus gravity gradient), else evaluated through its protocol
+    (probed at the start: its failure raises)."""
+    generic = tensor is None
+    Im = np.zeros((3, 3)) if generic else np.asarray(tensor, dtype=float)
     A1, A2, A3 = body.A1, body.A2, body.A3
     Aall = (A1, A2, A3)
     Alab = relabel(kind, (A1, A2, A3))
@@ -401,9 +405,8 @@ def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, 
         Event(ev_spin, "slow_rotation", True, -1.0, stop_message("slow_rotation", min_spin_ratio=min_spin_ratio)),
         *extra_events,
     ]
-    res = integrate(rhs, tau_span, y0, rtol=rtol, atol=atol, method=method, dense_output=True,
-                    events=events, time_name="tau")
-    misfire.settle(res)
+    if cuts:
+        events += [Event(_n2, "_cut_up", False, 1.0, ""), Event(_n2, "_cut_down", False, -1.0, "")]
 
     def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
         G, T = GT(y)
@@ -423,6 +426,41 @@ def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, 
             out["theta"], out["phi"], out["psi"] = y[3], y[4], y[5]
         return out
 
-    return finish_output(res, tau_eval, make_fields, lam0, nvec)
+    return FullSingle(rhs, y0, events, make_fields, nvec, misfire, lam0)
 
 
+def _n2(tau: float, y: Any) -> float:
+    """The second orbital component of G (sign only) from the body-frame state (g, q) on floats."""
+    g1, g2, g3, w, x, yq, z = y[0], y[1], y[2], y[3], y[4], y[5], y[6]
+    return 2 * (x * yq + w * z) * g1 + (w * w - x * x + yq * yq - z * z) * g2 + 2 * (yq * z - w * x) * g3
+
+
+def check_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,
+               tau_eval: Any, nu0: Any, *, kind: str | None, T0: Any, orbit: Orbit | None, u0: Any, psi0: Any,
+               formulation: str, rtol: float, atol: float, k2_max: float | None, min_spin_ratio: float
+               ) -> tuple[Any, ...]:
+    """The checks of one run of the full equations (the single call of :func:`rigidbody.euler_poinsot.simulate`),
+    in its order: the torque resolved, the start values as floats.
+
+    Returns
+    -------
+    tuple
+        ``tensor, torque, orbit, kind, k2_max, min_spin_ratio, (eps, G0, k2_0, delta0, lam0, nu0), u0, psi0``:
+        the torque as an object, with the drag tensor whose meaning it has (or None).
+    """
+    check_body(body)
+    k2_0, kind = initial_kind(body, real(G0, "G0"), k2_0, kind, T0)
+    span(tau_span, "tau_span")
+    check_tau_eval(tau_eval, tau_span)
+    check_tol(rtol, atol)
+    if formulation not in ("body", "angles"):
+        raise ValueError(f"formulation must be 'body' or 'angles', got {formulation!r}")
+    orb = as_orbit(orbit)
+    tq, _ = as_torque(torque, body, orb)
+    tq.check_setup(body, orb)
+    k2_max = None if k2_max is None else real(k2_max, "k2_max")
+    min_spin_ratio = real(min_spin_ratio, "min_spin_ratio")
+    rules = StartRules(body, k2_max, min_spin_ratio, full=True)
+    start = check_start(rules, kind, eps, G0, k2_0, delta0, lam0, nu0, u0, psi0)
+    return (drag_equivalent(tq, body, orb), tq, orb, kind, k2_max, min_spin_ratio, start, real(u0, "u0"),
+            real(psi0, "psi0"))

@@ -201,7 +201,12 @@ def scalar_rhs(A: tuple[float, float, float], coefficients: tuple[float, ...], z
 # initial state and output fields, shared by one run and a batch
 # --------------------------------------------------------------------------------------------------
 def initial_state(eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, nu0: Any, e: float) -> tuple[Any, Any]:
-    """The state vector(s) and the factor ``z`` (0 where ``k2_0 = 0``); arrays of members or floats."""
+    """The state vector(s) and the factor ``z`` (0 where ``k2_0 = 0``); arrays of members, or floats (then a list
+    and a float)."""
+    if isinstance(k2_0, float) and isinstance(eps, float):  # one member: on floats
+        zf = 1.0 if k2_0 > 0.0 else 0.0
+        head = [math.log(G0), math.log(k2_0) if zf else 0.0]
+        return head + ([lam0] if eps == 0.0 else [delta0, lam0] + ([nu0] if e != 0.0 else [])), zf
     z = np.where(np.asarray(k2_0) > 0.0, 1.0, 0.0)
     with np.errstate(divide="ignore"):
         s0 = np.where(z > 0.0, np.log(np.where(z > 0.0, k2_0, 1.0)), 0.0)

@@ -15,13 +15,13 @@ from typing import Any
 import numpy as np
 
 from ..core.ode import Solution
-from ..core.validate import RESULT_ERRORS, span
+from ..core.validate import span
 from ._checks import check_tol
 from ._model import Body, check_body, check_kind
-from ._start import initial_kind
+from ._start import StartRules, check_start, initial_kind
 
-__all__ = ["FIELDS", "Members", "assemble", "batch_grid", "common_checks", "drag_batch", "is_batch", "member_inputs",
-           "one_by_one"]
+__all__ = ["FIELDS", "Members", "assemble", "batch_grid", "check_members", "common_checks", "drag_batch", "is_batch",
+           "member_inputs"]
 
 
 #: the output fields of an averaged run
@@ -103,6 +103,20 @@ def member_inputs(body: Body, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: A
     return mem
 
 
+def check_members(mem: Members, rules: StartRules, u0: Any = None, psi0: Any = None) -> None:
+    """The single run's start checks (:func:`._start.check_start`), member by member: a refused member gets the
+    single call's message (``rules.full``: those of :func:`simulate`, with the members' phases ``u0``, ``psi0``)."""
+    for i in range(mem.eps.size):
+        if i in mem.refused:
+            continue
+        phase = (float(u0[i]), float(psi0[i])) if rules.full else (0.0, 0.0)
+        try:
+            check_start(rules, mem.kind[i], float(mem.eps[i]), float(mem.G0[i]), float(mem.k2_0[i]),
+                        float(mem.delta0[i]), float(mem.lam0[i]), float(mem.nu0[i]), *phase)
+        except ValueError as exc:
+            mem.refused[i] = str(exc)
+
+
 # --------------------------------------------------------------------------------------------------
 # the public batch entries (averaged and simulate dispatch here when an input is an array)
 # --------------------------------------------------------------------------------------------------
@@ -133,8 +147,12 @@ def batch_grid(tau_eval: Any, tau_span: tuple[float, float]) -> np.ndarray:
     return te
 
 
+#: the reports a single run may carry besides its fields (optional fields of its Solution)
+_REPORTS = ("quad_error", "resonances", "crossings")
+
+
 def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: np.ndarray,
-             names: tuple[str, ...]) -> Solution:
+             names: tuple[str, ...], producer: str) -> Solution:
     """A batch Solution from single runs evaluated on ``te`` (a str: the message of a member refused at the
     start, status -1). The engine path of :func:`averaged` and the ``'angles'`` formulation of :func:`simulate`
     go member by member this way."""
@@ -149,7 +167,8 @@ def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: 
     data: dict[str, np.ndarray] = {}
     ys: np.ndarray | None = None
     events: dict[str, np.ndarray] = {}
-    extras: dict[str, np.ndarray] = {}
+    extras = {k: np.empty(B, dtype=object) for k in _REPORTS}
+    reported: set[str] = set()
     for i, s in enumerate(solutions):
         if isinstance(s, str):
             message[i] = s
@@ -175,9 +194,9 @@ def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: 
                 none.setflags(write=False)
                 events[k].fill(none)
             events[k][i] = np.asarray(v, dtype=float)
-        for k in ("quad_error", "resonances", "crossings"):  # per-run reports of the engine path
-            if k in s.__dict__:
-                extras.setdefault(k, np.empty(B, dtype=object))[i] = s.__dict__[k]
+        reported.update(k for k in _REPORTS if k in s.__dict__)
+        for k in _REPORTS:  # per-run reports (a run that records none: the declared default)
+            extras[k][i] = getattr(s, k)
     if ys is None:  # no member ran: the raw rows G, k2, n
         ys = np.full((B, 5, nt), np.nan)
     for k in names:  # fields no member produced (all refused): NaN, as a refused member's
@@ -185,31 +204,13 @@ def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: 
             data[k] = np.full((B, 3, nt), np.nan) if k == "n" else (
                 np.full((B, nt), "", dtype="<U3") if k == "kind" else np.full((B, nt), np.nan))
     fields_ = {k: v.reshape(batch_shape + v.shape[1:]) for k, v in data.items()}
-    sol = Solution("tau", te, ys.reshape(batch_shape + ys.shape[1:]), fields_, status.reshape(batch_shape),
-                   message.reshape(batch_shape), event.reshape(batch_shape),
-                   {k: v.reshape(batch_shape) for k, v in events.items()}, {}, None, nfev.reshape(batch_shape),
-                   batch_shape=batch_shape, t_final=t_final.reshape(batch_shape))
-    for k, v in extras.items():
-        setattr(sol, k, v.reshape(batch_shape))
-    return sol
-
-
-def one_by_one(call: Any, mem: Members, te: np.ndarray, names: tuple[str, ...], **per_member: np.ndarray) -> Solution:
-    """Each member by its own single call ``call(eps, G0, k2_0, delta0, lam0, nu0, tau_eval=..., **extra)``; a
-    ``ValueError`` (or a torque's output refused at the member's start) refuses that member (status -1, its
-    message)."""
-    out: list[Solution | str] = []
-    for i in range(mem.eps.size):
-        if i in mem.refused:
-            out.append(mem.refused[i])
-            continue
-        extra = {k: (v[i] if v.dtype == object else float(v[i])) for k, v in per_member.items()}
-        try:
-            out.append(call(float(mem.eps[i]), float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]),
-                            float(mem.lam0[i]), float(mem.nu0[i]), te, **extra))
-        except (ValueError, *RESULT_ERRORS) as exc:
-            out.append(str(exc))
-    return assemble(out, mem.batch_shape, te, names)
+    reports: dict[str, Any] = {k: extras[k].reshape(batch_shape) for k in sorted(reported)}
+    return Solution.build(producer=producer, time_name="tau", time=te, y=ys.reshape(batch_shape + ys.shape[1:]),
+                          fields=fields_, status=status.reshape(batch_shape), message=message.reshape(batch_shape),
+                          event=event.reshape(batch_shape),
+                          t_events={k: v.reshape(batch_shape) for k, v in events.items()},
+                          nfev=nfev.reshape(batch_shape), t_final=t_final.reshape(batch_shape),
+                          **reports)
 
 
 def common_checks(body: Any, tau_span: Any, tau_eval: Any, opts: dict[str, Any]) -> tuple[float, float, np.ndarray]:

@@ -29,10 +29,14 @@ def finish_output(
     lam0: float,
     nvec: Any,
     lam_direct: Any = None,
+    *,
+    producer: str,
+    **optional: Any,
 ) -> Solution:
     """Evaluate on tau_eval (through dense output) and unwrap lambda along the solver's own steps.
 
-    ``lam_direct(tau, y)``, when given, returns the continuous lambda at the output times (from the state itself).
+    ``lam_direct(tau, y)``, when given, returns the continuous lambda at the output times (from the state itself);
+    ``producer`` and the ``optional`` fields (``quad_error``, ``resonances``, ...) go to the result.
     """
     tau_steps = res.time
     y_steps = res.y
@@ -65,8 +69,9 @@ def finish_output(
         tau_out = te
     data = make_fields(tau_out, y_out)
     data["lam"] = lam
-    return Solution(res.time_name, tau_out, y_out, data, res.status, res.message, res.event,
-                    res.t_events, res.y_events, res.sol, res.nfev)
+    return Solution.build(producer=producer, time_name=res.time_name, time=tau_out, y=y_out, fields=data,
+                          status=res.status, message=res.message, event=res.event, t_events=res.t_events,
+                          y_events=res.y_events, dense=res.sol, nfev=res.nfev, **optional)
 
 
 class PiecewiseDense:

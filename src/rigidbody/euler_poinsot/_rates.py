@@ -9,12 +9,12 @@ import numpy as np
 
 from ..core.validate import positive, real
 from ._algebra import dk2_labelled, drag_rates_labelled, nstar_labelled
+from ._boundary import as_torque
 from ._checks import check_averaging, check_sigma
 from ._engine import Averager, TorqueAverage, error_of, mean_of
 from ._model import Body, Orbit, as_orbit, check_body, check_kind, frame_y, labelled
 from ._protocol import checked_closed_mean
 from ._state import Mean, State
-from ._torques import drag_as_torque, resolve
 
 __all__ = ["average_torque", "averaged_rates", "precession_rate"]
 
@@ -115,7 +115,6 @@ def averaged_rates(
     orb = as_orbit(orbit)
     check_averaging(method, "method")
     sigma = check_sigma(sigma)
-    what, tq = resolve(torque)
     G = real(G, "G")
     if G <= 0:
         raise ValueError(f"G must be positive, got {G}")
@@ -128,11 +127,10 @@ def averaged_rates(
         raise ValueError(f"omega0 (orbital mean motion) must be positive, got {omega0}")
     if nu is not None:
         nu = real(nu, "nu")
-    if what == "drag" and method == "auto":
-        return _rates_drag(body, tq, G, k2, delta, lam, nu, kind, orb, omega0)
-    if what == "drag":
-        tq = drag_as_torque(tq, body, orb, omega0)
-    elif omega0 != 1.0:
+    tq, drag = as_torque(torque, body, orb, omega0)
+    if drag is not None and method == "auto":
+        return _rates_drag(body, drag, G, k2, delta, lam, nu, kind, orb, omega0)
+    if drag is None and omega0 != 1.0:
         raise ValueError("omega0 applies to a drag tensor only: a torque object carries its own scale "
                          "(e.g. GravityGradient(body, orbit, omega0=...))")
     tq.check_setup(body, orb)
@@ -273,9 +271,7 @@ def average_torque(
     orb = as_orbit(orbit)
     sigma = check_sigma(sigma)
     tol = positive(tol, "tol")
-    what, tq = resolve(torque)
-    if what == "drag":
-        tq = drag_as_torque(tq, body, orb)
+    tq, _ = as_torque(torque, body, orb)
     tq.check_setup(body, orb)
     G, k2 = real(G, "G"), real(k2, "k2")
     if G <= 0:

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 from scipy import special
 
-from ..core.ode import Event, Solution, integrate
+from ..core.ode import Event, Solution
 from ..core.validate import RESULT_ERRORS
 from . import _kernel as _k
 from ._algebra import K2_SPIN_CAP, nutation_frequency
@@ -28,7 +28,7 @@ from ._resonance import resonance_crossings
 from ._state import Mean, State
 from ._stops import stop_message
 
-__all__ = ["RunOptions", "Setup", "finish_kind", "integrate_kind", "rotation_number"]
+__all__ = ["KindRun", "RunOptions", "Setup", "finish_kind", "rotation_number"]
 
 
 # --------------------------------------------------------------------------------------------------
@@ -210,7 +210,7 @@ def _axisymmetric(av: Averager, st: State, tol: float = 1e-9) -> bool:
 
 def _mean_functions(setup: Setup, kind: str, sigma: int, z: float, c: float, tau0: float, nu0: float, inu: int,
                     misfire: Misfire) -> tuple[Any, Any]:
-    """The averaged torque at a state of either chart of :func:`integrate_kind` (``mean_at``, on floats, the last
+    """The averaged torque at a state of either chart of :class:`KindRun` (``mean_at``, on floats, the last
     call remembered) and as a (State, Mean) pair (``pair``, for the drift event)."""
     exp, sqrt, sin, cos = math.exp, math.sqrt, math.sin, math.cos
     eps, orb, body, av = setup.eps, setup.orbit, setup.body, setup.averager
@@ -266,11 +266,12 @@ def _mean_functions(setup: Setup, kind: str, sigma: int, z: float, c: float, tau
     return mean_at, pair
 
 
-def integrate_kind(setup: Setup, kind: str, sigma: int, tau_span: Any, G0: float, k2_0: float,
-                    n0: Any, nu0: float, lam0: float, first_step: float | None = None) -> _Segment:
-    """Integrate the averaged system of a torque object in one kind of motion from (G0, k2_0, n0) at the
-    start of ``tau_span`` (true anomaly ``nu0`` there, continuous lambda ``lam0``). A crossing into the other kind
-    restarts here with G, T, n continuous (k2 from (5) of the other kind).
+class KindRun:
+    """The averaged system of a torque object in one kind of motion, from (G0, k2_0, n0) at ``tau0`` (true anomaly
+    ``nu0`` there, continuous lambda ``lam0``), integrated chart piece by chart piece: :meth:`piece` gives the
+    next piece's right-hand side, start, tolerances and events, :meth:`add` takes its result, :meth:`switch` moves
+    to the other chart at a chart event, :meth:`segment` joins the pieces. A crossing into the other kind restarts
+    in a new one with G, T, n continuous (k2 from (5) of the other kind).
 
     As for a drag tensor (:mod:`._kernel`) the state is ``(ln G, ln k^2, delta, lambda[, nu])`` (``nu`` on an
     eccentric orbit with eps > 0): ``rtol`` is the relative accuracy of G and k^2 however far they decay, and
@@ -279,47 +280,49 @@ def integrate_kind(setup: Setup, kind: str, sigma: int, tau_span: Any, G0: float
     equilibrium of every averaged system: the phase-dependent part of the motion vanishes), carried by the factor
     z = 0. The polar angles are singular at the poles sin(delta) = 0, where a torque may turn G (the drag tensor's
     gravity gradient does not): there (sin(delta) < _SIN_OFF, until it exceeds _SIN_ON) the direction is the unit
-    vector n instead. With ``method='DOP853'`` DOP853 runs on Python floats (``engine='python'``), its dense output
-    computed lazily."""
-    tau0, t1 = float(tau_span[0]), float(tau_span[1])
-    eps, orb, body = setup.eps, setup.orbit, setup.body
-    ecc = eps > 0.0 and orb.e != 0.0
-    av = setup.averager
-    nn = np.asarray(n0, dtype=float)
-    nn = nn / math.sqrt(float(nn @ nn))
-    st0 = State(body, kind, sigma, G0, min(k2_0, 1.0 - 1e-15), nn, None if eps == 0.0 else nu0, orb)
-    av.calibrate(st0)
-    # k2 enters as s = ln(k2 + c): c = 0 with closed forms only (a start at k2 = 0 exactly then keeps z = 0); with the
-    # engine, whose dk2 carries rounding ~eps_mach k (zero-mean O(k) products, see _engine) against a size O(k^2),
-    # c = _k2_floor(rtol): the relative accuracy rtol of k2 down to where the engine has it, absolute below
-    c = 0.0 if av.rest is None else _k2_floor(setup.rtol)
-    z = 1.0 if k2_0 > 0.0 or c > 0.0 else 0.0
-    a = labelled(body, kind)
-    ie = 1.0 / eps if eps > 0.0 else 0.0
-    inu = 4  # index of nu in the angle chart's state (5 in the vector chart's)
-    sqrt, sin = math.sqrt, math.sin
-    misfire = Misfire()  # a torque that misbehaves part-way ends the run with a status naming it
-    mean_at, pair = _mean_functions(setup, kind, sigma, z, c, tau0, nu0, inu, misfire)
-    rhs_angles, rhs_vector = _rhs_pair(mean_at, z, c, orb, ie if ecc else None, inu)
+    vector n instead. A start whose slow variables drift too fast for ``eps`` raises ValueError."""
 
-    y0: list[float] = [math.log(G0), math.log(k2_0 + c) if z else 0.0, *(float(v) for v in nn)]
-    if ecc:
-        y0.append(nu0)
-    # the polar angles pay where G turns about x3: in the orbit-averaged limit of a torque symmetric about the orbit
-    # normal (the gravity gradient, drag, ...) their rates do not depend on lambda, which drifts as one smooth
-    # state however many turns it makes; elsewhere (a field fixed in space, the orbital motion resolved) the unit
-    # vector follows the turns at least as cheaply (measured), so it is the chart throughout
-    angles = eps == 0.0 and _axisymmetric(av, st0)
-    chart = "angles" if angles and math.hypot(nn[0], nn[1]) >= _SIN_ON else "vector"
-    if chart == "angles":
-        y0[2:] = [math.acos(max(-1.0, min(1.0, float(nn[2])))), lam0]
-    _check_drift(setup, st0, av)
+    def __init__(self, setup: Setup, kind: str, sigma: int, tau0: float, G0: float, k2_0: float, n0: Any,
+                 nu0: float, lam0: float) -> None:
+        eps, orb, body = setup.eps, setup.orbit, setup.body
+        self.setup, self.kind, self.sigma, self.tau0, self.nu0 = setup, kind, sigma, float(tau0), nu0
+        self.ecc = ecc = eps > 0.0 and orb.e != 0.0
+        av = setup.averager
+        nn = np.asarray(n0, dtype=float)
+        nn = nn / math.sqrt(float(nn @ nn))
+        st0 = State(body, kind, sigma, G0, min(k2_0, 1.0 - 1e-15), nn, None if eps == 0.0 else nu0, orb)
+        av.calibrate(st0)
+        # k2 enters as s = ln(k2 + c): c = 0 with closed forms only (a start at k2 = 0 exactly then keeps z = 0); with
+        # the engine, whose dk2 carries rounding ~eps_mach k (zero-mean O(k) products, see _engine) against a size
+        # O(k^2), c = _k2_floor(rtol): the relative accuracy rtol of k2 down to where the engine has it, absolute below
+        self.c = c = 0.0 if av.rest is None else _k2_floor(setup.rtol)
+        self.z = z = 1.0 if k2_0 > 0.0 or c > 0.0 else 0.0
+        ie = 1.0 / eps if eps > 0.0 else 0.0
+        inu = 4  # index of nu in the angle chart's state (5 in the vector chart's)
+        self.misfire = Misfire()  # a torque that misbehaves part-way ends the run with a status naming it
+        mean_at, self.pair = _mean_functions(setup, kind, sigma, z, c, self.tau0, nu0, inu, self.misfire)
+        self.rhs = dict(zip(("angles", "vector"), _rhs_pair(mean_at, z, c, orb, ie if ecc else None, inu)))
+        y0: list[float] = [math.log(G0), math.log(k2_0 + c) if z else 0.0, *(float(v) for v in nn)]
+        if ecc:
+            y0.append(nu0)
+        # the polar angles pay where G turns about x3: in the orbit-averaged limit of a torque symmetric about the
+        # orbit normal (the gravity gradient, drag, ...) their rates do not depend on lambda, which drifts as one
+        # smooth state however many turns it makes; elsewhere (a field fixed in space, the orbital motion resolved)
+        # the unit vector follows the turns at least as cheaply (measured), so it is the chart throughout
+        self.angles = eps == 0.0 and _axisymmetric(av, st0)
+        self.chart = "angles" if self.angles and math.hypot(nn[0], nn[1]) >= _SIN_ON else "vector"
+        if self.chart == "angles":
+            y0[2:] = [math.acos(max(-1.0, min(1.0, float(nn[2])))), lam0]
+        self.y0, self.lam_s = y0, lam0
+        _check_drift(setup, st0, av)
+        self.common_events = _common_events(setup, labelled(body, kind), z, c, ie)
+        self.pieces: list[_Chart] = []
 
-    common_events = _common_events(setup, a, z, c, ie)
-
-    def chart_events(chart: str) -> list[Event]:
-        evs = list(common_events)
-        if eps > 0.0 and setup.drift_tol is not None:
+    def events(self) -> list[Event]:
+        """The events of the current chart: the common stops, the drift per period, the chart switch."""
+        setup, chart, pair = self.setup, self.chart, self.pair
+        evs = list(self.common_events)
+        if setup.eps > 0.0 and setup.drift_tol is not None:
             tol = setup.drift_tol
 
             def drift(t: float, y: Any) -> float:
@@ -328,30 +331,35 @@ def integrate_kind(setup: Setup, kind: str, sigma: int, tau_span: Any, G0: float
 
             evs.append(Event(drift, "fast_drift", True, 1.0, stop_message("fast_drift", drift_tol=tol)))
         if chart == "angles":
-            evs.append(Event(lambda t, y: sin(y[2]) - _SIN_OFF, "chart", True, -1.0))
-        elif angles:
-            evs.append(Event(lambda t, y: math.hypot(y[2], y[3]) / sqrt(y[2] ** 2 + y[3] ** 2 + y[4] ** 2) - _SIN_ON,
-                             "chart", True, 1.0))
+            evs.append(Event(lambda t, y: math.sin(y[2]) - _SIN_OFF, "chart", True, -1.0))
+        elif self.angles:
+            evs.append(Event(lambda t, y: math.hypot(y[2], y[3]) / math.sqrt(y[2] ** 2 + y[3] ** 2 + y[4] ** 2)
+                             - _SIN_ON, "chart", True, 1.0))
         return evs
 
-    py = setup.method == "DOP853"
-    pieces: list[_Chart] = []
-    lam_s, t_s, step = lam0, tau0, first_step
-    while True:
+    def piece(self) -> tuple[Any, list[float], Any, Any, list[Event]]:
+        """The next chart piece: right-hand side (on floats), start, ``rtol``, ``atol`` and events (``rtol`` at the
+        floor of solve_ivp's methods other than DOP853)."""
         rt: Any
-        rt, at = _tolerances(setup.rtol, chart, ecc)
-        raw = integrate(rhs_angles if chart == "angles" else rhs_vector, (t_s, t1), y0,
-                        rtol=rt if py else _k.RTOL_FLOOR, atol=at, method=setup.method, dense_output=True,
-                        events=chart_events(chart), time_name="tau", engine="python" if py else "scipy",
-                        first_step=step if py else None)
-        misfire.settle(raw)
-        piece = _Chart(chart, raw, z, c, ecc, lam_s)
-        pieces.append(piece)
-        if raw.event != "chart" or len(pieces) >= _MAX_CHARTS:
-            break
-        chart, y0, t_s, lam_s = _switch(piece, ecc)
-        step = raw.last_step if py else None
-    return _Segment(_join_charts(pieces), setup, kind, sigma, tau0, nu0, pieces)
+        rt, at = _tolerances(self.setup.rtol, self.chart, self.ecc)
+        if self.setup.method != "DOP853":
+            rt = _k.RTOL_FLOOR
+        return self.rhs[self.chart], self.y0, rt, at, self.events()
+
+    def add(self, raw: Solution) -> bool:
+        """Take a chart piece's result (a torque's failure named in its message); whether the segment goes on in
+        the other chart (a chart event, below :data:`_MAX_CHARTS` pieces)."""
+        self.misfire.settle(raw)
+        self.pieces.append(_Chart(self.chart, raw, self.z, self.c, self.ecc, self.lam_s))
+        return raw.event == "chart" and len(self.pieces) < _MAX_CHARTS
+
+    def switch(self) -> None:
+        """Continue in the other chart from the chart event."""
+        self.chart, self.y0, _, self.lam_s = _switch(self.pieces[-1], self.ecc)
+
+    def segment(self) -> _Segment:
+        """The segment of this kind of motion, its chart pieces joined."""
+        return _Segment(_join_charts(self.pieces), self.setup, self.kind, self.sigma, self.tau0, self.nu0, self.pieces)
 
 
 def _rhs_pair(mean_at: Any, z: float, c: float, orb: Orbit, ie: float | None, inu: int) -> tuple[Any, Any]:
@@ -461,10 +469,9 @@ def _join_charts(pieces: list[_Chart]) -> Solution:
                    f"{_SIN_OFF:g}..{_SIN_ON:g}); integration stopped")
     dense = PiecewiseDense([p.raw.time[0] for p in pieces], [lambda t, p=p: p.common(p.raw.sol(t)) for p in pieces],
                             n_c)
-    res = Solution(last.time_name, np.concatenate(times), np.concatenate(ys, axis=1), {}, status, message, event, te,
-                   ye, dense, sum(p.raw.nfev for p in pieces))
-    res.last_step = last.last_step
-    return res
+    return Solution.build(producer="euler_poinsot.averaged", time_name=last.time_name, time=np.concatenate(times),
+                          y=np.concatenate(ys, axis=1), status=status, message=message, event=event, t_events=te,
+                          y_events=ye, dense=dense, nfev=sum(p.raw.nfev for p in pieces), last_step=last.last_step)
 
 
 def rotation_number(body: Body, kind: str, k2: Any) -> Any:
@@ -539,7 +546,9 @@ def finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
             nu = (tau - seg.tau0) / eps + seg.nu0
         else:
             nu = y[5]
-        return _slow_fields(A, y, nvec, nu)
+        out = _slow_fields(A, y, nvec, nu)
+        out["kind"], out["sigma"] = np.full(tau.shape, seg.kind), np.full(tau.shape, seg.sigma)
+        return out
 
     resonances = _resonances(seg) if eps > 0.0 and setup.resonance_tol is not None else []
     status, message, event = res.status, res.message, res.event
@@ -552,10 +561,10 @@ def finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
         # an order too high to compute its coefficient, and a bound that does not show it harmless
         message = stop_message("resonance_bound" if cut["bound"] else "resonance", tau=cut["tau"], rho=cut["rho"],
                                jump=cut["jump"], resonance_tol=setup.resonance_tol)
-        res = Solution(res.time_name, tcut, ycut, {}, status, message, event, res.t_events, res.y_events,
-                       res.sol, res.nfev)
+        res = Solution.build(producer="euler_poinsot.averaged", time_name=res.time_name, time=tcut, y=ycut,
+                             status=status, message=message, event=event, t_events=res.t_events,
+                             y_events=res.y_events, dense=res.sol, nfev=res.nfev)
         resonances = [r for r in resonances if r["tau"] <= cut["tau"]]
-    out = finish_output(res, tau_eval, make_fields, lam0, nvec, lambda tau, y: seg.lam(tau))
     # the quadrature error along the run (relative to the size of the averaged torque), at the first and the
     # last state (each estimate costs a few right-hand sides on the calibration grid)
     qerr = 0.0
@@ -571,19 +580,8 @@ def finish_kind(seg: _Segment, tau_eval: Any, lam0: float) -> Solution:
             GT = st.G / max(st.T, 1e-300)
             size = float(np.abs(m.L).max()) + abs(m.dT) * GT + 1e-300
             qerr = max(qerr, max(float(np.abs(e.L).max()), abs(e.dT) * GT, abs(e.dk2) * st.G) / size)
-    data = {f: getattr(out, f) for f in out.fields}
-    data["kind"] = np.full(out.time.shape, seg.kind)
-    data["sigma"] = np.full(out.time.shape, seg.sigma)
-    return _with(out, data, {"quad_error": qerr, "resonances": resonances})
-
-
-def _with(sol: Solution, data: dict[str, Any], extra: dict[str, Any]) -> Solution:
-    """A Solution with extra scalar attributes (kept out of the array fields)."""
-    new = Solution(sol.time_name, sol.time, sol.y, data, sol.status, sol.message, sol.event, sol.t_events,
-                   sol.y_events, sol.sol, sol.nfev)
-    for k, v in extra.items():
-        setattr(new, k, v)
-    return new
+    return finish_output(res, tau_eval, make_fields, lam0, nvec, lambda tau, y: seg.lam(tau),
+                         producer="euler_poinsot.averaged", quad_error=qerr, resonances=resonances)
 
 
 #: a slow state and its means in a torque object's right-hand side: G, k2, n1, n2, n3, nu, L1, L2, L3, dT, dk2

@@ -70,12 +70,12 @@ import numpy as np
 
 from ..core import euler
 from ..core.validate import real
+from ._boundary import as_torque
 from ._engine import nu_nodes
 from ._model import Body, Orbit, as_orbit, check_body
 from ._protocol import evaluate
 from ._regions import ARCS, REGIONS, Arc, Region, check_arc, check_region, next_arc, region_arcs
 from ._state import frame
-from ._torques import drag_as_torque, resolve
 
 __all__ = ["ARCS", "REGIONS", "Separatrix", "SeparatrixCrossing", "SeparatrixLimits", "separatrix_crossing",
            "separatrix_limits"]
@@ -180,9 +180,7 @@ class Separatrix:
 # --------------------------------------------------------------------------------------------------
 def _torque_fn(torque: Any, body: Body, orbit: Orbit) -> TorqueFn:
     """The whole perturbation as a torque object: a drag tensor means drag plus the gravity-gradient torque."""
-    what, tq = resolve(torque)
-    if what == "drag":
-        tq = drag_as_torque(tq, body, orbit)
+    tq, _ = as_torque(torque, body, orbit)
     tq.check_setup(body, orbit)
     return tq
 
@@ -259,10 +257,10 @@ def _arc_drifts(sep: Separatrix, torque: TorqueFn, n: np.ndarray, nus: np.ndarra
     return out
 
 
-def _captures(kind: str, loop: float, scale: float) -> bool:
-    """A region keeps the motions that enter it when its loop drift points away from the separatrix."""
-    tol = 1e-12 * scale
-    return loop < -tol if kind == "max" else loop > tol
+def _captures(region: Region, loop: float, scale: float) -> bool:
+    """A region keeps the motions that enter it when its loop drift points away from the separatrix (into h of its
+    sign)."""
+    return region.h_sign * loop > 1e-12 * scale
 
 
 def _propagate(drifts: dict[Arc, float], source: Region, first: int = 0, max_steps: int = 200, floor: float = 0.0
@@ -275,14 +273,14 @@ def _propagate(drifts: dict[Arc, float], source: Region, first: int = 0, max_ste
     if scale <= floor:
         return dict.fromkeys(REGIONS, 0.0), 0.0, False
     loops = {r: sum(drifts[a] for a in region_arcs(r)) for r in REGIONS}
-    kind = source[0]
+    source = Region(*source)
     a0 = region_arcs(source)[first]
     loop = loops[source]
     probs = dict.fromkeys(REGIONS, 0.0)
-    if scale == 0.0 or (kind == "max" and not loop > 1e-12 * scale) or (kind == "min" and not loop < -1e-12 * scale):
+    if scale == 0.0 or not -source.h_sign * loop > 1e-12 * scale:
         return probs, 0.0, False  # the source region does not approach the separatrix: nothing crosses
     p1, p2 = drifts[a0], loop
-    if kind == "min":  # h > 0; crossing in this loop iff h + min(p1, p2) <= 0
+    if not source.about_a1:  # h > 0; crossing in this loop iff h + min(p1, p2) <= 0
         m = min(p1, p2)
         pieces = [(a0, -m - abs(loop), -m)]
     else:  # h < 0; crossing iff h + max(p1, p2) >= 0
@@ -298,12 +296,12 @@ def _propagate(drifts: dict[Arc, float], source: Region, first: int = 0, max_ste
                 if phi_ - plo <= 0.0:
                     continue
                 h_side = -1.0 if phi_ <= 0.0 else 1.0
-                region: Region = ("max", arc[0]) if h_side < 0 else ("min", arc[1])
+                region = Region.beside(arc, h_side)
                 nxt = next_arc(arc, h_side)
                 q1, q2 = drifts[nxt], loops[region]
-                if _captures(region[0], q2, scale) and (
-                    (region[0] == "max" and phi_ + max(q1, q2) < 0.0)
-                    or (region[0] == "min" and plo + min(q1, q2) > 0.0)
+                if _captures(region, q2, scale) and (
+                    (region.about_a1 and phi_ + max(q1, q2) < 0.0)
+                    or (not region.about_a1 and plo + min(q1, q2) > 0.0)
                 ):
                     probs[region] += (phi_ - plo) / total
                     continue
@@ -364,13 +362,13 @@ class SeparatrixCrossing:
     def capturing(self) -> tuple[Region, ...]:
         """The regions that keep the motions entering them (loop drift away from the separatrix)."""
         scale = max(abs(v) for v in self.drifts.values()) if self.drifts else 0.0
-        return tuple(r for r in REGIONS if _captures(r[0], self.loop_drifts[r], scale))
+        return tuple(r for r in REGIONS if _captures(r, self.loop_drifts[r], scale))
 
     def most_probable(self) -> Region:
         """The region of largest capture probability (ties: ``sigma = +1`` first, then ``'max'``)."""
         if not self.crosses:
             raise ValueError(f"motions of {self.source} do not cross the separatrix: no capture")
-        return max(REGIONS, key=lambda r: (round(self.probabilities[r], 12), r[1], r[0] == "max"))
+        return max(REGIONS, key=lambda r: (round(self.probabilities[r], 12), r.sigma, r.about_a1))
 
 
 def separatrix_crossing(
@@ -582,7 +580,7 @@ def separatrix_limits(
         a, b = region_arcs(reg)
         s = {q: 0.25 * (arc_J[a][q] + arc_J[b][q]) for q in ("dG", "dT", "dh", "dn")}
         # D = G^2/2T: dD = -(2 A2^2/G^2) dh at the separatrix; k^2 decreases with D for 'max', increases for 'min'
-        sign = -1.0 if reg[0] == "max" else 1.0
+        sign = float(reg.h_sign)
         s["dk2"] = sign * dk2_dD * (-2.0 * A2 * A2 / (Gf * Gf)) * s["dh"]
         slope[reg] = {q: (float(v) if np.ndim(v) == 0 else np.asarray(v)) for q, v in s.items()}
     return SeparatrixLimits(float(lim["dG"]), float(lim["dT"]), np.asarray(lim["dn"]), 0.0, slope)

@@ -7,7 +7,7 @@ from typing import Any
 
 from ..core.ode import Solution
 from ._batch import simulate_batch
-from ._full import run_full
+from ._fullrun import run_full
 from ._members import is_batch
 from ._model import Body, Orbit
 from ._options import simulate_options

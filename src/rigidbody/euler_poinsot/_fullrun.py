@@ -1,6 +1,8 @@
-r"""A batch of full (unaveraged) motions integrated together: the body-frame formulation over members.
+r"""The full (unaveraged) equations as a problem for the piecewise driver: one run and a batch.
 
-Each member is the ``formulation='body'`` run of :func:`rigidbody.euler_poinsot.simulate`: Euler's equations
+:func:`run_full` is the single call of :func:`rigidbody.euler_poinsot.simulate` (a batch of one, on the scalar
+integrator), :func:`run_full_members` runs any members. A batch in the ``formulation='body'`` integrates its
+members together: Euler's equations
 for the body components :math:`\mathbf g` of :math:`\mathbf G` and the attitude quaternion (body -> orbital
 axes), in the slow time :math:`\tau`, with :math:`d\mathbf g/d\tau = \varepsilon^{-2}\mathbf g\times
 \boldsymbol\omega + \mathbf M`. The members share the body, the torque, the orbit, ``tau_span`` and the
@@ -22,28 +24,32 @@ from typing import Any
 
 import numpy as np
 
-from ..core.batch import integrate_batch, member_records
 from ..core.euler import dcm_from_unit_quat
 from ..core.ode import Event, Solution
+from ..core.piecewise import MemberRecords, PieceEnd, PieceSpec, Stop, run_pieces
 from ..core.validate import result_message
 from . import _kernel as _k
-from ._full import initial_state
-from ._members import Members
+from ._algebra import K2_SPIN_CAP
+from ._full import FullSingle, check_full, full_single, initial_state
+from ._members import Members, assemble
 from ._model import Body, Orbit
 from ._protocol import ROLE, evaluate
 from ._stops import stop_message
 
-__all__ = ["FullRun", "full_batch"]
+__all__ = ["FullRun", "run_full", "run_full_members"]
+
+PRODUCER = "euler_poinsot.simulate"
 
 
 @dataclass
 class FullRun:
-    """What the members share: body, torque (``what`` 'drag' with the tensor, or 'torque' with the object),
+    """What the members share: body, the drag tensor whose meaning the torque has (its formula written out) or None,
+    the torque object,
     orbit, the initial kind of each member (an array) and the sense of motion, tolerances and the terminal
     checks."""
 
     body: Body
-    what: str
+    tensor: np.ndarray | None
     torque: Any
     orbit: Orbit
     kind: np.ndarray
@@ -53,6 +59,8 @@ class FullRun:
     k2_max: float | None
     min_spin_ratio: float
     spin_cap: float = 1.0
+    formulation: str = "body"
+    method: str = "DOP853"
 
 
 def _osculating(A: tuple[float, float, float], D: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -75,47 +83,65 @@ def _k2_initial_kind(A1: Any, A2: float, A3: Any, D: np.ndarray) -> np.ndarray:
         return np.where(den > 0.0, (A2 - A3) * (A1 - D) / np.where(den > 0.0, den, 1.0), np.inf)
 
 
-def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau_span: tuple[float, float],
-               te: np.ndarray) -> Solution:
-    """The batch branch of :func:`rigidbody.euler_poinsot.simulate` (flat per-member arrays in ``mem``)."""
-    body, orb = run.body, run.orbit
-    A = (body.A1, body.A2, body.A3)
-    A1, A2, A3 = A
-    e = orb.e
-    B = mem.eps.size
-    nt = te.size
-    t0, t1 = float(tau_span[0]), float(tau_span[1])
-    ns = 7 if e == 0.0 else 8
-    status, message, event, nfev, t_final = member_records(B, t0)
-    Y = np.full((B, ns, nt), np.nan)
-    for i, msg in mem.refused.items():
-        message[i] = msg
-    idx = np.array([i for i in range(B) if i not in mem.refused], dtype=int)
-    none = np.empty(0)
-    none.setflags(write=False)
-    t_ev = {name: np.empty(B, dtype=object) for name in ("separatrix", "slow_rotation")}
-    for arr in t_ev.values():
-        arr.fill(none)
-    lam_shift = np.zeros((B, nt))
-    if idx.size:
-        y0 = _initial_states(run, mem, idx, u0, psi0, ns)
+class FullProblem:
+    """The full equations of the members of ``mem`` as a problem for :func:`rigidbody.core.piecewise.run_pieces`:
+    one piece per member, ended by the end of the span or a terminal event (none is continued). ``te``: the common
+    output grid of a batch, or the ``tau_eval`` of one run (``single``). The body-frame members of a batch share
+    the mode ``'body'`` (vectorised together, :func:`_rhs`); the ``'angles'`` formulation and a ``method`` other
+    than DOP853 give each member a mode of its own (the scalar integrator, member by member)."""
+
+    continues: tuple[str, ...] = ()
+
+    def __init__(self, run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, te: Any, single: bool
+                 ) -> None:
+        self.run, self.mem, self.u0, self.psi0, self.te, self.single = run, mem, u0, psi0, te, single
+        B = mem.eps.size
+        self.ns = 7 if run.orbit.e == 0.0 else 8
+        self.solutions: list[Solution | str] = [mem.refused.get(i, "") for i in range(B)]
+        self.t_bad = np.full(B, np.nan)
+        self.vector = run.formulation == "body" and run.method == "DOP853" and not single
+        if self.vector:
+            nt = te.size
+            self.Y = np.full((B, self.ns, nt), np.nan)
+            self.lam_shift = np.zeros((B, nt))
+            none = np.empty(0)
+            none.setflags(write=False)
+            self.t_ev = {name: np.empty(B, dtype=object) for name in ("separatrix", "slow_rotation")}
+            for arr in self.t_ev.values():
+                arr.fill(none)
+        self.singles: dict[int, FullSingle] = {}
+
+    def mode(self, i: int) -> Any:
+        return "body" if self.vector else ("one", i)
+
+    def piece(self, mode: Any, members: list[int], scalar: bool, tau: np.ndarray) -> PieceSpec:
+        run, mem = self.run, self.mem
+        if scalar:
+            i = members[0]
+            one = full_single(run.body, run.tensor, run.torque, run.orbit, float(mem.eps[i]), float(mem.G0[i]),
+                              float(mem.k2_0[i]), float(mem.delta0[i]), float(mem.lam0[i]), float(mem.nu0[i]),
+                              kind=str(run.kind[i]), u0=float(self.u0[i]), psi0=float(self.psi0[i]), sigma=run.sigma,
+                              formulation=run.formulation, k2_max=run.k2_max, min_spin_ratio=run.min_spin_ratio,
+                              cuts=self.vector)
+            self.singles[i] = one
+            return PieceSpec(one.rhs, one.y0, run.rtol, run.atol, one.events, (),
+                             self.te if self.vector else None, True, run.method)
+        return self._vector_piece(np.array(members))
+
+    def _vector_piece(self, idx: np.ndarray) -> PieceSpec:
+        run, mem = self.run, self.mem
+        A1, A2, A3 = A = (run.body.A1, run.body.A2, run.body.A3)
+        y0 = _initial_states(run, mem, idx, self.u0, self.psi0, self.ns)
         ie = 1.0 / mem.eps[idx]
         mx = run.kind[idx] == "max"  # the labelled moments A1, A3 of each member's initial kind (the k2_max stop)
         # the last arg: each member's index, to note where its torque turned non-finite (t_bad; see below)
         args = (ie, ie * ie, mem.nu0[idx], np.where(mx, A1, A3), np.where(mx, A3, A1), idx.astype(float))
-        t_bad = np.full(B, np.nan)
         Ab = np.array(A)
-        rhs = _rhs(run, t_bad)
 
         def GD(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             g2 = y[:, 0:3] ** 2
             G2 = g2.sum(axis=1)
             return np.sqrt(G2), G2 / (g2 / Ab).sum(axis=1)
-
-        def n_of(y: np.ndarray) -> np.ndarray:
-            q = y[:, 3:7] / np.linalg.norm(y[:, 3:7], axis=1, keepdims=True)
-            g = np.einsum("mij,mj->mi", dcm_from_unit_quat(*q.T), y[:, 0:3])
-            return g / np.sqrt((y[:, 0:3] ** 2).sum(axis=1))[:, None]
 
         # the two cut events are evaluated in turn on the same arrays: one evaluation serves both (the cache holds
         # the arrays themselves, so their ids cannot be reused while cached)
@@ -123,7 +149,7 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
 
         def n2(t: np.ndarray, y: np.ndarray, *a: np.ndarray) -> np.ndarray:
             if ncache[0] is not y:
-                ncache[:] = [y, n_of(y)[:, 1]]
+                ncache[:] = [y, _n_of(y)[:, 1]]
             return ncache[1]
 
         r = run.min_spin_ratio
@@ -149,28 +175,75 @@ def full_batch(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau
         # passages of the azimuth through its branch cut (n2 = 0 with n1 < 0), both ways
         events = [ev_sep, Event(ev_spin, "slow_rotation", True, -1.0, stop_message("slow_rotation", min_spin_ratio=r)),
                   Event(n2, "_cut_up", False, 1.0, ""), Event(n2, "_cut_down", False, -1.0, "")]
-        sol = integrate_batch(rhs, (t0, t1), y0, t_eval=te, rtol=run.rtol, atol=run.atol, events=events, args=args,
-                              time_name="tau")
-        Y[idx] = sol.y
-        status[idx] = sol.status
-        message[idx] = sol.message
-        event[idx] = sol.event
-        nfev[idx] = sol.nfev
-        t_final[idx] = sol.t_final
-        for name in t_ev:
-            t_ev[name][idx] = sol.t_events[name]
+        return PieceSpec(_rhs(run, self.t_bad), y0, run.rtol, run.atol, events, args, self.te)
+
+    def record(self, mode: Any, members: list[int], sol: Solution, end: PieceEnd) -> None:
+        if not self.vector:  # one member by the single call's route: its result on te (or its steps)
+            i = members[0]
+            self.solutions[i] = self.singles.pop(i).finish(sol, self.te)
+            return
+        idx = np.array(members)
+        te = self.te
+        if sol.batch_shape:
+            self.Y[idx] = sol.y
+            tev, yev = sol.t_events, sol.y_events
+        else:  # a member alone in the batch: the scalar integrator, its samples those of te it reached
+            self.singles.pop(members[0]).misfire.settle(sol)
+            end.message[0] = str(sol.message)
+            self.Y[idx[0]][:, np.searchsorted(te, sol.time)] = sol.y
+            tev = {k: _one(v) for k, v in sol.t_events.items()}
+            yev = {k: _one(v) for k, v in sol.y_events.items()}
+        for name in self.t_ev:
+            self.t_ev[name][idx] = tev[name]
+        _cut_shifts(tev, yev, idx, te, self.lam_shift)
+
+    def on_event(self, mode: Any, i: int, j: int, end: PieceEnd) -> Stop:
+        raise AssertionError("the full equations continue no event")  # continues is empty: never called
+
+    def result(self, rec: MemberRecords) -> Solution:
+        mem = self.mem
+        shape = mem.batch_shape
+        if self.single:
+            out = self.solutions[0]
+            assert isinstance(out, Solution)
+            return out
+        if not self.vector:
+            names = ("G", "T", "k2", "delta", "lam", "nu", "n", "kind", "sigma")
+            return assemble(self.solutions, shape, self.te, names, PRODUCER)
         # a member whose torque turned non-finite where it failed: the message names the torque and the time
-        why = result_message(getattr(run.torque, "fun", run.torque), (3,), "non-finite values (NaN or inf)", ROLE)
-        for i in idx[(status[idx] == -1) & (t_bad[idx] >= t_final[idx])].tolist():
-            message[i] = stop_message("torque", tau=t_bad[i], why=why)
-        _cut_shifts(sol, idx, n_of, te, lam_shift)
-    data = _fields(A, Y, lam_shift, mem, te, e)
-    shape = mem.batch_shape
-    data = {k: v.reshape(shape + v.shape[1:]) for k, v in data.items()}
-    t_events = {k: v.reshape(shape) for k, v in t_ev.items()}
-    return Solution("tau", te, Y.reshape(shape + Y.shape[1:]), data, status.reshape(shape), message.reshape(shape),
-                    event.reshape(shape), t_events, {}, None, nfev.reshape(shape), batch_shape=shape,
-                    t_final=t_final.reshape(shape))
+        why = result_message(getattr(self.run.torque, "fun", self.run.torque), (3,), "non-finite values (NaN or inf)",
+                             ROLE)
+        for i in np.nonzero((rec.status == -1) & (self.t_bad >= rec.t_final))[0].tolist():
+            rec.message[i] = stop_message("torque", tau=self.t_bad[i], why=why)
+        data = _fields((self.run.body.A1, self.run.body.A2, self.run.body.A3), self.Y, self.lam_shift, mem, self.te,
+                       self.run.orbit.e)
+        data = {k: v.reshape(shape + v.shape[1:]) for k, v in data.items()}
+        return Solution.build(producer=PRODUCER, time_name="tau", time=self.te,
+                              y=self.Y.reshape(shape + self.Y.shape[1:]), fields=data, status=rec.status.reshape(shape),
+                              message=rec.message.reshape(shape), event=rec.event.reshape(shape),
+                              t_events={k: v.reshape(shape) for k, v in self.t_ev.items()},
+                              nfev=rec.nfev.reshape(shape), t_final=rec.t_final.reshape(shape))
+
+
+def run_full_members(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau_span: tuple[float, float],
+                     te: Any, single: bool) -> Solution:
+    """Integrate the full equations of the members ``mem`` over ``tau_span`` through the piecewise driver
+    (``mem.refused``: members that end at once with status -1 and their message; ``single``: one run, whose errors
+    raise and whose output is on ``te``, the call's ``tau_eval``, or the integrator's steps)."""
+    pb = FullProblem(run, mem, u0, psi0, te, single)
+    rec = MemberRecords.start([pb.mode(i) for i in range(mem.eps.size)], float(tau_span[0]), mem.refused)
+    run_pieces(pb, rec, float(tau_span[1]), strict=single)
+    if not pb.vector:
+        for i in range(mem.eps.size):  # a member the driver ended before its piece ran (its start failed)
+            if rec.mode[i] is None and pb.solutions[i] == "" and rec.status[i] == -1:
+                pb.solutions[i] = str(rec.message[i])
+    return pb.result(rec)
+
+
+def _one(v: Any) -> np.ndarray:
+    out = np.empty(1, dtype=object)
+    out[0] = np.asarray(v, dtype=float)
+    return out
 
 
 def _initial_states(run: FullRun, mem: Members, idx: np.ndarray, u0: np.ndarray, psi0: np.ndarray,
@@ -186,13 +259,20 @@ def _initial_states(run: FullRun, mem: Members, idx: np.ndarray, u0: np.ndarray,
     return y0
 
 
-def _cut_shifts(sol: Solution, idx: np.ndarray, n_of: Any, te: np.ndarray, lam_shift: np.ndarray) -> None:
+def _n_of(y: np.ndarray) -> np.ndarray:
+    """The unit vector of G in the orbital axes from body-frame states ``y`` of shape ``(m, n_state)``."""
+    q = y[:, 3:7] / np.linalg.norm(y[:, 3:7], axis=1, keepdims=True)
+    g = np.einsum("mij,mj->mi", dcm_from_unit_quat(*q.T), y[:, 0:3])
+    return g / np.sqrt((y[:, 0:3] ** 2).sum(axis=1))[:, None]
+
+
+def _cut_shifts(t_events: Any, y_events: Any, idx: np.ndarray, te: np.ndarray, lam_shift: np.ndarray) -> None:
     """Add 2 pi to lambda of each member at every passage of its azimuth through the branch cut (n2 = 0, n1 < 0)."""
     for j, i in enumerate(idx):
         for name, sign in (("_cut_up", -1.0), ("_cut_down", 1.0)):
-            tc, yc = sol.t_events[name][j], sol.y_events[name][j]
+            tc, yc = np.asarray(t_events[name][j], dtype=float), np.asarray(y_events[name][j], dtype=float)
             if tc.size:
-                tc = tc[n_of(yc)[:, 0] < 0.0]
+                tc = tc[_n_of(yc.reshape(tc.size, -1))[:, 0] < 0.0]
                 lam_shift[i] += sign * 2.0 * math.pi * (tc[:, None] <= te[None, :]).sum(axis=0)
 
 
@@ -201,9 +281,9 @@ def _rhs(run: FullRun, t_bad: np.ndarray) -> Any:
     torque object through its vectorised protocol; where it turns non-finite, the time is noted in ``t_bad``)."""
     A1, A2, A3 = run.body.A1, run.body.A2, run.body.A3
     e = run.orbit.e
-    drag = run.what == "drag"
+    drag = run.tensor is not None
     if drag:
-        (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = np.asarray(run.torque.I, dtype=float).tolist()
+        (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = np.asarray(run.tensor, dtype=float).tolist()
 
     def rhs(t: np.ndarray, y: np.ndarray, ie: np.ndarray, ie2: np.ndarray, nu0: np.ndarray, *lab: np.ndarray
             ) -> np.ndarray:
@@ -277,3 +357,22 @@ def _fields(A: tuple[float, float, float], Y: np.ndarray, lam_shift: np.ndarray,
         nu = Y[:, 7]
     return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[:, 2], -1.0, 1.0)), "n": n, "nu": nu,
             "kind": kinds, "sigma": sig, "lam": lam, "g": g, "q": qn}
+
+
+def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,
+             tau_eval: Any, nu0: Any, *, kind: str | None, T0: Any, orbit: Orbit | None, u0: Any, psi0: Any,
+             sigma: int, formulation: str, rtol: float, atol: float, method: str, k2_max: float | None,
+             min_spin_ratio: float) -> Solution:
+    """One run of the full equations (the single call of :func:`rigidbody.euler_poinsot.simulate`): the inputs
+    checked (:func:`._full.check_full`), then a batch of one through the driver."""
+    tensor, tq, orb, kind, k2_max, min_spin_ratio, start, u0, psi0 = check_full(
+        body, torque, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, kind=kind, T0=T0, orbit=orbit, u0=u0,
+        psi0=psi0, formulation=formulation, rtol=rtol, atol=atol, k2_max=k2_max, min_spin_ratio=min_spin_ratio)
+    one = np.ones(1)
+    eps, G0, k2_0, delta0, lam0, nu0 = start
+    mem = Members((), eps * one, G0 * one, k2_0 * one, delta0 * one, lam0 * one, nu0 * one,
+                  np.array([kind], dtype=object))
+    run = FullRun(body, tensor, tq, orb, mem.kind, sigma, rtol, atol, k2_max, min_spin_ratio,
+                  K2_SPIN_CAP if k2_max is None else 1.0, formulation, method)
+    return run_full_members(run, mem, u0 * one, psi0 * one, (float(tau_span[0]), float(tau_span[1])), tau_eval,
+                            True)
