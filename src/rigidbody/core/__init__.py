@@ -12,6 +12,9 @@
 :mod:`rigidbody.core.batch`
     Many independent systems integrated together (vectorised DOP853 with per-member step control,
     events and status).
+:mod:`rigidbody.core.piecewise`
+    One driver for runs made of pieces (modes, terminal events that continue in another mode): members grouped
+    by mode, a group of one on the scalar integrator, a larger group on the vectorised one.
 :mod:`rigidbody.core.dop853`
     The numerics both integrators share: the DOP853 coefficients, error norm, step-size controller,
     initial step and event rules.
@@ -25,6 +28,6 @@
     Validation of scalar user input (clear ``TypeError``/``ValueError`` naming the parameter).
 """
 
-from . import averaging, batch, dop853, elliptic, euler, kernel, ode, quadform, validate
+from . import averaging, batch, dop853, elliptic, euler, kernel, ode, piecewise, quadform, validate
 
-__all__ = ["averaging", "batch", "dop853", "elliptic", "euler", "kernel", "ode", "quadform", "validate"]
+__all__ = ["averaging", "batch", "dop853", "elliptic", "euler", "kernel", "ode", "piecewise", "quadform", "validate"]

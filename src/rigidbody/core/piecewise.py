@@ -41,6 +41,11 @@ class PieceSpec:
     :func:`rigidbody.core.batch.integrate_batch` takes it). ``t_eval`` is the output grid (None: the integrator's
     steps, one member only); ``dense``: a dense output (one member only); ``method``: another
     :func:`scipy.integrate.solve_ivp` method for one member (a group uses DOP853).
+
+    See Also
+    --------
+    PiecewiseProblem : its ``piece`` method returns one.
+    run_pieces : the driver that integrates it.
     """
 
     fun: Any
@@ -58,7 +63,12 @@ class PieceSpec:
 class PieceEnd:
     """How a piece ended for each member of its group (index ``j`` in the group): status, message, terminal
     event, the time and raw state at the end, the state at each event, the step size reached and the function
-    evaluations, read alike from a single-run and a batch :class:`Solution`."""
+    evaluations, read alike from a single-run and a batch :class:`Solution`.
+
+    See Also
+    --------
+    PiecewiseProblem : its ``record`` and ``on_event`` methods receive one.
+    """
 
     status: list[int]
     message: list[str]
@@ -71,7 +81,20 @@ class PieceEnd:
 
     @classmethod
     def of(cls, sol: Solution, m: int, tau0: float, t1: float) -> PieceEnd:
-        """The outcome of ``sol`` for its ``m`` members (``tau0``: the start of a single member's piece)."""
+        """The outcome of ``sol`` for its ``m`` members (``tau0``: the start of a single member's piece).
+
+        Examples
+        --------
+        ``y' = 1`` from 0 stops at its terminal event ``y = 1/2``, at ``t = 1/2``:
+
+        >>> from rigidbody.core.ode import Event, integrate
+        >>> from rigidbody.core.piecewise import PieceEnd
+        >>> half = Event(lambda t, y: y[0] - 0.5, "half", True, 1.0)
+        >>> sol = integrate(lambda t, y: [1.0], (0.0, 2.0), [0.0], events=[half], engine="python")
+        >>> end = PieceEnd.of(sol, 1, 0.0, 2.0)
+        >>> print(end.status, end.event, [round(float(t), 12) for t in end.t_final])
+        [1] ['half'] [0.5]
+        """
         if not sol.batch_shape:  # the scalar integrator does not record t_final
             st, ev = int(sol.status), sol.event
             t_last = float(sol.time[-1]) if sol.time.size else tau0
@@ -87,20 +110,40 @@ class PieceEnd:
                    {k: list(np.reshape(v, m)) for k, v in sol.y_events.items()})
 
     def event_state(self, j: int, name: str) -> np.ndarray:
-        """The raw state of member ``j`` at the last occurrence of event ``name``."""
+        """The raw state of member ``j`` at the last occurrence of event ``name``.
+
+        Examples
+        --------
+        >>> from rigidbody.core.ode import Event, integrate
+        >>> from rigidbody.core.piecewise import PieceEnd
+        >>> half = Event(lambda t, y: y[0] - 0.5, "half", True, 1.0)
+        >>> sol = integrate(lambda t, y: [1.0, 2.0], (0.0, 2.0), [0.0, 0.0], events=[half], engine="python")
+        >>> print(PieceEnd.of(sol, 1, 0.0, 2.0).event_state(0, "half").round(12))  # y2 = 2 t = 1 there
+        [0.5 1. ]
+        """
         return np.asarray(self.y_events[name][j], dtype=float).reshape(-1, np.shape(self.y_events[name][j])[-1])[-1]
 
 
 @dataclass
 class Continue:
-    """A member goes on in ``mode`` from the time of its event (the problem has set its state there)."""
+    """A member goes on in ``mode`` from the time of its event (the problem has set its state there).
+
+    See Also
+    --------
+    Stop : the other answer of :meth:`PiecewiseProblem.on_event`.
+    """
 
     mode: Hashable
 
 
 @dataclass
 class Stop:
-    """A member ends at time ``t`` with ``status``, ``message`` and terminal ``event``."""
+    """A member ends at time ``t`` with ``status``, ``message`` and terminal ``event``.
+
+    See Also
+    --------
+    Continue : the other answer of :meth:`PiecewiseProblem.on_event`.
+    """
 
     status: int
     message: str
@@ -116,6 +159,11 @@ class PiecewiseProblem(Protocol):
     ``record(mode, members, sol, end)`` stores the piece's output; ``on_event(mode, i, j, end)`` is called for a
     member ``i`` (``j`` in its group) whose piece ended on a terminal event named in :attr:`continues`, and
     returns :class:`Continue` or :class:`Stop`.
+
+    See Also
+    --------
+    run_pieces : the driver (its Examples section has a whole problem).
+    PieceSpec, PieceEnd : what a problem gives and receives.
     """
 
     continues: tuple[str, ...]
@@ -131,7 +179,13 @@ class PiecewiseProblem(Protocol):
 class MemberRecords:
     """The per-member records of a piecewise run: ``status``, ``message``, ``event``, ``nfev``, ``t_final``
     (arrays of shape ``(B,)``, as :func:`rigidbody.core.batch.member_records` makes them), the mode of each
-    member's next piece (None: ended), the start of that piece and the step size to start it with."""
+    member's next piece (None: ended), the start of that piece and the step size to start it with.
+
+    See Also
+    --------
+    run_pieces : updates and returns them.
+    rigidbody.core.batch.member_records : the arrays it starts from.
+    """
 
     status: np.ndarray
     message: np.ndarray
@@ -145,7 +199,15 @@ class MemberRecords:
     @classmethod
     def start(cls, modes: Sequence[Any], t0: float, refused: Mapping[int, str] | None = None) -> MemberRecords:
         """Members starting at ``t0`` in ``modes``; ``refused``: index -> message of the members refused at the
-        start (status -1, no mode)."""
+        start (status -1, no mode).
+
+        Examples
+        --------
+        >>> from rigidbody.core.piecewise import MemberRecords
+        >>> rec = MemberRecords.start(["a", "b"], 0.0, refused={1: "b: refused"})
+        >>> print(rec.mode, rec.message[1])
+        ['a', None] b: refused
+        """
         B = len(modes)
         status, message, event, nfev, t_final = member_records(B, t0)
         modes = list(modes)
@@ -216,6 +278,11 @@ def run_pieces(problem: PiecewiseProblem, rec: MemberRecords, t1: float, *, stri
     MemberRecords
         Each member's status (0 end of the span, 1 a terminal event, -1 a failure), message, terminal event,
         final time and function evaluations.
+
+    See Also
+    --------
+    PiecewiseProblem : what a problem provides.
+    rigidbody.core.ode.integrate, rigidbody.core.batch.integrate_batch : the two integrators it chooses between.
 
     Examples
     --------
