@@ -1,4 +1,4 @@
-r"""The charts of the averaged system (2.15) as problems for the piecewise driver of :mod:`._avgdriver`.
+r"""The charts of the averaged system (2.15) of the problem :mod:`._avgproblem`.
 
 A chart gives, for one member (scalar functions on floats, for :func:`rigidbody.core.ode.integrate`) and for a
 group of members (vectorised functions, for :func:`rigidbody.core.batch.integrate_batch`), the same things:
@@ -102,7 +102,7 @@ def _event(values: Callable[..., tuple[Any, ...]], k: int, nargs: int, name: str
 
 
 class Chart:
-    """What the driver asks of a chart (see the module's docstring); subclasses fill it in."""
+    """What the problem asks of a chart (see the module's docstring); subclasses fill it in."""
 
     #: value of the output field ``chart``
     code = 0.0

@@ -1,4 +1,5 @@
-r"""The public entry of the averaged system (2.15): validation, then the piecewise driver of :mod:`._avgdriver`.
+r"""The public entry of the averaged system (2.15): validation, then :mod:`._avgproblem` (a problem for the
+piecewise driver :func:`rigidbody.core.piecewise.run_pieces`).
 
 The two charts of :func:`averaged` (the paper's roots ``u`` and the original slow variables ``(Gz, H, r)``)
 are integrated in the coordinates of :mod:`rigidbody.lagrange._kernel` (the roots through their log-gaps,
@@ -15,7 +16,7 @@ import numpy as np
 
 from ..core.ode import Solution
 from ..core.validate import member_states
-from ._avgdriver import run_members
+from ._avgproblem import run_members
 from ._avgsetup import ChartSetup, check_options
 from ._top import Top, check_top
 from ._torques import Torque, check_torque
