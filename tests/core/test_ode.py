@@ -150,3 +150,12 @@ def test_a_root_on_a_step_boundary_is_one_event_on_every_integrator():
     # the rule itself, on floats and arrays: a root at the end of a step counts, at its start does not
     assert crossed(-1.0, 0.0, 1) and not crossed(0.0, 1.0, 1) and not crossed(0.0, -1.0, -1)
     assert list(crossed(np.array([-1.0, 0.0, 1.0]), np.array([0.0, 0.0, 0.0]), 0)) == [True, False, True]
+
+
+@pytest.mark.parametrize("options", [{}, {"method": "RK45"}, {"engine": "python"}])
+def test_an_output_grid_with_no_point_in_the_span_gives_an_empty_trajectory_of_the_states_size(options):
+    # solve_ivp returns y of shape (0,) when t_eval is empty; a piece of a piecewise run whose span holds no
+    # output time gets that (lagrange's GHr chart between two grid points): the result must still be a run
+    # that reached its end, with y of shape (n_state, 0), on every engine (it raised from Solution.build)
+    sol = integrate(lambda t, y: [-y[0], y[1]], (0.0, 1.0), [1.0, 2.0], t_eval=np.array([]), **options)
+    assert sol.status == 0 and sol.y.shape == (2, 0) and sol.time.shape == (0,)

@@ -173,6 +173,8 @@ def integrate(
     event = None
     t = np.asarray(res.t)
     y = np.asarray(res.y)
+    if y.ndim != 2:  # solve_ivp returns y of shape (0,) when no output time was reached (an empty t_eval)
+        y = y.reshape(y0a.size, t.size)
     if len(res.t_events[-1]) or (y.size and not np.all(np.isfinite(y[:, -1]))):
         status = -1
         tbad = res.t_events[-1][0] if len(res.t_events[-1]) else t[-1]
