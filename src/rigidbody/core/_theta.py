@@ -136,10 +136,14 @@ def jacobi_theta(u: Any, consts: tuple[Any, ...], key: tuple[Any, Any, Any], xp:
     sig, dlt = consts[9:11]
     j, sgn, upper, vh, vl = reduce_half_period(u, consts[0], consts[1], key, xp)
     s, c, x = _zeta(vh, vl, consts, np if xp.array else math)
-    ps, pc, pd, pn = _poly(sig, x), _poly(sig, -x), _poly(dlt, x), _poly(dlt, -x)
+    # beyond K/2 the roles of sin and cos, and of x and -x, swap: one flip of x, the polynomials at +-x from
+    # their even and odd parts
     w = xp.where
-    sn, cn, dn = _assemble(consts, sgn, (w(upper, c, s), w(upper, s, c)),
-                           (w(upper, pc, ps), w(upper, ps, pc), w(upper, pn, pd), w(upper, pd, pn)))
+    x = w(upper, -x, x)
+    x2 = x * x
+    se, so = sig[0] + x2 * (sig[2] + x2 * sig[4]), x * (sig[1] + x2 * sig[3])
+    de, do = dlt[0] + x2 * (dlt[2] + x2 * dlt[4]), x * (dlt[1] + x2 * dlt[3])
+    sn, cn, dn = _assemble(consts, sgn, (w(upper, c, s), w(upper, s, c)), (se + so, se - so, de + do, de - do))
     cn, dn = _from_sn(sn, cn, dn, consts[11], ~upper & (sn * sn < _SN2_SMALL), xp)
     return with_parity(j, sn, cn, dn, xp)
 
