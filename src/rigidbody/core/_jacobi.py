@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -23,7 +24,7 @@ from ._periods import complete_dd
 from ._theta import MC_THETA, jacobi_theta, jacobi_theta_float, theta_consts
 from .kernel import ARRAY, SCALAR
 
-__all__ = ["jacobi_arrays", "jacobi_scalar"]
+__all__ = ["BLOCK", "blockwise", "jacobi_arrays", "jacobi_scalar"]
 
 
 def _consts(m: Any, mch: Any, mcl: Any, xp: Any, near: bool) -> tuple[Any, ...]:
@@ -60,32 +61,77 @@ def jacobi_scalar(u: float, m: float, mch: float, mcl: float, k: float) -> tuple
     return float(s), float(c), float(d), float(a)
 
 
+#: the block of elements the array evaluation takes at a time: its few dozen temporaries (128 KB each) then
+#: stay in the cache, several times faster per operation than arrays of megabytes, and the Python cost of an
+#: operation (about a microsecond) stays a small part of its work
+BLOCK = 2**14
+
+
+def blockwise(f: Callable[..., tuple[Any, ...]], arrays: tuple[np.ndarray, ...], nout: int
+              ) -> tuple[np.ndarray, ...]:
+    """``f(*arrays)`` (elementwise, ``nout`` arrays out) block by block over 1-D arrays of one length."""
+    n = arrays[0].size
+    if n <= BLOCK:
+        return tuple(f(*arrays))
+    out = tuple(np.empty(n) for _ in range(nout))
+    for i in range(0, n, BLOCK):
+        for o, v in zip(out, f(*(a[i:i + BLOCK] for a in arrays))):
+            o[i:i + BLOCK] = v
+    return out
+
+
+def _theta_filled(u: np.ndarray, m: np.ndarray, mch: np.ndarray, mcl: np.ndarray, k: np.ndarray,
+                  theta: np.ndarray) -> tuple[Any, ...]:
+    """The theta route on a block, its other members at mc = 1/2 (their values are replaced afterwards)."""
+    other = np.flatnonzero(~theta)
+    ms, hs, ls, ks = m.copy(), mch.copy(), mcl.copy(), k.copy()
+    ms[other], hs[other], ls[other], ks[other] = 0.5, 0.5, 0.0, -1.0
+    return jacobi_theta(u, _consts(ms, hs, ls, ARRAY, False), (hs, ls, ks), ARRAY)
+
+
+def _route(u: np.ndarray, m: np.ndarray, mch: np.ndarray, mcl: np.ndarray, k: np.ndarray, near: bool
+           ) -> tuple[Any, ...]:
+    """sn, cn, dn, am of a block on one route, a modulus per element."""
+    consts = _consts(m, mch, mcl, ARRAY, near)
+    if near:
+        return jacobi_near(u, m, mch, consts, (mch, mcl, k), ARRAY)
+    return jacobi_theta(u, consts, (mch, mcl, k), ARRAY)
+
+
 def jacobi_arrays(u: np.ndarray, m: np.ndarray, mch: np.ndarray, mcl: np.ndarray, k: np.ndarray
                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """sn, cn, dn, am of 1-D arrays of one length (``k = -1`` where the modulus is given by ``mc``).
 
-    One modulus for all points: its constants once (cached), broadcast; several: the constants elementwise.
+    One modulus for all points: its constants once (cached), broadcast; several: the constants elementwise,
+    each route on its members (gathered, so that a route with a few members costs a few blocks), or, where
+    the theta route has most members, on the whole array.
     """
     if mch.size and mch.min() == mch.max() and mcl.min() == mcl.max() and k.min() == k.max():
         mc0, key = float(mch[0]), (float(mch[0]), float(mcl[0]), float(k[0]))
         if mc0 == 0.0:
-            return _separatrix(u, ARRAY)
+            return blockwise(lambda x: _separatrix(x, ARRAY), (u,), 4)  # type: ignore[return-value]
         consts = _consts_cached(float(m[0]), mc0, key[1])
         if mc0 < MC_THETA:
-            return jacobi_near(u, float(m[0]), mc0, consts, key, ARRAY)
-        return jacobi_theta(u, consts, key, ARRAY)
-    out = tuple(np.empty_like(u) for _ in range(4))
-    sep, near = mch == 0.0, (mch > 0.0) & (mch < MC_THETA)
-    for sel, route in ((sep, "sep"), (near, "near"), (mch >= MC_THETA, "theta")):
-        if not np.any(sel):
+            return blockwise(lambda x: jacobi_near(x, float(m[0]), mc0, consts, key, ARRAY),  # type: ignore[return-value]
+                             (u,), 4)
+        return blockwise(lambda x: jacobi_theta(x, consts, key, ARRAY), (u,), 4)  # type: ignore[return-value]
+    theta = mch >= MC_THETA
+    routes: list[tuple[np.ndarray, str]] = [(mch == 0.0, "sep"), (~theta & (mch > 0.0), "near")]
+    if 2 * np.count_nonzero(theta) >= u.size:  # mostly theta: no gathering of arguments nor scattering of values
+        out = list(blockwise(_theta_filled, (u, m, mch, mcl, k, theta), 4))
+    else:
+        out = [np.empty_like(u) for _ in range(4)]
+        routes.append((theta, "theta"))
+    vals: tuple[Any, ...]
+    for sel, route in routes:
+        idx = np.flatnonzero(sel)
+        if not idx.size:
             continue
-        us, ms, hs, ls, ks = u[sel], m[sel], mch[sel], mcl[sel], k[sel]
         if route == "sep":
-            vals = _separatrix(us, ARRAY)
-        elif route == "near":
-            vals = jacobi_near(us, ms, hs, _consts(ms, hs, ls, ARRAY, True), (hs, ls, ks), ARRAY)
+            vals = _separatrix(u[idx], ARRAY)
         else:
-            vals = jacobi_theta(us, _consts(ms, hs, ls, ARRAY, False), (hs, ls, ks), ARRAY)
+            args = tuple(x[idx] for x in (u, m, mch, mcl, k))
+            vals = blockwise(functools.partial(_route, near=route == "near"), args, 4)
         for o, v in zip(out, vals):
-            o[sel] = v
-    return out  # type: ignore[return-value]
+            o[idx] = v
+    return out[0], out[1], out[2], out[3]

@@ -39,6 +39,7 @@ __all__ = [
     "k_triple",
     "mc_of_k",
     "reduce_half_period",
+    "times_int",
     "two_prod",
     "two_sum",
     "with_parity",
@@ -72,6 +73,17 @@ def two_prod(a: Any, b: Any) -> tuple[Any, Any]:
     ah, bh = ca - (ca - a), cb - (cb - b)
     al, bl = a - ah, b - bh
     return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
+
+
+def times_int(j: Any, b: Any, xp: Any) -> tuple[Any, Any]:
+    """:func:`two_prod` of an integer-valued ``j`` and ``b``: below ``2^26`` ``j`` needs no splitting (its
+    products with the halves of ``b`` are exact)."""
+    if not (np.max(np.abs(j), initial=0.0) if xp.array else abs(j)) < 2.0**26:
+        return two_prod(j, b)
+    p = j * b
+    cb = 134217729.0 * b
+    bh = cb - (cb - b)
+    return p, (j * bh - p) + j * (b - bh)
 
 
 def fast_two_sum(a: Any, b: Any) -> tuple[Any, Any]:
@@ -185,10 +197,14 @@ def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False) -> tuple[Any, ...]
         ``(M_hi, M_lo)``, or ``(M_hi, M_lo, S_hi, S_lo)`` with :math:`S = 1 - E/K`.
     """
     lib = np if xp.array else math
-    # k' = sqrt(mc), scaled by an even power of 2 (the low parts of products of tiny numbers are subnormal)
-    n = lib.frexp(mch)[1] // 2
-    bh, bl = dd_sqrt(lib.ldexp(mch, -2 * n), lib.ldexp(mcl, -2 * n), lib)
-    bh, bl = lib.ldexp(bh, n), lib.ldexp(bl, n)
+    # k' = sqrt(mc), scaled by an even power of 2 below 2^-900 (the low parts of the products of tiny numbers
+    # are subnormal below about 2^-969)
+    if (np.min(mch, initial=1.0) if xp.array else mch) < 2.0**-900:
+        n = lib.frexp(mch)[1] // 2
+        bh, bl = dd_sqrt(lib.ldexp(mch, -2 * n), lib.ldexp(mcl, -2 * n), lib)
+        bh, bl = lib.ldexp(bh, n), lib.ldexp(bl, n)
+    else:
+        bh, bl = dd_sqrt(mch, mcl, lib)
     c2h, c2l = two_sum(1.0, -mch)
     c2h, c2l = fast_two_sum(c2h, c2l - mcl)  # c_0^2 = m; the sum S = 1 - E/K = sum 2^(n-1) c_n^2
     st = (1.0 + 0.0 * bh, 0.0 * bh, bh, bl, c2h, c2l, 0.5 * c2h, 0.5 * c2l)
@@ -294,10 +310,10 @@ def reduce_half_period(u: Any, kh: Any, kl: Any, key: tuple[Any, Any, Any], xp: 
     if xp.any(big):  # no digit of the phase is left: reduce by the double 4K first (exact)
         u = xp.where(big, lib.fmod(u, 4.0 * kh), u)
     j = xp.rint(u / (2.0 * kh))
-    p, pe = two_prod(j, 2.0 * kh)
+    p, pe = times_int(j, 2.0 * kh, xp)
     rh, e = two_sum(u, -p)
     rh, rl = two_sum(rh, e - pe - j * (2.0 * kl))
-    sgn = xp.where(rh < 0.0, -1.0, 1.0)
+    sgn = xp.copysign(1.0, rh)
     ah, al = sgn * rh, sgn * rl
     upper = ah > 0.5 * kh
     vh, vl = two_sum(kh - ah, kl - al)  # K - |r|: the first difference exact where it is used (Sterbenz)
@@ -322,8 +338,7 @@ def reduce_half_period(u: Any, kh: Any, kl: Any, key: tuple[Any, Any, Any], xp: 
 def with_parity(j: Any, sn: Any, cn: Any, dn: Any, xp: Any) -> tuple[Any, Any, Any, Any]:
     r"""sn, cn, dn, am at :math:`u = 2jK + r` from sn, cn, dn at ``r``: :math:`(-1)^j` on sn and cn,
     :math:`\operatorname{am} = j\pi + \operatorname{atan2}(\operatorname{sn} r, \operatorname{cn} r)`."""
-    lib = np if xp.array else math
-    par = xp.where(lib.fmod(j, 2.0) == 0.0, 1.0, -1.0)
-    p, pe = two_prod(j, PI[0])
+    par = 1.0 - 4.0 * abs(0.5 * j - xp.rint(0.5 * j))  # (-1)^j (j an integer below 2^52)
+    p, pe = times_int(j, PI[0], xp)
     p, pe = fast_two_sum(p, pe + j * PI[1])
     return par * sn, par * cn, dn, p + (pe + xp.atan2(sn, cn))

@@ -79,7 +79,8 @@ def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any) -> tuple[Any, ...]:
     q2 = q * q
     q4 = q2 * q2
     q6, q9 = q4 * q2, q4 * q4 * q
-    q12, q16 = q6 * q6, q4 ** 4
+    q12 = q6 * q6
+    q16 = q12 * q4
     q20 = q16 * q4
     t1m = q2 + q6 + q12 + q20  # T1 - 1
     t3m = 2.0 * (q + q4 + q9 + q16)  # T3 - 1

@@ -51,7 +51,7 @@ from typing import Any
 import numpy as np
 
 from ._integrals import E, Einc, F, K
-from ._jacobi import jacobi_arrays, jacobi_scalar
+from ._jacobi import blockwise, jacobi_arrays, jacobi_scalar
 from ._modulus import (
     ArrayLike,
     array_modulus,
@@ -142,26 +142,17 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
     ua = as_float_array(u, "u")
     if ua.size and not np.all(np.isfinite(ua)):
         raise ValueError("u must be finite")
-    if mc is None:  # (1 - k^2 block by block, below)
+    if mc is None:  # (1 - k^2 block by block)
         moduli(k, None)
         parts = np.broadcast_arrays(ua, np.asarray(k, dtype=float))
+        u_f, k_f = (np.ascontiguousarray(p).ravel() for p in parts)
+        flat = (u_f, *blockwise(of_k, (k_f,), 4))
     else:
         parts = np.broadcast_arrays(ua, *array_modulus(k, mc))
+        flat = tuple(np.ascontiguousarray(p).ravel() for p in parts)
     shape = parts[0].shape
-    flat = [np.ascontiguousarray(p).ravel() for p in parts]
-    # blocks whose temporaries stay in the cache (several times faster per operation than arrays of 8 MB)
-    out = tuple(np.empty(flat[0].size) for _ in range(4))
-    for i in range(0, flat[0].size, _CHUNK):
-        block = [p[i:i + _CHUNK] for p in flat]
-        for o, v in zip(out, jacobi_arrays(block[0], *(of_k(block[1]) if mc is None else block[1:]))):
-            o[i:i + _CHUNK] = v
-    s, c, d, a = (float_out(o.reshape(shape)) for o in out)
+    s, c, d, a = (float_out(o.reshape(shape)) for o in jacobi_arrays(*flat))
     return s, c, d, a
-
-
-#: the block of elements the array evaluation takes at a time: its few dozen temporaries (512 KB for 2^16
-#: doubles) then fit the cache, and the Python cost of an operation (~1 us) stays below a tenth of its work
-_CHUNK = 2**14
 
 
 _JACOBI_PARAMS = """
