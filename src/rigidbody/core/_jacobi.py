@@ -19,6 +19,7 @@ from typing import Any
 
 import numpy as np
 
+from ._modulus import of_k
 from ._nome import jacobi_near, nome
 from ._periods import complete_dd
 from ._theta import MC_THETA, jacobi_theta, jacobi_theta_float, theta_consts
@@ -80,45 +81,53 @@ def blockwise(f: Callable[..., tuple[Any, ...]], arrays: tuple[np.ndarray, ...],
     return out
 
 
-def _theta_filled(u: np.ndarray, m: np.ndarray, mch: np.ndarray, mcl: np.ndarray, k: np.ndarray,
-                  theta: np.ndarray) -> tuple[Any, ...]:
+def _moduli(mod: np.ndarray, by_k: bool) -> tuple[np.ndarray, ...]:
+    """``(m, mc_hi, mc_lo, k)`` of a block of moduli ``k`` (``by_k``) or complementary parameters."""
+    if by_k:
+        return of_k(mod)
+    return 1.0 - mod, mod, np.zeros_like(mod), np.full_like(mod, -1.0)
+
+
+def _theta_filled(u: np.ndarray, mod: np.ndarray, theta: np.ndarray, by_k: bool) -> tuple[Any, ...]:
     """The theta route on a block, its other members at mc = 1/2 (their values are replaced afterwards)."""
+    ms, hs, ls, ks = (x.copy() for x in _moduli(mod, by_k))
     other = np.flatnonzero(~theta)
-    ms, hs, ls, ks = m.copy(), mch.copy(), mcl.copy(), k.copy()
     ms[other], hs[other], ls[other], ks[other] = 0.5, 0.5, 0.0, -1.0
     return jacobi_theta(u, _consts(ms, hs, ls, ARRAY, False), (hs, ls, ks), ARRAY)
 
 
-def _route(u: np.ndarray, m: np.ndarray, mch: np.ndarray, mcl: np.ndarray, k: np.ndarray, near: bool
-           ) -> tuple[Any, ...]:
+def _route(u: np.ndarray, mod: np.ndarray, by_k: bool, near: bool) -> tuple[Any, ...]:
     """sn, cn, dn, am of a block on one route, a modulus per element."""
+    m, mch, mcl, k = _moduli(mod, by_k)
     consts = _consts(m, mch, mcl, ARRAY, near)
     if near:
         return jacobi_near(u, m, mch, consts, (mch, mcl, k), ARRAY)
     return jacobi_theta(u, consts, (mch, mcl, k), ARRAY)
 
 
-def jacobi_arrays(u: np.ndarray, m: np.ndarray, mch: np.ndarray, mcl: np.ndarray, k: np.ndarray
-                  ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """sn, cn, dn, am of 1-D arrays of one length (``k = -1`` where the modulus is given by ``mc``).
+def jacobi_arrays(u: np.ndarray, mod: np.ndarray, by_k: bool) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """sn, cn, dn, am of 1-D arrays of one length: the argument and the modulus ``k`` (``by_k``) or the
+    complementary parameter ``mc`` (valid).
 
     One modulus for all points: its constants once (cached), broadcast; several: the constants elementwise,
     each route on its members (gathered, so that a route with a few members costs a few blocks), or, where
-    the theta route has most members, on the whole array.
+    the theta route has most members, on the whole array. Everything block by block (:func:`blockwise`).
     """
-    if mch.size and mch.min() == mch.max() and mcl.min() == mcl.max() and k.min() == k.max():
-        mc0, key = float(mch[0]), (float(mch[0]), float(mcl[0]), float(k[0]))
-        if mc0 == 0.0:
+    if mod.size and mod.min() == mod.max():
+        m, mch, mcl, k = (float(x[0]) for x in _moduli(mod[:1], by_k))
+        if mch == 0.0:
             return blockwise(lambda x: _separatrix(x, ARRAY), (u,), 4)  # type: ignore[return-value]
-        consts = _consts_cached(float(m[0]), mc0, key[1])
-        if mc0 < MC_THETA:
-            return blockwise(lambda x: jacobi_near(x, float(m[0]), mc0, consts, key, ARRAY),  # type: ignore[return-value]
-                             (u,), 4)
+        consts, key = _consts_cached(m, mch, mcl), (mch, mcl, k)
+        if mch < MC_THETA:
+            return blockwise(lambda x: jacobi_near(x, m, mch, consts, key, ARRAY), (u,), 4)  # type: ignore[return-value]
         return blockwise(lambda x: jacobi_theta(x, consts, key, ARRAY), (u,), 4)  # type: ignore[return-value]
-    theta = mch >= MC_THETA
-    routes: list[tuple[np.ndarray, str]] = [(mch == 0.0, "sep"), (~theta & (mch > 0.0), "near")]
+    # the routes (1 - k^2 rounded: both series hold a little beyond their boundary mc = 0.05)
+    mc = 1.0 - mod * mod if by_k else mod
+    theta = mc >= MC_THETA
+    routes: list[tuple[np.ndarray, str]] = [(mod == 1.0 if by_k else mod == 0.0, "sep")]
+    routes.append((~theta & ~routes[0][0], "near"))
     if 2 * np.count_nonzero(theta) >= u.size:  # mostly theta: no gathering of arguments nor scattering of values
-        out = list(blockwise(_theta_filled, (u, m, mch, mcl, k, theta), 4))
+        out = list(blockwise(lambda x, y, z: _theta_filled(x, y, z, by_k), (u, mod, theta), 4))
     else:
         out = [np.empty_like(u) for _ in range(4)]
         routes.append((theta, "theta"))
@@ -130,8 +139,7 @@ def jacobi_arrays(u: np.ndarray, m: np.ndarray, mch: np.ndarray, mcl: np.ndarray
         if route == "sep":
             vals = _separatrix(u[idx], ARRAY)
         else:
-            args = tuple(x[idx] for x in (u, m, mch, mcl, k))
-            vals = blockwise(functools.partial(_route, near=route == "near"), args, 4)
+            vals = blockwise(functools.partial(_route, by_k=by_k, near=route == "near"), (u[idx], mod[idx]), 4)
         for o, v in zip(out, vals):
             o[idx] = v
     return out[0], out[1], out[2], out[3]

@@ -51,16 +51,14 @@ from typing import Any
 import numpy as np
 
 from ._integrals import E, Einc, F, K
-from ._jacobi import blockwise, jacobi_arrays, jacobi_scalar
+from ._jacobi import jacobi_arrays, jacobi_scalar
 from ._modulus import (
     ArrayLike,
-    array_modulus,
     as_float_array,
     check_modulus,
     float_out,
     is_real_scalar,
     moduli,
-    of_k,
     scalar_modulus,
 )
 
@@ -142,16 +140,14 @@ def jacobi(u: ArrayLike, k: ArrayLike | None = None, *, mc: ArrayLike | None = N
     ua = as_float_array(u, "u")
     if ua.size and not np.all(np.isfinite(ua)):
         raise ValueError("u must be finite")
-    if mc is None:  # (1 - k^2 block by block)
+    if mc is None:  # (1 - k^2 formed block by block)
         moduli(k, None)
         parts = np.broadcast_arrays(ua, np.asarray(k, dtype=float))
-        u_f, k_f = (np.ascontiguousarray(p).ravel() for p in parts)
-        flat = (u_f, *blockwise(of_k, (k_f,), 4))
     else:
-        parts = np.broadcast_arrays(ua, *array_modulus(k, mc))
-        flat = tuple(np.ascontiguousarray(p).ravel() for p in parts)
-    shape = parts[0].shape
-    s, c, d, a = (float_out(o.reshape(shape)) for o in jacobi_arrays(*flat))
+        _, mca, _ = moduli(k, mc)
+        parts = np.broadcast_arrays(ua, mca)
+    u_f, mods = (np.ascontiguousarray(p).ravel() for p in parts)
+    s, c, d, a = (float_out(o.reshape(parts[0].shape)) for o in jacobi_arrays(u_f, mods, mc is None))
     return s, c, d, a
 
 
