@@ -89,11 +89,12 @@ def _moduli(mod: np.ndarray, by_k: bool) -> tuple[np.ndarray, ...]:
 
 
 def _theta_filled(u: np.ndarray, mod: np.ndarray, theta: np.ndarray, by_k: bool) -> tuple[Any, ...]:
-    """The theta route on a block, its other members at mc = 1/2 (their values are replaced afterwards)."""
-    ms, hs, ls, ks = (x.copy() for x in _moduli(mod, by_k))
-    other = np.flatnonzero(~theta)
-    ms[other], hs[other], ls[other], ks[other] = 0.5, 0.5, 0.0, -1.0
-    return jacobi_theta(u, _consts(ms, hs, ls, ARRAY, False), (hs, ls, ks), ARRAY)
+    """The theta route on a block, its other members at k = 3/4 or mc = 1/2 (their values are replaced
+    afterwards)."""
+    filled = mod.copy()
+    filled[~theta] = 0.75 if by_k else 0.5
+    m, mch, mcl, k = _moduli(filled, by_k)
+    return jacobi_theta(u, _consts(m, mch, mcl, ARRAY, False), (mch, mcl, k), ARRAY)
 
 
 def _route(u: np.ndarray, mod: np.ndarray, by_k: bool, near: bool) -> tuple[Any, ...]:

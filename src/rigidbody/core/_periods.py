@@ -39,6 +39,7 @@ __all__ = [
     "k_triple",
     "mc_of_k",
     "reduce_half_period",
+    "reduce_phase",
     "times_int",
     "two_prod",
     "two_sum",
@@ -333,6 +334,56 @@ def reduce_half_period(u: Any, kh: Any, kl: Any, key: tuple[Any, Any, Any], xp: 
     vh, vl = vh.copy(), vl.copy()
     vh[idx], vl[idx] = sign[idx] * d, 0.0
     return j, sgn, upper, vh, vl
+
+
+def reduce_phase(u: Any, mh: Any, ml: Any, key: tuple[Any, Any, Any], xp: Any) -> tuple[Any, ...]:
+    r"""Reduce the phase :math:`\phi = \pi u/(2K) = uM`: :math:`\phi = j\pi + \rho`, :math:`|\rho| \le \pi/2`,
+    and the argument :math:`\zeta = \pi v/(2K)` of the theta series, without forming :math:`K`.
+
+    The same reduction as :func:`reduce_half_period` (``r = 2\rho K/\pi``), on the mean
+    :math:`M = \pi/(2K)` (a double-double, about :math:`2^{-104}` relative) instead of :math:`K`: the error
+    of :math:`\phi` is about :math:`|\phi|\,2^{-103}`, that of :math:`v` was :math:`|2j|\,2^{-103}K`; where
+    :math:`\zeta < (2|j| + 2)\,2^{-48}\pi/2` (:math:`v < (2|j| + 2)\,2^{-48}K`, near a zero of sn or cn)
+    :math:`v` is recomputed from :math:`K` to about :math:`2^{-160}` (:func:`k_triple`) and multiplied by
+    :math:`M`.
+
+    Returns
+    -------
+    tuple
+        ``(j, sgn, upper, zeta_hi, zeta_lo)``: ``sgn`` the sign of :math:`\rho`; ``upper`` where
+        :math:`|\rho| > \pi/4`, and then :math:`\zeta = \pi/2 - |\rho|`, else :math:`\zeta = |\rho|`.
+    """
+    lib = np if xp.array else math
+    big = abs(u) * mh > 2.0**50 * HALF_PI[0]
+    if xp.any(big):  # no digit of the phase is left: reduce by the double 4K first (exact)
+        u = xp.where(big, lib.fmod(u, 4.0 * (HALF_PI[0] / mh)), u)
+    ph, pe = two_prod(u, mh)
+    ph, pl = fast_two_sum(ph, pe + u * ml)
+    j = xp.rint(ph / PI[0])
+    p, pe = times_int(j, PI[0], xp)
+    rh, e = two_sum(ph, -p)
+    rh, rl = two_sum(rh, e + ((pl - pe) - j * PI[1]))
+    sgn = xp.copysign(1.0, rh)
+    ah, al = sgn * rh, sgn * rl
+    upper = ah > 0.5 * HALF_PI[0]
+    zh, zl = two_sum(HALF_PI[0] - ah, HALF_PI[1] - al)  # pi/2 - |rho|: the first difference exact where used
+    zh, zl = xp.where(upper, zh, ah), xp.where(upper, zl, al)
+    fix = abs(zh) < (2.0 * abs(j) + 2.0) * (FIX * HALF_PI[0])
+    if not xp.any(fix):
+        return j, sgn, upper, zh, zl
+    sign = xp.where(upper, -sgn, sgn)  # v = sign (u - n K), n = 2j (+ sgn where upper)
+    if not xp.array:
+        d = _distance(u, j * 2.0 + (sgn if upper else 0.0), k_triple(*map(float, key)))
+        return (j, sgn, upper, *dd_mul(sign * d, 0.0, mh, ml))
+    idx = np.flatnonzero(fix)
+    keys = zip(*(np.broadcast_to(v, np.shape(u))[idx].tolist() for v in key))
+    trip = np.array([k_triple(*kk) for kk in keys]).reshape(-1, 3)
+    n = 2.0 * j[idx] + np.where(upper[idx], sgn[idx], 0.0)
+    d = _distance(u[idx], n, (trip[:, 0], trip[:, 1], trip[:, 2]))
+    zh, zl = zh.copy(), zl.copy()
+    zh[idx], zl[idx] = dd_mul(sign[idx] * d, 0.0, np.broadcast_to(mh, np.shape(u))[idx],
+                              np.broadcast_to(ml, np.shape(u))[idx])
+    return j, sgn, upper, zh, zl
 
 
 def with_parity(j: Any, sn: Any, cn: Any, dn: Any, xp: Any) -> tuple[Any, Any, Any, Any]:

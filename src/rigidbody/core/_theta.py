@@ -29,8 +29,10 @@ such factors times a constant: a few roundings, so a few ulp relative, near the 
 The argument is reduced in double-double arithmetic by the half period :math:`2K`, and by :math:`v = K - |r|`
 beyond :math:`K/2`, with :math:`K = \pi/(2M)` from the double-double mean ``rigidbody.core._periods.agm_dd``
 (about :math:`2^{-104}` relative); :math:`\zeta = vM` is carried as a double-double into :math:`\sin` and
-:math:`\cos`. The relative error near a zero :math:`nK` is a few ulp plus :math:`n\,\delta_K / |u - nK|`,
-:math:`\delta_K \approx 2^{-104}K` the error of the period (the argument ``u`` is taken as exact).
+:math:`\cos`. Arrays reduce the phase :math:`uM` by :math:`\pi` instead (``reduce_phase``: the same
+:math:`\zeta`, without the division that forms :math:`K`). The relative error near a zero :math:`nK` is a
+few ulp plus :math:`n\,\delta_K / |u - nK|`, :math:`\delta_K \approx 2^{-104}K` the error of the period (the
+argument ``u`` is taken as exact).
 """
 
 from __future__ import annotations
@@ -40,7 +42,7 @@ from typing import Any
 
 import numpy as np
 
-from ._periods import FIX, HALF_PI, PI, agm_dd, dd_div, dd_mul, reduce_half_period, two_prod, two_sum, with_parity
+from ._periods import FIX, HALF_PI, PI, agm_dd, dd_div, dd_mul, reduce_phase, two_prod, two_sum, with_parity
 from .kernel import SCALAR
 
 __all__ = ["MC_THETA", "jacobi_theta", "jacobi_theta_float", "theta_consts"]
@@ -48,9 +50,9 @@ __all__ = ["MC_THETA", "jacobi_theta", "jacobi_theta_float", "theta_consts"]
 #: the smallest complementary parameter of this route (q = 0.179 there); below it ``rigidbody.core._nome``
 MC_THETA = 0.05
 #: the nome series in lambda^4 (A&S 17.3.21; OEIS A002103): q = lambda (1 + 2 l^4 + 15 l^8 + ...), the
-#: 12th term is below 2^-70 of the first at lambda = 0.179 (mc = 0.05)
-_NOME_COEFFS = (1.0, 2.0, 15.0, 150.0, 1707.0, 20910.0, 268616.0, 3567400.0, 48555069.0, 673458874.0,
-                9481557398.0, 135119529972.0)
+#: 11th term (9481557398 l^40) is below 2^-66 of the first at lambda = 0.179 (mc = 0.05): far below the
+#: rounding of q, which enters the functions through coefficients of order q
+_NOME_COEFFS = (1.0, 2.0, 15.0, 150.0, 1707.0, 20910.0, 268616.0, 3567400.0, 48555069.0, 673458874.0)
 
 
 def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any) -> tuple[Any, ...]:
@@ -60,14 +62,16 @@ def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any) -> tuple[Any, ...]:
     -------
     tuple
         ``(K_hi, K_lo, M_hi, M_lo, cs, cc, cd, cs - 1, cc - 1, sig, dlt, m)``: :math:`K` and :math:`M = \pi/(2K)`
-        as double-doubles, the constants :math:`T_3/T_1, T_4/T_1, T_4/T_3`, the first two less one (formed
-        without cancellation) and the coefficients (of
-        :math:`x^0 \dots x^4`) of :math:`S/\sin\zeta - 1` and :math:`D - 1` (:math:`C/\cos\zeta - 1` and
-        :math:`N - 1` are the same polynomials at :math:`-x`: :math:`\zeta \to \pi/2 - \zeta`).
+        as double-doubles (for arrays :math:`K` as a double, ``K_lo = 0``: they reduce the phase by
+        :math:`M`), the constants :math:`T_3/T_1, T_4/T_1, T_4/T_3`, the first two less one (formed without
+        cancellation) and the coefficients (of :math:`x^0 \dots x^4`) of :math:`S/\sin\zeta - 1` and
+        :math:`D - 1` (:math:`C/\cos\zeta - 1` and :math:`N - 1` are the same polynomials at :math:`-x`:
+        :math:`\zeta \to \pi/2 - \zeta`).
     """
     lib = np if xp.array else math
     mh, ml = agm_dd(mch, mcl, xp)
-    kh, kl = dd_div(HALF_PI[0], HALF_PI[1], mh, ml)
+    # (arrays reduce the phase by the mean, ``reduce_phase``, and need K only to its double)
+    kh, kl = (HALF_PI[0] / mh, 0.0 * mh) if xp.array else dd_div(HALF_PI[0], HALF_PI[1], mh, ml)
     kp = lib.sqrt(mch)
     skp = lib.sqrt(kp)
     lam = m / (2.0 * (1.0 + kp) * (1.0 + skp) ** 2)  # (1 - sqrt k') / (2 (1 + sqrt k')), no cancellation
@@ -125,7 +129,11 @@ def _from_sn(sn: Any, cn: Any, dn: Any, m: Any, small: Any, xp: Any) -> tuple[An
 
 def _zeta(vh: Any, vl: Any, consts: tuple[Any, ...], lib: Any) -> tuple[Any, Any, Any]:
     """sin and cos of zeta = pi v / (2K) (v a double-double) and x = cos 2 zeta."""
-    zh, zl = dd_mul(vh, vl, consts[2], consts[3])
+    return _sincos(*dd_mul(vh, vl, consts[2], consts[3]), lib)
+
+
+def _sincos(zh: Any, zl: Any, lib: Any) -> tuple[Any, Any, Any]:
+    """sin and cos of zeta (a double-double) and x = cos 2 zeta."""
     sz, cz = lib.sin(zh), lib.cos(zh)
     s, c = sz + cz * zl, cz - sz * zl
     return s, c, 1.0 - 2.0 * (s * s)
@@ -135,8 +143,8 @@ def jacobi_theta(u: Any, consts: tuple[Any, ...], key: tuple[Any, Any, Any], xp:
     """sn, cn, dn, am for ``mc >= MC_THETA`` (``consts = theta_consts(...)``, ``key`` the modulus exactly: see
     ``rigidbody.core._periods.reduce_half_period``), ``u`` finite; arrays (any ``xp``)."""
     sig, dlt = consts[9:11]
-    j, sgn, upper, vh, vl = reduce_half_period(u, consts[0], consts[1], key, xp)
-    s, c, x = _zeta(vh, vl, consts, np if xp.array else math)
+    j, sgn, upper, zh, zl = reduce_phase(u, consts[2], consts[3], key, xp)
+    s, c, x = _sincos(zh, zl, np if xp.array else math)
     # beyond K/2 the roles of sin and cos, and of x and -x, swap: one flip of x, the polynomials at +-x from
     # their even and odd parts
     w = xp.where
