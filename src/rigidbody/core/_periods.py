@@ -322,18 +322,26 @@ def reduce_half_period(u: Any, kh: Any, kl: Any, key: tuple[Any, Any, Any], xp: 
     fix = abs(vh) < (2.0 * abs(j) + 2.0) * FIX * kh
     if not xp.any(fix):
         return j, sgn, upper, vh, vl
+    idx, v = _near_zero(u, j, sgn, upper, fix, key, xp)
+    if not xp.array:
+        return j, sgn, upper, v, 0.0
+    vh, vl = vh.copy(), vl.copy()
+    vh[idx], vl[idx] = v, 0.0
+    return j, sgn, upper, vh, vl
+
+
+def _near_zero(u: Any, j: Any, sgn: Any, upper: Any, fix: Any, key: tuple[Any, Any, Any], xp: Any
+               ) -> tuple[Any, Any]:
+    """``(idx, v)``: the reduced argument ``v`` recomputed with the triple ``K`` (:func:`k_triple`) where
+    ``fix`` (at the indices ``idx`` of arrays; ``idx = None`` for a Python float)."""
     sign = xp.where(upper, -sgn, sgn)  # v = sign (u - n K), n = 2j (+ sgn where upper)
     if not xp.array:
-        d = _distance(u, j * 2.0 + (sgn if upper else 0.0), k_triple(*map(float, key)))
-        return j, sgn, upper, sign * d, 0.0
+        return None, sign * _distance(u, j * 2.0 + (sgn if upper else 0.0), k_triple(*map(float, key)))
     idx = np.flatnonzero(fix)
     keys = zip(*(np.broadcast_to(v, np.shape(u))[idx].tolist() for v in key))
     trip = np.array([k_triple(*kk) for kk in keys]).reshape(-1, 3)
     n = 2.0 * j[idx] + np.where(upper[idx], sgn[idx], 0.0)
-    d = _distance(u[idx], n, (trip[:, 0], trip[:, 1], trip[:, 2]))
-    vh, vl = vh.copy(), vl.copy()
-    vh[idx], vl[idx] = sign[idx] * d, 0.0
-    return j, sgn, upper, vh, vl
+    return idx, sign[idx] * _distance(u[idx], n, (trip[:, 0], trip[:, 1], trip[:, 2]))
 
 
 def reduce_phase(u: Any, mh: Any, ml: Any, key: tuple[Any, Any, Any], xp: Any) -> tuple[Any, ...]:
@@ -371,18 +379,11 @@ def reduce_phase(u: Any, mh: Any, ml: Any, key: tuple[Any, Any, Any], xp: Any) -
     fix = abs(zh) < (2.0 * abs(j) + 2.0) * (FIX * HALF_PI[0])
     if not xp.any(fix):
         return j, sgn, upper, zh, zl
-    sign = xp.where(upper, -sgn, sgn)  # v = sign (u - n K), n = 2j (+ sgn where upper)
+    idx, v = _near_zero(u, j, sgn, upper, fix, key, xp)
     if not xp.array:
-        d = _distance(u, j * 2.0 + (sgn if upper else 0.0), k_triple(*map(float, key)))
-        return (j, sgn, upper, *dd_mul(sign * d, 0.0, mh, ml))
-    idx = np.flatnonzero(fix)
-    keys = zip(*(np.broadcast_to(v, np.shape(u))[idx].tolist() for v in key))
-    trip = np.array([k_triple(*kk) for kk in keys]).reshape(-1, 3)
-    n = 2.0 * j[idx] + np.where(upper[idx], sgn[idx], 0.0)
-    d = _distance(u[idx], n, (trip[:, 0], trip[:, 1], trip[:, 2]))
+        return (j, sgn, upper, *dd_mul(v, 0.0, mh, ml))
     zh, zl = zh.copy(), zl.copy()
-    zh[idx], zl[idx] = dd_mul(sign[idx] * d, 0.0, np.broadcast_to(mh, np.shape(u))[idx],
-                              np.broadcast_to(ml, np.shape(u))[idx])
+    zh[idx], zl[idx] = dd_mul(v, 0.0, np.broadcast_to(mh, np.shape(u))[idx], np.broadcast_to(ml, np.shape(u))[idx])
     return j, sgn, upper, zh, zl
 
 
