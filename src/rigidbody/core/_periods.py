@@ -245,26 +245,52 @@ def complete_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False) -> tuple[Any,
     return (kh, kl, *dd_mul(kh, kl, eh, el))
 
 
+def _atan_inv(x: int, bits: int) -> int:
+    """``atan(1/x) 2^bits`` (``x >= 2``) by its alternating series in integers (truncated: a few units low)."""
+    term = (1 << bits) // x
+    total, n, sign = term, 1, -1
+    while term:
+        term //= x * x
+        n += 2
+        total += sign * (term // n)
+        sign = -sign
+    return total
+
+
+#: pi 2^_PI_BITS as an integer (Machin's formula, 16 guard bits)
+_PI_BITS = 320
+_PI_INT = (16 * _atan_inv(5, _PI_BITS + 16) - 4 * _atan_inv(239, _PI_BITS + 16)) >> 16
+
+
 @functools.lru_cache(maxsize=256)
 def k_triple(mch: float, mcl: float, k: float) -> tuple[float, float, float]:
     """:math:`K` of ``mc = mch + mcl`` (exactly), or of the modulus ``k`` if ``k >= 0`` (``mc = 1 - k^2``
     exactly), as three doubles, to about ``2^-160`` relative.
 
-    The mean in 60-digit decimal arithmetic (a few hundred microseconds; cached): what the reduction of an
-    argument within about ``2^-45 K`` of a multiple of ``K`` needs, where the double-double ``K`` leaves the
-    distance with too few digits.
+    The mean in fixed-point integer arithmetic, 200 bits (and half the binary exponent of ``mc`` more, for
+    the root of a tiny ``mc``), with integer square roots (about 10 microseconds; cached): what the reduction
+    of an argument within about ``2^-45 K`` of a multiple of ``K`` needs, where the double-double ``K``
+    leaves the distance with too few digits.
     """
-    with decimal.localcontext() as ctx:
-        ctx.prec = 60
-        mc = 1 - decimal.Decimal(k) ** 2 if k >= 0.0 else decimal.Decimal(mch) + decimal.Decimal(mcl)
-        a, b = decimal.Decimal(1), mc.sqrt()
-        tol = a.scaleb(-58)
-        while abs(a - b) > tol * a:
-            a, b = (a + b) / 2, (a * b).sqrt()
-        kd = _PI_D / (a + b)
-        k1 = float(kd)
-        k2 = float(kd - decimal.Decimal(k1))
-        return k1, k2, float(kd - decimal.Decimal(k1) - decimal.Decimal(k2))
+    if k >= 0.0:
+        n, d = k.as_integer_ratio()
+        num, den = d * d - n * n, d * d
+    else:
+        (n1, d1), (n2, d2) = mch.as_integer_ratio(), mcl.as_integer_ratio()
+        den = max(d1, d2)  # (powers of 2)
+        num = n1 * (den // d1) + n2 * (den // d2)
+    p = 200 + max(0, (den.bit_length() - num.bit_length()) // 2 + 1)
+    a, b = 1 << p, math.isqrt((num << (2 * p)) // den)  # 1 and k' = sqrt(mc), times 2^p
+    while a - b > 4:  # (then the next mean is within 2^-p of a and b: the error of the roots is a few units)
+        a, b = (a + b) >> 1, math.isqrt(a * b)
+    rn, rd = (_PI_INT << (p + 200)) // ((a + b) << _PI_BITS), 1 << 200  # K = pi / (2M), M = (a + b)/2
+    out = []
+    for _ in range(3):  # the double nearest to the rest, three times
+        x = rn / rd
+        xn, xd = x.as_integer_ratio()
+        out.append(x)
+        rn, rd = rn * xd - xn * rd, rd * xd
+    return out[0], out[1], out[2]
 
 
 #: the reduced argument v (the distance to a multiple n K, n <= 2|j| + 1) is recomputed with the triple K
