@@ -27,8 +27,10 @@ import numpy as np
 
 __all__ = [
     "FIX",
+    "FIX_FAST",
     "HALF_PI",
     "PI",
+    "T_FAST",
     "agm_dd",
     "agm_steps",
     "complete_dd",
@@ -167,19 +169,27 @@ def _agm_close(st: tuple[Any, ...], t: Any, weight: float) -> tuple[Any, Any, An
     return mh, ml, sh, sl + se
 
 
+#: where the theta route of arrays closes its mean (``theta_consts``): one step fewer than at ``_T_STOP`` for
+#: mc >= 0.05, the closing expansion with t^2 rounded once: M to about 2^-87 relative (the t^6 term, 2^-106,
+#: omitted); ``reduce_phase`` then holds its 2^-55 of zeta where zeta >= (2|j| + 2) 2^-32 pi/2, and the
+#: theta route recomputes, with the full mean, where zeta is below (2|j| + 2) FIX_FAST pi/2
+T_FAST = 2.0**-17
+FIX_FAST = 2.0**-30
+
+
 @functools.lru_cache(maxsize=64)
-def agm_steps(mc: float) -> int:
+def agm_steps(mc: float, stop: float = _T_STOP) -> int:
     """The steps of the mean from ``(1, sqrt(mc))`` until ``t = (a - b)/(a + b) < _T_STOP`` (the most of any
     larger ``mc``: the mean of ``(1, k')`` converges the faster the larger ``k'``), in doubles: the
     double-double ``t`` differs from it by about 1e-16, which moves the stop only where ``t`` is within 1e-8
     of ``_T_STOP`` relative, and the closing expansion is as good there."""
     a, b, n = 1.0, math.sqrt(mc), 0
-    while (a - b) / (a + b) >= _T_STOP and n < 64:
+    while (a - b) / (a + b) >= stop and n < 64:
         a, b, n = 0.5 * (a + b), math.sqrt(a * b), n + 1
     return n
 
 
-def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False) -> tuple[Any, ...]:
+def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False, stop: float = _T_STOP) -> tuple[Any, ...]:
     r"""The mean :math:`M(1, k') = \pi/(2K)` as a double-double, for :math:`0 < m_c \le 1`.
 
     Parameters
@@ -191,6 +201,9 @@ def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False) -> tuple[Any, ...]
         The namespace (``rigidbody.core.kernel``).
     with_e : bool
         Also return the sum :math:`1 - E/K` as a double-double.
+    stop : float
+        For arrays, close the mean once :math:`t < ` ``stop`` (default ``2^-27``: :math:`M` to about
+        :math:`2^{-104}`; :data:`T_FAST`: about :math:`2^{-87}`).
 
     Returns
     -------
@@ -212,7 +225,7 @@ def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False) -> tuple[Any, ...]
     weight = 0.5
     if xp.array:  # (arrays) the steps the smallest mc needs, for all: a step on a converged member keeps its
         # mean, and costs less than testing and gathering members (from 3 steps at mc = 1/2 to 11 at 1e-300)
-        steps = agm_steps(float(np.min(mch)) if np.size(mch) else 1.0)
+        steps = agm_steps(float(np.min(mch)) if np.size(mch) else 1.0, stop)
         if not with_e and steps:  # the first step in closed form: a_1 = (1 + k')/2, b_1 = sqrt(k')
             ah, al = fast_two_sum(1.0, bh)
             st = (0.5 * ah, 0.5 * (al + bl), *dd_sqrt(bh, bl, lib), c2h, c2l, c2h, c2l)

@@ -30,9 +30,12 @@ The argument is reduced in double-double arithmetic by the half period :math:`2K
 beyond :math:`K/2`, with :math:`K = \pi/(2M)` from the double-double mean ``rigidbody.core._periods.agm_dd``
 (about :math:`2^{-104}` relative); :math:`\zeta = vM` is carried as a double-double into :math:`\sin` and
 :math:`\cos`. Arrays reduce the phase :math:`uM` by :math:`\pi` instead (``reduce_phase``: the same
-:math:`\zeta`, without the division that forms :math:`K`). The relative error near a zero :math:`nK` is a
-few ulp plus :math:`n\,\delta_K / |u - nK|`, :math:`\delta_K \approx 2^{-104}K` the error of the period (the
-argument ``u`` is taken as exact).
+:math:`\zeta`, without the division that forms :math:`K`), with a modulus per element from a mean closed one
+step early (:math:`M` to about :math:`2^{-87}`: the relative error of :math:`\zeta` stays below
+:math:`2^{-55}` down to :math:`\zeta = (2|j| + 2)2^{-32}\pi/2`; below :math:`(2|j| + 2)2^{-30}\pi/2`, a few
+points in a million random ones, the reduction is done again with the full mean). The relative error near a
+zero :math:`nK` is a few ulp plus :math:`n\,\delta_K / |u - nK|`, :math:`\delta_K \approx 2^{-104}K` the
+error of the period (the argument ``u`` is taken as exact).
 """
 
 from __future__ import annotations
@@ -42,8 +45,21 @@ from typing import Any
 
 import numpy as np
 
-from ._periods import FIX, HALF_PI, PI, agm_dd, dd_div, dd_mul, reduce_phase, two_prod, two_sum, with_parity
-from .kernel import SCALAR
+from ._periods import (
+    FIX,
+    FIX_FAST,
+    HALF_PI,
+    PI,
+    T_FAST,
+    agm_dd,
+    dd_div,
+    dd_mul,
+    reduce_phase,
+    two_prod,
+    two_sum,
+    with_parity,
+)
+from .kernel import ARRAY, SCALAR
 
 __all__ = ["MC_THETA", "jacobi_theta", "jacobi_theta_float", "theta_consts"]
 
@@ -61,15 +77,16 @@ def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any) -> tuple[Any, ...]:
     Returns
     -------
     tuple
-        ``(K_hi, K_lo, M_hi, M_lo, cs, cc, cd, cs - 1, cc - 1, sig, dlt, m)``: :math:`K` and :math:`M = \pi/(2K)`
-        as double-doubles (for arrays :math:`K` as a double, ``K_lo = 0``: they reduce the phase by
-        :math:`M`), the constants :math:`T_3/T_1, T_4/T_1, T_4/T_3`, the first two less one (formed without
-        cancellation) and the coefficients (of :math:`x^0 \dots x^4`) of :math:`S/\sin\zeta - 1` and
+        ``(K_hi, K_lo, M_hi, M_lo, cs, cc, cd, cs - 1, cc - 1, sig, dlt, m, early)``: :math:`K` and
+        :math:`M = \pi/(2K)` as double-doubles (for arrays :math:`K` as a double, ``K_lo = 0``, since they
+        reduce the phase by :math:`M`, and :math:`M` from the mean closed early, about :math:`2^{-87}`
+        relative: ``early`` is true), the constants :math:`T_3/T_1, T_4/T_1, T_4/T_3`, the first two less one
+        (formed without cancellation) and the coefficients (of :math:`x^0 \dots x^4`) of :math:`S/\sin\zeta - 1` and
         :math:`D - 1` (:math:`C/\cos\zeta - 1` and :math:`N - 1` are the same polynomials at :math:`-x`:
         :math:`\zeta \to \pi/2 - \zeta`).
     """
     lib = np if xp.array else math
-    mh, ml = agm_dd(mch, mcl, xp)
+    mh, ml = agm_dd(mch, mcl, xp, stop=T_FAST)  # (arrays only: Python floats get the full mean)
     # (arrays reduce the phase by the mean, ``reduce_phase``, and need K only to its double)
     kh, kl = (HALF_PI[0] / mh, 0.0 * mh) if xp.array else dd_div(HALF_PI[0], HALF_PI[1], mh, ml)
     kp = lib.sqrt(mch)
@@ -94,7 +111,7 @@ def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any) -> tuple[Any, ...]:
            -8.0 * q12 + 8.0 * q20, 16.0 * q20)
     dlt = (-2.0 * q4 + 2.0 * q16, -2.0 * q + 6.0 * q9, 4.0 * q4 - 16.0 * q16, -8.0 * q9, 16.0 * q16)
     cd = skp  # T4 / T3 = sqrt(k') (from mc itself: two roundings)
-    return kh, kl, mh, ml, t3 / t1, t4 / t1, cd, (t3m - t1m) / t1, (t4m - t1m) / t1, sig, dlt, m
+    return kh, kl, mh, ml, t3 / t1, t4 / t1, cd, (t3m - t1m) / t1, (t4m - t1m) / t1, sig, dlt, m, xp.array
 
 
 def _poly(c: tuple[Any, ...], x: Any) -> Any:
@@ -139,11 +156,30 @@ def _sincos(zh: Any, zl: Any, lib: Any) -> tuple[Any, Any, Any]:
     return s, c, 1.0 - 2.0 * (s * s)
 
 
+def _full_mean_near_zeros(u: np.ndarray, key: tuple[Any, Any, Any], red: tuple[np.ndarray, ...]
+                          ) -> tuple[np.ndarray, ...]:
+    """The reduction ``red`` of :func:`reduce_phase` by the mean closed at ``T_FAST`` (about ``2^-87``), done
+    again with the full mean where zeta is below ``(2|j| + 2) FIX_FAST pi/2`` (near a zero of sn or cn: a
+    handful of points in 10^6 random ones)."""
+    redo = abs(red[3]) < (2.0 * abs(red[0]) + 2.0) * (FIX_FAST * HALF_PI[0])
+    if not np.any(redo):
+        return red
+    idx = np.flatnonzero(redo)
+    sub = [np.broadcast_to(v, np.shape(u))[idx] for v in key]
+    out = [np.array(a) for a in red]
+    mh, ml = agm_dd(sub[0], sub[1], ARRAY)
+    for o, v in zip(out, reduce_phase(u[idx], mh, ml, (sub[0], sub[1], sub[2]), ARRAY)):
+        o[idx] = v
+    return tuple(out)
+
+
 def jacobi_theta(u: Any, consts: tuple[Any, ...], key: tuple[Any, Any, Any], xp: Any) -> tuple[Any, Any, Any, Any]:
     """sn, cn, dn, am for ``mc >= MC_THETA`` (``consts = theta_consts(...)``, ``key`` the modulus exactly: see
     ``rigidbody.core._periods.reduce_half_period``), ``u`` finite; arrays (any ``xp``)."""
     sig, dlt = consts[9:11]
     j, sgn, upper, zh, zl = reduce_phase(u, consts[2], consts[3], key, xp)
+    if consts[12]:
+        j, sgn, upper, zh, zl = _full_mean_near_zeros(u, key, (j, sgn, upper, zh, zl))
     s, c, x = _sincos(zh, zl, np if xp.array else math)
     # beyond K/2 the roles of sin and cos, and of x and -x, swap: one flip of x, the polynomials at +-x from
     # their even and odd parts
