@@ -1,6 +1,7 @@
 """rigidbody.core.elliptic against mpmath, identities, derivatives and the separatrix."""
 
 import math
+import warnings
 
 import mpmath as mp
 import numpy as np
@@ -266,6 +267,18 @@ def test_long_arrays_with_a_modulus_per_element_equal_scalar_calls(by):
             # each within 8 ulp of the exact value (tests/core/test_elliptic_ulps.py), so within 16 of each
             # other; an ulp of the scalar value is at least half that of the exact one: 32 of its spacings
             assert abs(g - o) <= 32 * np.spacing(abs(o)), (i, u[i], mc[i])
+
+
+def test_arguments_at_multiples_of_K_raise_no_warning():
+    """At the floats nearest to n K, a modulus each, sn rounds to within an ulp of +-1; the root that gives
+    cn from sn where sn is small must not warn (invalid value in sqrt) where it is not taken."""
+    rng = np.random.default_rng(2028)
+    k = np.sqrt(rng.uniform(0.0, 0.999, 3000))
+    u = rng.integers(1, 11, k.size) * ell.K(k)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        s, c, d, _ = ell.jacobi(u, k)
+    assert np.all(np.isfinite(s) & np.isfinite(c) & np.isfinite(d))
 
 
 def test_scalar_fast_paths_return_python_floats_and_validate():

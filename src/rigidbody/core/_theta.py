@@ -139,9 +139,10 @@ _SN2_SMALL = 0.1
 
 def _from_sn(sn: Any, cn: Any, dn: Any, m: Any, small: Any, xp: Any) -> tuple[Any, Any]:
     """cn = sqrt((1 - sn)(1 + sn)), dn = sqrt(1 - m sn^2) where ``small``, else cn, dn as they are."""
-    lib = np if xp.array else math
-    return (xp.where(small, lib.sqrt((1.0 - sn) * (1.0 + sn)), cn),
-            xp.where(small, lib.sqrt(1.0 - m * (sn * sn)), dn))
+    if not xp.array:
+        return (math.sqrt((1.0 - sn) * (1.0 + sn)), math.sqrt(1.0 - m * (sn * sn))) if small else (cn, dn)
+    with np.errstate(invalid="ignore"):  # (where |sn| rounds above 1 the root is NaN, and not taken)
+        return np.where(small, np.sqrt((1.0 - sn) * (1.0 + sn)), cn), np.where(small, np.sqrt(1.0 - m * (sn * sn)), dn)
 
 
 def _zeta(vh: Any, vl: Any, consts: tuple[Any, ...], lib: Any) -> tuple[Any, Any, Any]:
