@@ -28,11 +28,11 @@ from .kernel import ARRAY, SCALAR
 __all__ = ["BLOCK", "blockwise", "jacobi_arrays", "jacobi_scalar"]
 
 
-def _consts(m: Any, mch: Any, mcl: Any, xp: Any, near: bool) -> tuple[Any, ...]:
-    """The constants of one route (elementwise for arrays)."""
+def _consts(m: Any, mch: Any, mcl: Any, xp: Any, near: bool, early: bool = False) -> tuple[Any, ...]:
+    """The constants of one route (elementwise for arrays; ``early``: the theta route's mean closed early)."""
     if near:
         return nome(m, mch, xp, mcl) + complete_dd(mch, mcl, xp)
-    return theta_consts(m, mch, mcl, xp)
+    return theta_consts(m, mch, mcl, xp, early)
 
 
 @functools.lru_cache(maxsize=256)
@@ -89,12 +89,12 @@ def _moduli(mod: np.ndarray, by_k: bool) -> tuple[np.ndarray, ...]:
 
 
 def _theta_filled(u: np.ndarray, mod: np.ndarray, theta: np.ndarray, by_k: bool) -> tuple[Any, ...]:
-    """The theta route on a block, its other members at k = 3/4 or mc = 1/2 (their values are replaced
-    afterwards)."""
+    """The theta route on a block with the mean closed early (am NaN where that is not enough), its other
+    members at k = 3/4 or mc = 1/2 (their values are replaced afterwards)."""
     filled = mod.copy()
     filled[~theta] = 0.75 if by_k else 0.5
     m, mch, mcl, k = _moduli(filled, by_k)
-    return jacobi_theta(u, _consts(m, mch, mcl, ARRAY, False), (mch, mcl, k), ARRAY)
+    return jacobi_theta(u, _consts(m, mch, mcl, ARRAY, False, early=True), (mch, mcl, k), ARRAY)
 
 
 def _route(u: np.ndarray, mod: np.ndarray, by_k: bool, near: bool) -> tuple[Any, ...]:
@@ -129,6 +129,7 @@ def jacobi_arrays(u: np.ndarray, mod: np.ndarray, by_k: bool) -> tuple[np.ndarra
     routes.append((~theta & ~routes[0][0], "near"))
     if 2 * np.count_nonzero(theta) >= u.size:  # mostly theta: no gathering of arguments nor scattering of values
         out = list(blockwise(lambda x, y, z: _theta_filled(x, y, z, by_k), (u, mod, theta), 4))
+        routes.append((theta & np.isnan(out[3]), "theta"))  # (near the zeros: again with the full mean)
     else:
         out = [np.empty_like(u) for _ in range(4)]
         routes.append((theta, "theta"))

@@ -164,17 +164,20 @@ def _agm_close(st: tuple[Any, ...], t: Any, weight: float) -> tuple[Any, Any, An
     ah, al, bh, bl, _, _, sh, sl = st
     mh, ml = two_sum(ah, bh)
     mh, ml = fast_two_sum(0.5 * mh, 0.5 * (ml + al + bl))
-    mh, ml = fast_two_sum(mh, ml - mh * (t * t * (0.25 + 0.078125 * t * t)))
+    x = t * t  # M(1 + t, 1 - t) = 1 - x/4 - 5x^2/64 - 11x^3/256 - ...: to x^7, the rest below 2^-104 for t < 2^-7
+    mh, ml = fast_two_sum(mh, ml - mh * (x * (0.25 + x * (0.078125 + x * (0.04296875 + x * (
+        0.02862548828125 + x * (0.0210418701171875 + x * (0.016425132751464844 + x * 0.013351678848266602))))))))
     sh, se = two_sum(sh, 2.0 * weight * (t * mh) ** 2)
     return mh, ml, sh, sl + se
 
 
-#: where the theta route of arrays closes its mean (``theta_consts``): one step fewer than at ``_T_STOP`` for
-#: mc >= 0.05, the closing expansion with t^2 rounded once: M to about 2^-87 relative (the t^6 term, 2^-106,
-#: omitted); ``reduce_phase`` then holds its 2^-55 of zeta where zeta >= (2|j| + 2) 2^-32 pi/2, and the
-#: theta route recomputes, with the full mean, where zeta is below (2|j| + 2) FIX_FAST pi/2
-T_FAST = 2.0**-17
-FIX_FAST = 2.0**-30
+#: where the theta route of arrays with a modulus per element closes its mean (two steps fewer than at
+#: ``_T_STOP`` for mc >= 0.05): the closing expansion in doubles, x = t^2 rounded, leaves M to about 2^-67
+#: relative; ``reduce_phase`` then holds its 2^-55 of zeta where zeta >= (2|j| + 2) 2^-12 pi/2 (the phase
+#: |u| M <= (|j| + 1) pi), and those arrays are evaluated again with the full mean where zeta is below
+#: (2|j| + 2) FIX_FAST pi/2 (about 1 % of random arguments)
+T_FAST = 2.0**-7
+FIX_FAST = 2.0**-10
 
 
 @functools.lru_cache(maxsize=64)
@@ -203,7 +206,7 @@ def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False, stop: float = _T_S
         Also return the sum :math:`1 - E/K` as a double-double.
     stop : float
         For arrays, close the mean once :math:`t < ` ``stop`` (default ``2^-27``: :math:`M` to about
-        :math:`2^{-104}`; :data:`T_FAST`: about :math:`2^{-87}`).
+        :math:`2^{-104}`; :data:`T_FAST`: about :math:`2^{-67}`).
 
     Returns
     -------

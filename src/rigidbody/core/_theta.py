@@ -30,10 +30,10 @@ The argument is reduced in double-double arithmetic by the half period :math:`2K
 beyond :math:`K/2`, with :math:`K = \pi/(2M)` from the double-double mean ``rigidbody.core._periods.agm_dd``
 (about :math:`2^{-104}` relative); :math:`\zeta = vM` is carried as a double-double into :math:`\sin` and
 :math:`\cos`. Arrays reduce the phase :math:`uM` by :math:`\pi` instead (``reduce_phase``: the same
-:math:`\zeta`, without the division that forms :math:`K`), with a modulus per element from a mean closed one
-step early (:math:`M` to about :math:`2^{-87}`: the relative error of :math:`\zeta` stays below
-:math:`2^{-55}` down to :math:`\zeta = (2|j| + 2)2^{-32}\pi/2`; below :math:`(2|j| + 2)2^{-30}\pi/2`, a few
-points in a million random ones, the reduction is done again with the full mean). The relative error near a
+:math:`\zeta`, without the division that forms :math:`K`), with a modulus per element from a mean closed two
+step early (:math:`M` to about :math:`2^{-67}`: the relative error of :math:`\zeta` stays below
+:math:`2^{-55}` down to :math:`\zeta = (2|j| + 2)2^{-12}\pi/2`; below :math:`(2|j| + 2)2^{-10}\pi/2`, about one
+random argument in a hundred, am is NaN and the caller evaluates again with the full mean). The relative error near a
 zero :math:`nK` is a few ulp plus :math:`n\,\delta_K / |u - nK|`, :math:`\delta_K \approx 2^{-104}K` the
 error of the period (the argument ``u`` is taken as exact).
 """
@@ -59,7 +59,7 @@ from ._periods import (
     two_sum,
     with_parity,
 )
-from .kernel import ARRAY, SCALAR
+from .kernel import SCALAR
 
 __all__ = ["MC_THETA", "jacobi_theta", "jacobi_theta_float", "theta_consts"]
 
@@ -71,7 +71,7 @@ MC_THETA = 0.05
 _NOME_COEFFS = (1.0, 2.0, 15.0, 150.0, 1707.0, 20910.0, 268616.0, 3567400.0, 48555069.0, 673458874.0)
 
 
-def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any) -> tuple[Any, ...]:
+def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any, early: bool = False) -> tuple[Any, ...]:
     r"""What :func:`jacobi_theta` needs of one modulus (elementwise for arrays), :math:`m_c \ge 0.05`.
 
     Returns
@@ -79,14 +79,14 @@ def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any) -> tuple[Any, ...]:
     tuple
         ``(K_hi, K_lo, M_hi, M_lo, cs, cc, cd, cs - 1, cc - 1, sig, dlt, m, early)``: :math:`K` and
         :math:`M = \pi/(2K)` as double-doubles (for arrays :math:`K` as a double, ``K_lo = 0``, since they
-        reduce the phase by :math:`M`, and :math:`M` from the mean closed early, about :math:`2^{-87}`
+        reduce the phase by :math:`M`, and :math:`M` from the mean closed early, about :math:`2^{-67}`
         relative: ``early`` is true), the constants :math:`T_3/T_1, T_4/T_1, T_4/T_3`, the first two less one
         (formed without cancellation) and the coefficients (of :math:`x^0 \dots x^4`) of :math:`S/\sin\zeta - 1` and
         :math:`D - 1` (:math:`C/\cos\zeta - 1` and :math:`N - 1` are the same polynomials at :math:`-x`:
         :math:`\zeta \to \pi/2 - \zeta`).
     """
     lib = np if xp.array else math
-    mh, ml = agm_dd(mch, mcl, xp, stop=T_FAST)  # (arrays only: Python floats get the full mean)
+    mh, ml = agm_dd(mch, mcl, xp, stop=T_FAST) if early else agm_dd(mch, mcl, xp)  # (early: arrays only)
     # (arrays reduce the phase by the mean, ``reduce_phase``, and need K only to its double)
     kh, kl = (HALF_PI[0] / mh, 0.0 * mh) if xp.array else dd_div(HALF_PI[0], HALF_PI[1], mh, ml)
     kp = lib.sqrt(mch)
@@ -111,7 +111,7 @@ def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any) -> tuple[Any, ...]:
            -8.0 * q12 + 8.0 * q20, 16.0 * q20)
     dlt = (-2.0 * q4 + 2.0 * q16, -2.0 * q + 6.0 * q9, 4.0 * q4 - 16.0 * q16, -8.0 * q9, 16.0 * q16)
     cd = skp  # T4 / T3 = sqrt(k') (from mc itself: two roundings)
-    return kh, kl, mh, ml, t3 / t1, t4 / t1, cd, (t3m - t1m) / t1, (t4m - t1m) / t1, sig, dlt, m, xp.array
+    return kh, kl, mh, ml, t3 / t1, t4 / t1, cd, (t3m - t1m) / t1, (t4m - t1m) / t1, sig, dlt, m, early and xp.array
 
 
 def _poly(c: tuple[Any, ...], x: Any) -> Any:
@@ -157,30 +157,13 @@ def _sincos(zh: Any, zl: Any, lib: Any) -> tuple[Any, Any, Any]:
     return s, c, 1.0 - 2.0 * (s * s)
 
 
-def _full_mean_near_zeros(u: np.ndarray, key: tuple[Any, Any, Any], red: tuple[np.ndarray, ...]
-                          ) -> tuple[np.ndarray, ...]:
-    """The reduction ``red`` of :func:`reduce_phase` by the mean closed at ``T_FAST`` (about ``2^-87``), done
-    again with the full mean where zeta is below ``(2|j| + 2) FIX_FAST pi/2`` (near a zero of sn or cn: a
-    handful of points in 10^6 random ones)."""
-    redo = abs(red[3]) < (2.0 * abs(red[0]) + 2.0) * (FIX_FAST * HALF_PI[0])
-    if not np.any(redo):
-        return red
-    idx = np.flatnonzero(redo)
-    sub = [np.broadcast_to(v, np.shape(u))[idx] for v in key]
-    out = [np.array(a) for a in red]
-    mh, ml = agm_dd(sub[0], sub[1], ARRAY)
-    for o, v in zip(out, reduce_phase(u[idx], mh, ml, (sub[0], sub[1], sub[2]), ARRAY)):
-        o[idx] = v
-    return tuple(out)
-
-
 def jacobi_theta(u: Any, consts: tuple[Any, ...], key: tuple[Any, Any, Any], xp: Any) -> tuple[Any, Any, Any, Any]:
     """sn, cn, dn, am for ``mc >= MC_THETA`` (``consts = theta_consts(...)``, ``key`` the modulus exactly: see
-    ``rigidbody.core._periods.reduce_half_period``), ``u`` finite; arrays (any ``xp``)."""
+    ``rigidbody.core._periods.reduce_half_period``), ``u`` finite; arrays (any ``xp``). With the constants of
+    a mean closed early (``theta_consts(..., early=True)``, arrays) am is NaN where zeta is below
+    ``(2|j| + 2) FIX_FAST pi/2``: those points are to be evaluated again with the full mean."""
     sig, dlt = consts[9:11]
     j, sgn, upper, zh, zl = reduce_phase(u, consts[2], consts[3], key, xp)
-    if consts[12]:
-        j, sgn, upper, zh, zl = _full_mean_near_zeros(u, key, (j, sgn, upper, zh, zl))
     s, c, x = _sincos(zh, zl, np if xp.array else math)
     # beyond K/2 the roles of sin and cos, and of x and -x, swap: one flip of x, the polynomials at +-x from
     # their even and odd parts
@@ -191,7 +174,11 @@ def jacobi_theta(u: Any, consts: tuple[Any, ...], key: tuple[Any, Any, Any], xp:
     de, do = dlt[0] + x2 * (dlt[2] + x2 * dlt[4]), x * (dlt[1] + x2 * dlt[3])
     sn, cn, dn = _assemble(consts, sgn, (w(upper, c, s), w(upper, s, c)), (se + so, se - so, de + do, de - do))
     cn, dn = _from_sn(sn, cn, dn, consts[11], ~upper & (sn * sn < _SN2_SMALL), xp)
-    return with_parity(j, sn, cn, dn, xp)
+    out = with_parity(j, sn, cn, dn, xp)
+    if consts[12]:  # the mean closed early: am is NaN where zeta is too small for it, the caller's mark to redo
+        redo = abs(zh) < (2.0 * abs(j) + 2.0) * (FIX_FAST * HALF_PI[0])
+        return out[0], out[1], out[2], np.where(redo, np.nan, out[3])
+    return out
 
 
 def jacobi_theta_float(u: float, consts: tuple[Any, ...], key: tuple[float, float, float]
