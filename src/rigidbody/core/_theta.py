@@ -31,7 +31,7 @@ beyond :math:`K/2`, with :math:`K = \pi/(2M)` from the double-double mean ``rigi
 (about :math:`2^{-104}` relative); :math:`\zeta = vM` is carried as a double-double into :math:`\sin` and
 :math:`\cos`. Arrays reduce the phase :math:`uM` by :math:`\pi` instead (``reduce_phase``: the same
 :math:`\zeta`, without the division that forms :math:`K`), with a modulus per element from a mean closed two
-step early (:math:`M` to about :math:`2^{-67}`: the relative error of :math:`\zeta` stays below
+steps early (:math:`M` to about :math:`2^{-67}`: the relative error of :math:`\zeta` stays below
 :math:`2^{-55}` down to :math:`\zeta = (2|j| + 2)2^{-12}\pi/2`; below :math:`(2|j| + 2)2^{-10}\pi/2`, about one
 random argument in a hundred, am is NaN and the caller evaluates again with the full mean). The relative error near a
 zero :math:`nK` is a few ulp plus :math:`n\,\delta_K / |u - nK|`, :math:`\delta_K \approx 2^{-104}K` the
