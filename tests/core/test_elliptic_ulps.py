@@ -139,9 +139,9 @@ def test_jacobi_within_8_ulps_dense(region, where):
 
 
 def test_a_modulus_per_element_near_the_zeros_at_the_theta_boundary():
-    """Arrays with a modulus per element close their mean early (about 2^-67 relative, at mc = 0.05 where it
+    """Arrays with a modulus per element close their mean early (about 2^-66 relative, at mc = 0.05 where it
     converges slowest) and evaluate again with the full mean near a zero: within 1e-13..1e-11 relative of 9K
-    and 10K the early mean alone would leave the phase off by |u| M 2^-67 against zeta ~ 1e-12, far more
+    and 10K the early mean alone would leave the phase off by |u| M 2^-66 against zeta ~ 1e-12, far more
     than 8 ulp."""
     pts = []
     for i, rel in enumerate([1e-13, -2e-13, 5e-13, -1e-12, 3e-12, -1e-11]):

@@ -172,8 +172,8 @@ def _agm_close(st: tuple[Any, ...], t: Any, weight: float) -> tuple[Any, Any, An
 
 
 #: where the theta route of arrays with a modulus per element closes its mean (two steps fewer than at
-#: ``_T_STOP`` for mc >= 0.05): the closing expansion in doubles, x = t^2 rounded, leaves M to about 2^-67
-#: relative; ``reduce_phase`` then holds its 2^-55 of zeta where zeta >= (2|j| + 2) 2^-12 pi/2 (the phase
+#: ``_T_STOP`` for mc >= 0.05): the closing expansion in doubles, x = t^2 rounded, leaves M to about 2^-66
+#: relative; ``reduce_phase`` then holds its 2^-55 of zeta where zeta >= (2|j| + 2) 2^-11 pi/2 (the phase
 #: |u| M <= (|j| + 1) pi), and those arrays are evaluated again with the full mean where zeta is below
 #: (2|j| + 2) FIX_FAST pi/2 (about 1 % of random arguments)
 T_FAST = 2.0**-7
@@ -206,7 +206,7 @@ def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False, stop: float = _T_S
         Also return the sum :math:`1 - E/K` as a double-double.
     stop : float
         For arrays, close the mean once :math:`t < ` ``stop`` (default ``2^-27``: :math:`M` to about
-        :math:`2^{-104}`; :data:`T_FAST`: about :math:`2^{-67}`).
+        :math:`2^{-104}`; :data:`T_FAST`: about :math:`2^{-66}`).
 
     Returns
     -------

@@ -31,8 +31,8 @@ beyond :math:`K/2`, with :math:`K = \pi/(2M)` from the double-double mean ``rigi
 (about :math:`2^{-104}` relative); :math:`\zeta = vM` is carried as a double-double into :math:`\sin` and
 :math:`\cos`. Arrays reduce the phase :math:`uM` by :math:`\pi` instead (``reduce_phase``: the same
 :math:`\zeta`, without the division that forms :math:`K`), with a modulus per element from a mean closed two
-steps early (:math:`M` to about :math:`2^{-67}`: the relative error of :math:`\zeta` stays below
-:math:`2^{-55}` down to :math:`\zeta = (2|j| + 2)2^{-12}\pi/2`; below :math:`(2|j| + 2)2^{-10}\pi/2`, about one
+steps early (:math:`M` to about :math:`2^{-66}`: the relative error of :math:`\zeta` stays below
+:math:`2^{-55}` down to :math:`\zeta = (2|j| + 2)2^{-11}\pi/2`; below :math:`(2|j| + 2)2^{-10}\pi/2`, about one
 random argument in a hundred, am is NaN and the caller evaluates again with the full mean). The relative error near a
 zero :math:`nK` is a few ulp plus :math:`n\,\delta_K / |u - nK|`, :math:`\delta_K \approx 2^{-104}K` the
 error of the period (the argument ``u`` is taken as exact).
@@ -79,7 +79,7 @@ def theta_consts(m: Any, mch: Any, mcl: Any, xp: Any, early: bool = False) -> tu
     tuple
         ``(K_hi, K_lo, M_hi, M_lo, cs, cc, cd, cs - 1, cc - 1, sig, dlt, m, early)``: :math:`K` and
         :math:`M = \pi/(2K)` as double-doubles (for arrays :math:`K` as a double, ``K_lo = 0``, since they
-        reduce the phase by :math:`M`, and :math:`M` from the mean closed early, about :math:`2^{-67}`
+        reduce the phase by :math:`M`, and :math:`M` from the mean closed early, about :math:`2^{-66}`
         relative: ``early`` is true), the constants :math:`T_3/T_1, T_4/T_1, T_4/T_3`, the first two less one
         (formed without cancellation) and the coefficients (of :math:`x^0 \dots x^4`) of :math:`S/\sin\zeta - 1` and
         :math:`D - 1` (:math:`C/\cos\zeta - 1` and :math:`N - 1` are the same polynomials at :math:`-x`:
