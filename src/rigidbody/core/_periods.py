@@ -174,7 +174,7 @@ def _agm_close(st: tuple[Any, ...], t: Any, weight: float) -> tuple[Any, Any, An
 #: where the theta route of arrays with a modulus per element closes its mean (two steps fewer than at
 #: ``_T_STOP`` for mc >= 0.05): the closing expansion in doubles, x = t^2 rounded, leaves M to about 2^-66
 #: relative; ``reduce_phase`` then holds its 2^-55 of zeta where zeta >= (2|j| + 2) 2^-11 pi/2 (the phase
-#: |u| M <= (|j| + 1) pi), and those arrays are evaluated again with the full mean where zeta is below
+#: |u| M <= (|j| + 1) pi), and the arguments are evaluated again with the full mean where zeta is below
 #: (2|j| + 2) FIX_FAST pi/2 (about 1 % of random arguments)
 T_FAST = 2.0**-7
 FIX_FAST = 2.0**-10
