@@ -1,6 +1,7 @@
 """rigidbody.core.elliptic against mpmath, identities, derivatives and the separatrix."""
 
 import math
+import warnings
 
 import mpmath as mp
 import numpy as np
@@ -244,6 +245,40 @@ def test_array_calls_equal_scalar_calls_across_both_routes(lmc, x):
             slack = abs(u[i]) * 1e-15
             assert abs(s[i] - float(es)) < TOL_SEPARATRIX + slack
             assert abs(d[i] - float(ed)) <= TOL_SEPARATRIX * float(ed) + slack
+
+
+@pytest.mark.parametrize("by", ["k", "mc"])
+def test_long_arrays_with_a_modulus_per_element_equal_scalar_calls(by):
+    """An array longer than the blocks the evaluation takes at a time (a few times 10^4), with a modulus per
+    element mixing the three routes (theta series, complementary nome, k = 1): each element as the scalar
+    call gives it, at the block edges and the ragged end included (a shifted or dropped block, or moduli
+    paired with the wrong arguments, are off by far more)."""
+    rng = np.random.default_rng(19)
+    n = 3 * 2**14 + 7
+    mc = np.where(rng.uniform(size=n) < 0.2, 10.0 ** rng.uniform(-40, -1.3, n), rng.uniform(0.0, 1.0, n))
+    mc[rng.integers(0, n, 20)] = 0.0
+    k = np.sqrt(1.0 - mc)
+    u = rng.uniform(-10.0, 10.0, n) * np.minimum(ell.K(mc=np.maximum(mc, 1e-300)), 50.0)
+    got = ell.jacobi(u, k) if by == "k" else ell.jacobi(u, mc=mc)
+    edges = [i + d for i in range(0, n + 1, 2**10) for d in (-1, 0)]
+    for i in sorted({min(max(i, 0), n - 1) for i in edges} | set(range(n - 10, n))):
+        one = ell.jacobi(float(u[i]), float(k[i])) if by == "k" else ell.jacobi(float(u[i]), mc=float(mc[i]))
+        for g, o in zip((x[i] for x in got), one):
+            # each within 8 ulp of the exact value (tests/core/test_elliptic_ulps.py), so within 16 of each
+            # other; an ulp of the scalar value is at least half that of the exact one: 32 of its spacings
+            assert abs(g - o) <= 32 * np.spacing(abs(o)), (i, u[i], mc[i])
+
+
+def test_arguments_at_multiples_of_K_raise_no_warning():
+    """At the floats nearest to n K, a modulus each, sn rounds to within an ulp of +-1; the root that gives
+    cn from sn where sn is small must not warn (invalid value in sqrt) where it is not taken."""
+    rng = np.random.default_rng(2028)
+    k = np.sqrt(rng.uniform(0.0, 0.999, 3000))
+    u = rng.integers(1, 11, k.size) * ell.K(k)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        s, c, d, _ = ell.jacobi(u, k)
+    assert np.all(np.isfinite(s) & np.isfinite(c) & np.isfinite(d))
 
 
 def test_scalar_fast_paths_return_python_floats_and_validate():

@@ -138,6 +138,20 @@ def test_jacobi_within_8_ulps_dense(region, where):
     assert np.all(err <= ULPS_JACOBI), dict(zip(("sn", "cn", "dn", "am"), err))
 
 
+def test_a_modulus_per_element_near_the_zeros_at_the_theta_boundary():
+    """Arrays with a modulus per element close their mean early (about 2^-66 relative, at mc = 0.05 where it
+    converges slowest) and evaluate again with the full mean near a zero: within 1e-13..1e-11 relative of 9K
+    and 10K the early mean alone would leave the phase off by |u| M 2^-66 against zeta ~ 1e-12, far more
+    than 8 ulp."""
+    pts = []
+    for i, rel in enumerate([1e-13, -2e-13, 5e-13, -1e-12, 3e-12, -1e-11]):
+        for n in (9, 10):
+            mc = 0.05 * (1 + 1e-3 * (i + n))  # (distinct moduli: the per-element route)
+            pts.append((float(n * ell.K(mc=mc) * (1 + rel)), None, mc))
+    err = worst(pts)
+    assert np.all(err <= ULPS_JACOBI), dict(zip(("sn", "cn", "dn", "am"), err))
+
+
 def test_exact_zero_at_the_origin():
     # the only exactly-zero values for a float argument (K is irrational, so no float is a multiple of it):
     # sn(0) = am(0) = 0 and cn(0) = dn(0) = 1, required exactly, on every route

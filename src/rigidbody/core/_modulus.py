@@ -128,8 +128,12 @@ def array_modulus(k: ArrayLike | None, mc: ArrayLike | None) -> tuple[np.ndarray
     """``(m, mc_hi, mc_lo, k)`` as arrays (validated; ``k = -1`` where the modulus is given by ``mc``, which
     then rules when both are given)."""
     if mc is None:
-        m, _, _ = moduli(k, None)
-        ka = np.asarray(k, dtype=float)
-        return (m, *mc_of_k(ka), ka)
+        moduli(k, None)
+        return of_k(np.asarray(k, dtype=float))
     _, mca, _ = moduli(k, mc)
     return 1.0 - mca, mca, np.zeros_like(mca), np.full_like(mca, -1.0)
+
+
+def of_k(k: np.ndarray) -> tuple[np.ndarray, ...]:
+    """``(m, mc_hi, mc_lo, k)`` of a valid modulus array ``k`` (``1 - k^2`` exactly, as a double-double)."""
+    return (k * k, *mc_of_k(k), k)

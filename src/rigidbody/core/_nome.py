@@ -129,8 +129,11 @@ def nome(m: Any, mc: Any, xp: Any, mcl: Any = 0.0) -> tuple[Any, Any, Any, Any, 
     lh, ll = ln_dd(mc, xp)
     ph, pl = two_sum(_LN16[0], -lh)
     ph, pl = two_sum(ph, pl + (_LN16[1] - ll + small - rel))
-    t = 2.0 * (q + q**4 + q**9)  # theta3 - 1
-    c = q * q + q**6 + q**12
+    q2 = q * q
+    q4 = q2 * q2
+    q6 = q4 * q2
+    t = 2.0 * (q + q4 + q4 * q4 * q)  # theta3 - 1
+    c = q2 + q6 + q6 * q6
     return ph, pl, q, t * (2.0 + t), c * (2.0 + c)
 
 

@@ -27,9 +27,12 @@ import numpy as np
 
 __all__ = [
     "FIX",
+    "FIX_FAST",
     "HALF_PI",
     "PI",
+    "T_FAST",
     "agm_dd",
+    "agm_steps",
     "complete_dd",
     "dd_div",
     "dd_mul",
@@ -38,6 +41,8 @@ __all__ = [
     "k_triple",
     "mc_of_k",
     "reduce_half_period",
+    "reduce_phase",
+    "times_int",
     "two_prod",
     "two_sum",
     "with_parity",
@@ -73,6 +78,17 @@ def two_prod(a: Any, b: Any) -> tuple[Any, Any]:
     return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
 
 
+def times_int(j: Any, b: Any, xp: Any) -> tuple[Any, Any]:
+    """:func:`two_prod` of an integer-valued ``j`` and ``b``: below ``2^26`` ``j`` needs no splitting (its
+    products with the halves of ``b`` are exact)."""
+    if not (np.max(np.abs(j), initial=0.0) if xp.array else abs(j)) < 2.0**26:
+        return two_prod(j, b)
+    p = j * b
+    cb = 134217729.0 * b
+    bh = cb - (cb - b)
+    return p, (j * bh - p) + j * (b - bh)
+
+
 def fast_two_sum(a: Any, b: Any) -> tuple[Any, Any]:
     """``s + e = a + b`` exactly when ``|a| >= |b|`` (or ``a = 0``)."""
     s = a + b
@@ -104,7 +120,7 @@ def dd_div(ah: Any, al: Any, bh: Any, bl: Any) -> tuple[Any, Any]:
 def dd_sqrt(ah: Any, al: Any, lib: Any) -> tuple[Any, Any]:
     """The square root of a double-double ``a >= 0`` (one Newton correction of the double root)."""
     s = lib.sqrt(ah)
-    p, pe = two_prod(s, s)
+    p, pe = _square(s)
     if lib is math:
         return (s, 0.0) if s == 0.0 else fast_two_sum(s, (((ah - p) - pe) + al) / (2.0 * s))
     with np.errstate(divide="ignore", invalid="ignore"):  # (the root of 0 is 0, 0)
@@ -125,7 +141,7 @@ _T_STOP = 2.0**-27
 def _agm_step(st: tuple[Any, ...], weight: float, with_e: bool, lib: Any) -> tuple[Any, ...]:
     """One step of the mean on the state ``(a, b, c_n^2, S)`` (each a double-double: eight entries)."""
     ah, al, bh, bl, c2h, c2l, sh, sl = st
-    nh, nl = two_sum(ah, bh)
+    nh, nl = fast_two_sum(ah, bh)  # (a >= b)
     nh, nl = fast_two_sum(nh, nl + (al + bl))
     nh, nl = 0.5 * nh, 0.5 * nl  # a_{n+1}
     # b_{n+1} = sqrt(a b): the double root of the product, corrected by (a b - s^2) / (2 s) with a b and s^2
@@ -148,12 +164,35 @@ def _agm_close(st: tuple[Any, ...], t: Any, weight: float) -> tuple[Any, Any, An
     ah, al, bh, bl, _, _, sh, sl = st
     mh, ml = two_sum(ah, bh)
     mh, ml = fast_two_sum(0.5 * mh, 0.5 * (ml + al + bl))
-    mh, ml = fast_two_sum(mh, ml - mh * (t * t * (0.25 + 0.078125 * t * t)))
+    x = t * t  # M(1 + t, 1 - t) = 1 - x/4 - 5x^2/64 - 11x^3/256 - ...: to x^7, the rest below 2^-104 for t < 2^-7
+    mh, ml = fast_two_sum(mh, ml - mh * (x * (0.25 + x * (0.078125 + x * (0.04296875 + x * (
+        0.02862548828125 + x * (0.0210418701171875 + x * (0.016425132751464844 + x * 0.013351678848266602))))))))
     sh, se = two_sum(sh, 2.0 * weight * (t * mh) ** 2)
     return mh, ml, sh, sl + se
 
 
-def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False) -> tuple[Any, ...]:
+#: where the theta route of arrays with a modulus per element closes its mean (two steps fewer than at
+#: ``_T_STOP`` for mc >= 0.05): the closing expansion in doubles, x = t^2 rounded, leaves M to about 2^-66
+#: relative; ``reduce_phase`` then holds its 2^-55 of zeta where zeta >= (2|j| + 2) 2^-11 pi/2 (the phase
+#: |u| M <= (|j| + 1) pi), and the arguments are evaluated again with the full mean where zeta is below
+#: (2|j| + 2) FIX_FAST pi/2 (about 1 % of random arguments)
+T_FAST = 2.0**-7
+FIX_FAST = 2.0**-10
+
+
+@functools.lru_cache(maxsize=64)
+def agm_steps(mc: float, stop: float = _T_STOP) -> int:
+    """The steps of the mean from ``(1, sqrt(mc))`` until ``t = (a - b)/(a + b) < _T_STOP`` (the most of any
+    larger ``mc``: the mean of ``(1, k')`` converges the faster the larger ``k'``), in doubles: the
+    double-double ``t`` differs from it by about 1e-16, which moves the stop only where ``t`` is within 1e-8
+    of ``_T_STOP`` relative, and the closing expansion is as good there."""
+    a, b, n = 1.0, math.sqrt(mc), 0
+    while (a - b) / (a + b) >= stop and n < 64:
+        a, b, n = 0.5 * (a + b), math.sqrt(a * b), n + 1
+    return n
+
+
+def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False, stop: float = _T_STOP) -> tuple[Any, ...]:
     r"""The mean :math:`M(1, k') = \pi/(2K)` as a double-double, for :math:`0 < m_c \le 1`.
 
     Parameters
@@ -165,6 +204,9 @@ def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False) -> tuple[Any, ...]
         The namespace (``rigidbody.core.kernel``).
     with_e : bool
         Also return the sum :math:`1 - E/K` as a double-double.
+    stop : float
+        For arrays, close the mean once :math:`t < ` ``stop`` (default ``2^-27``: :math:`M` to about
+        :math:`2^{-104}`; :data:`T_FAST`: about :math:`2^{-66}`).
 
     Returns
     -------
@@ -172,36 +214,38 @@ def agm_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False) -> tuple[Any, ...]
         ``(M_hi, M_lo)``, or ``(M_hi, M_lo, S_hi, S_lo)`` with :math:`S = 1 - E/K`.
     """
     lib = np if xp.array else math
-    # k' = sqrt(mc), scaled by an even power of 2 (the low parts of products of tiny numbers are subnormal)
-    n = lib.frexp(mch)[1] // 2
-    bh, bl = dd_sqrt(lib.ldexp(mch, -2 * n), lib.ldexp(mcl, -2 * n), lib)
-    bh, bl = lib.ldexp(bh, n), lib.ldexp(bl, n)
+    # k' = sqrt(mc), scaled by an even power of 2 below 2^-900 (the low parts of the products of tiny numbers
+    # are subnormal below about 2^-969)
+    if (np.min(mch, initial=1.0) if xp.array else mch) < 2.0**-900:
+        n = lib.frexp(mch)[1] // 2
+        bh, bl = dd_sqrt(lib.ldexp(mch, -2 * n), lib.ldexp(mcl, -2 * n), lib)
+        bh, bl = lib.ldexp(bh, n), lib.ldexp(bl, n)
+    else:
+        bh, bl = dd_sqrt(mch, mcl, lib)
     c2h, c2l = two_sum(1.0, -mch)
     c2h, c2l = fast_two_sum(c2h, c2l - mcl)  # c_0^2 = m; the sum S = 1 - E/K = sum 2^(n-1) c_n^2
     st = (1.0 + 0.0 * bh, 0.0 * bh, bh, bl, c2h, c2l, 0.5 * c2h, 0.5 * c2l)
     weight = 0.5
-    res: tuple[Any, ...] = ()
-    if xp.array:  # (1-D arrays) the members leave as they converge (from 3 steps at mc = 1/2 to 12 at mc = 1e-300)
-        out = tuple(np.empty(np.shape(bh)) for _ in range(4))
-        idx = np.arange(np.size(bh))
-    for _ in range(64):
+    if xp.array:  # (arrays) the steps the smallest mc needs, for all: a step on a converged member keeps its
+        # mean, and costs less than testing and gathering members (from 3 steps at mc = 1/2 to 11 at 1e-300)
+        steps = agm_steps(float(np.min(mch)) if np.size(mch) else 1.0, stop)
+        if not with_e and steps:  # the first step in closed form: a_1 = (1 + k')/2, b_1 = sqrt(k')
+            ah, al = fast_two_sum(1.0, bh)
+            st = (0.5 * ah, 0.5 * (al + bl), *dd_sqrt(bh, bl, lib), c2h, c2l, c2h, c2l)
+            weight, steps = 1.0, steps - 1
+        for _ in range(steps):
+            weight *= 2.0
+            st = _agm_step(st, weight, with_e, lib)
         t = ((st[0] - st[2]) + (st[1] - st[3])) / (st[0] + st[2])
-        if not xp.array:
+        res = _agm_close(st, t, weight)
+    else:
+        for _ in range(64):
+            t = ((st[0] - st[2]) + (st[1] - st[3])) / (st[0] + st[2])
             if t < _T_STOP:
                 res = _agm_close(st, t, weight)
                 break
-        else:
-            done = t < _T_STOP
-            if 4 * np.count_nonzero(done) >= done.size:  # (the converged ones leave in groups: a step on a
-                # converged member keeps its mean, and costs less than gathering the arrays for a few)
-                for o, v in zip(out, _agm_close(tuple(x[done] for x in st), t[done], weight)):
-                    o[idx[done]] = v
-                idx, st, t = idx[~done], tuple(x[~done] for x in st), t[~done]
-            if not idx.size:
-                res = out
-                break
-        weight *= 2.0
-        st = _agm_step(st, weight, with_e, lib)
+            weight *= 2.0
+            st = _agm_step(st, weight, with_e, lib)
     return res if with_e else res[:2]
 
 
@@ -217,26 +261,52 @@ def complete_dd(mch: Any, mcl: Any, xp: Any, with_e: bool = False) -> tuple[Any,
     return (kh, kl, *dd_mul(kh, kl, eh, el))
 
 
+def _atan_inv(x: int, bits: int) -> int:
+    """``atan(1/x) 2^bits`` (``x >= 2``) by its alternating series in integers (truncated: a few units low)."""
+    term = (1 << bits) // x
+    total, n, sign = term, 1, -1
+    while term:
+        term //= x * x
+        n += 2
+        total += sign * (term // n)
+        sign = -sign
+    return total
+
+
+#: pi 2^_PI_BITS as an integer (Machin's formula, 16 guard bits)
+_PI_BITS = 320
+_PI_INT = (16 * _atan_inv(5, _PI_BITS + 16) - 4 * _atan_inv(239, _PI_BITS + 16)) >> 16
+
+
 @functools.lru_cache(maxsize=256)
 def k_triple(mch: float, mcl: float, k: float) -> tuple[float, float, float]:
     """:math:`K` of ``mc = mch + mcl`` (exactly), or of the modulus ``k`` if ``k >= 0`` (``mc = 1 - k^2``
     exactly), as three doubles, to about ``2^-160`` relative.
 
-    The mean in 60-digit decimal arithmetic (a few hundred microseconds; cached): what the reduction of an
-    argument within about ``2^-45 K`` of a multiple of ``K`` needs, where the double-double ``K`` leaves the
-    distance with too few digits.
+    The mean in fixed-point integer arithmetic, 200 bits (and half the binary exponent of ``mc`` more, for
+    the root of a tiny ``mc``), with integer square roots (about 10 microseconds; cached): what the reduction
+    of an argument within about ``2^-45 K`` of a multiple of ``K`` needs, where the double-double ``K``
+    leaves the distance with too few digits.
     """
-    with decimal.localcontext() as ctx:
-        ctx.prec = 60
-        mc = 1 - decimal.Decimal(k) ** 2 if k >= 0.0 else decimal.Decimal(mch) + decimal.Decimal(mcl)
-        a, b = decimal.Decimal(1), mc.sqrt()
-        tol = a.scaleb(-58)
-        while abs(a - b) > tol * a:
-            a, b = (a + b) / 2, (a * b).sqrt()
-        kd = _PI_D / (a + b)
-        k1 = float(kd)
-        k2 = float(kd - decimal.Decimal(k1))
-        return k1, k2, float(kd - decimal.Decimal(k1) - decimal.Decimal(k2))
+    if k >= 0.0:
+        n, d = k.as_integer_ratio()
+        num, den = d * d - n * n, d * d
+    else:
+        (n1, d1), (n2, d2) = mch.as_integer_ratio(), mcl.as_integer_ratio()
+        den = max(d1, d2)  # (powers of 2)
+        num = n1 * (den // d1) + n2 * (den // d2)
+    p = 200 + max(0, (den.bit_length() - num.bit_length()) // 2 + 1)
+    a, b = 1 << p, math.isqrt((num << (2 * p)) // den)  # 1 and k' = sqrt(mc), times 2^p
+    while a - b > 4:  # (then the next mean is within 2^-p of a and b: the error of the roots is a few units)
+        a, b = (a + b) >> 1, math.isqrt(a * b)
+    rn, rd = (_PI_INT << (p + 200)) // ((a + b) << _PI_BITS), 1 << 200  # K = pi / (2M), M = (a + b)/2
+    out = []
+    for _ in range(3):  # the double nearest to the rest, three times
+        x = rn / rd
+        xn, xd = x.as_integer_ratio()
+        out.append(x)
+        rn, rd = rn * xd - xn * rd, rd * xd
+    return out[0], out[1], out[2]
 
 
 #: the reduced argument v (the distance to a multiple n K, n <= 2|j| + 1) is recomputed with the triple K
@@ -283,10 +353,10 @@ def reduce_half_period(u: Any, kh: Any, kl: Any, key: tuple[Any, Any, Any], xp: 
     if xp.any(big):  # no digit of the phase is left: reduce by the double 4K first (exact)
         u = xp.where(big, lib.fmod(u, 4.0 * kh), u)
     j = xp.rint(u / (2.0 * kh))
-    p, pe = two_prod(j, 2.0 * kh)
+    p, pe = times_int(j, 2.0 * kh, xp)
     rh, e = two_sum(u, -p)
     rh, rl = two_sum(rh, e - pe - j * (2.0 * kl))
-    sgn = xp.where(rh < 0.0, -1.0, 1.0)
+    sgn = xp.copysign(1.0, rh)
     ah, al = sgn * rh, sgn * rl
     upper = ah > 0.5 * kh
     vh, vl = two_sum(kh - ah, kl - al)  # K - |r|: the first difference exact where it is used (Sterbenz)
@@ -294,25 +364,75 @@ def reduce_half_period(u: Any, kh: Any, kl: Any, key: tuple[Any, Any, Any], xp: 
     fix = abs(vh) < (2.0 * abs(j) + 2.0) * FIX * kh
     if not xp.any(fix):
         return j, sgn, upper, vh, vl
+    idx, v = _near_zero(u, j, sgn, upper, fix, key, xp)
+    if not xp.array:
+        return j, sgn, upper, v, 0.0
+    vh, vl = vh.copy(), vl.copy()
+    vh[idx], vl[idx] = v, 0.0
+    return j, sgn, upper, vh, vl
+
+
+def _near_zero(u: Any, j: Any, sgn: Any, upper: Any, fix: Any, key: tuple[Any, Any, Any], xp: Any
+               ) -> tuple[Any, Any]:
+    """``(idx, v)``: the reduced argument ``v`` recomputed with the triple ``K`` (:func:`k_triple`) where
+    ``fix`` (at the indices ``idx`` of arrays; ``idx = None`` for a Python float)."""
     sign = xp.where(upper, -sgn, sgn)  # v = sign (u - n K), n = 2j (+ sgn where upper)
     if not xp.array:
-        d = _distance(u, j * 2.0 + (sgn if upper else 0.0), k_triple(*map(float, key)))
-        return j, sgn, upper, sign * d, 0.0
+        return None, sign * _distance(u, j * 2.0 + (sgn if upper else 0.0), k_triple(*map(float, key)))
     idx = np.flatnonzero(fix)
     keys = zip(*(np.broadcast_to(v, np.shape(u))[idx].tolist() for v in key))
     trip = np.array([k_triple(*kk) for kk in keys]).reshape(-1, 3)
     n = 2.0 * j[idx] + np.where(upper[idx], sgn[idx], 0.0)
-    d = _distance(u[idx], n, (trip[:, 0], trip[:, 1], trip[:, 2]))
-    vh, vl = vh.copy(), vl.copy()
-    vh[idx], vl[idx] = sign[idx] * d, 0.0
-    return j, sgn, upper, vh, vl
+    return idx, sign[idx] * _distance(u[idx], n, (trip[:, 0], trip[:, 1], trip[:, 2]))
+
+
+def reduce_phase(u: Any, mh: Any, ml: Any, key: tuple[Any, Any, Any], xp: Any) -> tuple[Any, ...]:
+    r"""Reduce the phase :math:`\phi = \pi u/(2K) = uM`: :math:`\phi = j\pi + \rho`, :math:`|\rho| \le \pi/2`,
+    and the argument :math:`\zeta = \pi v/(2K)` of the theta series, without forming :math:`K`.
+
+    The same reduction as :func:`reduce_half_period` (``r = 2\rho K/\pi``), on the mean
+    :math:`M = \pi/(2K)` (a double-double, about :math:`2^{-104}` relative) instead of :math:`K`: the error
+    of :math:`\phi` is about :math:`|\phi|\,2^{-103}`, that of :math:`v` was :math:`|2j|\,2^{-103}K`; where
+    :math:`\zeta < (2|j| + 2)\,2^{-48}\pi/2` (:math:`v < (2|j| + 2)\,2^{-48}K`, near a zero of sn or cn)
+    :math:`v` is recomputed from :math:`K` to about :math:`2^{-160}` (:func:`k_triple`) and multiplied by
+    :math:`M`.
+
+    Returns
+    -------
+    tuple
+        ``(j, sgn, upper, zeta_hi, zeta_lo)``: ``sgn`` the sign of :math:`\rho`; ``upper`` where
+        :math:`|\rho| > \pi/4`, and then :math:`\zeta = \pi/2 - |\rho|`, else :math:`\zeta = |\rho|`.
+    """
+    lib = np if xp.array else math
+    big = abs(u) * mh > 2.0**50 * HALF_PI[0]
+    if xp.any(big):  # no digit of the phase is left: reduce by the double 4K first (exact)
+        u = xp.where(big, lib.fmod(u, 4.0 * (HALF_PI[0] / mh)), u)
+    ph, pe = two_prod(u, mh)
+    ph, pl = fast_two_sum(ph, pe + u * ml)
+    j = xp.rint(ph / PI[0])
+    p, pe = times_int(j, PI[0], xp)
+    rh, e = two_sum(ph, -p)
+    rh, rl = two_sum(rh, e + ((pl - pe) - j * PI[1]))
+    sgn = xp.copysign(1.0, rh)
+    ah, al = sgn * rh, sgn * rl
+    upper = ah > 0.5 * HALF_PI[0]
+    zh, zl = two_sum(HALF_PI[0] - ah, HALF_PI[1] - al)  # pi/2 - |rho|: the first difference exact where used
+    zh, zl = xp.where(upper, zh, ah), xp.where(upper, zl, al)
+    fix = abs(zh) < (2.0 * abs(j) + 2.0) * (FIX * HALF_PI[0])
+    if not xp.any(fix):
+        return j, sgn, upper, zh, zl
+    idx, v = _near_zero(u, j, sgn, upper, fix, key, xp)
+    if not xp.array:
+        return (j, sgn, upper, *dd_mul(v, 0.0, mh, ml))
+    zh, zl = zh.copy(), zl.copy()
+    zh[idx], zl[idx] = dd_mul(v, 0.0, np.broadcast_to(mh, np.shape(u))[idx], np.broadcast_to(ml, np.shape(u))[idx])
+    return j, sgn, upper, zh, zl
 
 
 def with_parity(j: Any, sn: Any, cn: Any, dn: Any, xp: Any) -> tuple[Any, Any, Any, Any]:
     r"""sn, cn, dn, am at :math:`u = 2jK + r` from sn, cn, dn at ``r``: :math:`(-1)^j` on sn and cn,
     :math:`\operatorname{am} = j\pi + \operatorname{atan2}(\operatorname{sn} r, \operatorname{cn} r)`."""
-    lib = np if xp.array else math
-    par = xp.where(lib.fmod(j, 2.0) == 0.0, 1.0, -1.0)
-    p, pe = two_prod(j, PI[0])
+    par = 1.0 - 4.0 * abs(0.5 * j - xp.rint(0.5 * j))  # (-1)^j (j an integer below 2^52)
+    p, pe = times_int(j, PI[0], xp)
     p, pe = fast_two_sum(p, pe + j * PI[1])
     return par * sn, par * cn, dn, p + (pe + xp.atan2(sn, cn))
