@@ -431,7 +431,13 @@ def reduce_phase(u: Any, mh: Any, ml: Any, key: tuple[Any, Any, Any], xp: Any) -
 
 def with_parity(j: Any, sn: Any, cn: Any, dn: Any, xp: Any) -> tuple[Any, Any, Any, Any]:
     r"""sn, cn, dn, am at :math:`u = 2jK + r` from sn, cn, dn at ``r``: :math:`(-1)^j` on sn and cn,
-    :math:`\operatorname{am} = j\pi + \operatorname{atan2}(\operatorname{sn} r, \operatorname{cn} r)`."""
+    :math:`\operatorname{am} = j\pi + \operatorname{atan2}(\operatorname{sn} r, \operatorname{cn} r)`.
+    A value an ulp outside the functions' range (:math:`|\operatorname{sn}|, |\operatorname{cn}|,
+    \operatorname{dn} \le 1`: sn rounds to :math:`1 + 2^{-52}` next to the separatrix with some CPUs' sinh, cosh)
+    is set on the bound, which is nearer the exact value."""
+    sn = xp.where(sn > 1.0, 1.0, xp.where(sn < -1.0, -1.0, sn))
+    cn = xp.where(cn > 1.0, 1.0, xp.where(cn < -1.0, -1.0, cn))
+    dn = xp.where(dn > 1.0, 1.0, dn)
     par = 1.0 - 4.0 * abs(0.5 * j - xp.rint(0.5 * j))  # (-1)^j (j an integer below 2^52)
     p, pe = times_int(j, PI[0], xp)
     p, pe = fast_two_sum(p, pe + j * PI[1])
