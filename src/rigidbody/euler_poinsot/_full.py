@@ -36,6 +36,7 @@ from ..core.validate import RESULT_ERRORS, real, span
 from ._algebra import K2_SPIN_CAP, nutation_frequency
 from ._boundary import as_torque, drag_equivalent
 from ._checks import check_tau_eval, check_tol
+from ._gravity import drag_gravity, radius_in_body
 from ._model import Body, Orbit, as_orbit, check_body, frame_y, relabel
 from ._motion import EulerPoinsot
 from ._output import finish_output
@@ -135,22 +136,14 @@ def _body_form(c: _Common) -> tuple[Any, ...]:
     directions from the state, extra events (none)."""
     body, orb, tq, generic, st, nu0, misfire = c.body, c.orbit, c.torque, c.generic, c.st, c.nu0, c.misfire
     nu_of = c.nu_of
-    A1, A2, A3 = body.A1, body.A2, body.A3
+    A1, A2, A3 = A = body.A1, body.A2, body.A3
     ie2, ie, circular = 1.0 / (c.eps * c.eps), 1.0 / c.eps, orb.e == 0.0
-    (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in c.Im)
+    rows = tuple(tuple(float(x) for x in row) for row in c.Im)
 
     def body_torque_drag(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
                          nu: float) -> tuple[float, float, float]:
-        cn, sn = math.cos(nu), math.sin(nu)
-        # r_b = R^T e_r, R rows 0 and 1 from the quaternion
-        r1 = (1 - 2 * (yq * yq + z * z)) * cn + 2 * (x * yq + w * z) * sn
-        r2 = 2 * (x * yq - w * z) * cn + (1 - 2 * (x * x + z * z)) * sn
-        r3 = 2 * (x * z + w * yq) * cn + 2 * (yq * z - w * x) * sn
-        f3 = 3.0 * orb.factor(nu)
-        L1 = f3 * (A3 - A2) * r2 * r3 - (I11 * o1 + I12 * o2 + I13 * o3)
-        L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
-        L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
-        return L1, L2, L3
+        r = radius_in_body(w, x, yq, z, math.cos(nu), math.sin(nu))
+        return drag_gravity(A, 3.0 * orb.factor(nu), r, rows, (o1, o2, o3))
 
     def body_torque_object(o1: float, o2: float, o3: float, w: float, x: float, yq: float, z: float,
                            nu: float) -> tuple[float, float, float]:
@@ -218,8 +211,8 @@ def _angle_torques(c: _Common) -> Any:
     """The torque projected on the axes Oy of the angles form, ``torques(y, nu) -> (L1, L2, L3)``: the drag tensor
     plus the gravity gradient written out on floats, or any torque object through its body components."""
     body, orb, tq = c.body, c.orbit, c.torque
-    A1, A2, A3 = body.A1, body.A2, body.A3
-    (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = (tuple(float(x) for x in row) for row in c.Im)
+    A1, A2, A3 = A = body.A1, body.A2, body.A3
+    rows = tuple(tuple(float(x) for x in row) for row in c.Im)
 
     def torques_drag(y: np.ndarray, nu: float) -> tuple[float, ...]:
         G, de, la, th, ph, ps = y[0], y[1], y[2], y[3], y[4], y[5]
@@ -233,25 +226,10 @@ def _angle_torques(c: _Common) -> Any:
         o1, o2, o3 = G * a31 / A1, G * a32 / A2, G * a33 / A3
         cnl, snl = math.cos(nu - la), math.sin(nu - la)
         b1, b2, b3 = cnl * math.cos(de), snl, cnl * math.sin(de)
-        # body components of e_r, then J e_r, then back to Oy: (S beta)_m
-        e1 = a11 * b1 + a21 * b2 + a31 * b3
-        e2 = a12 * b1 + a22 * b2 + a32 * b3
-        e3 = a13 * b1 + a23 * b2 + a33 * b3
-        j1, j2, j3 = A1 * e1, A2 * e2, A3 * e3
-        s_1 = a11 * j1 + a12 * j2 + a13 * j3
-        s_2 = a21 * j1 + a22 * j2 + a23 * j3
-        s_3 = a31 * j1 + a32 * j2 + a33 * j3
-        f3 = 3.0 * orb.factor(nu)
-        Lg1 = f3 * (b2 * s_3 - b3 * s_2)
-        Lg2 = f3 * (b3 * s_1 - b1 * s_3)
-        Lg3 = f3 * (b1 * s_2 - b2 * s_1)
-        d1 = I11 * o1 + I12 * o2 + I13 * o3
-        d2 = I21 * o1 + I22 * o2 + I23 * o3
-        d3 = I31 * o1 + I32 * o2 + I33 * o3
-        L1 = Lg1 - (a11 * d1 + a12 * d2 + a13 * d3)
-        L2 = Lg2 - (a21 * d1 + a22 * d2 + a23 * d3)
-        L3 = Lg3 - (a31 * d1 + a32 * d2 + a33 * d3)
-        return L1, L2, L3
+        # the body components of e_r, the torque in body axes, then projected on Oy: L = alpha M
+        e = (a11 * b1 + a21 * b2 + a31 * b3, a12 * b1 + a22 * b2 + a32 * b3, a13 * b1 + a23 * b2 + a33 * b3)
+        M1, M2, M3 = drag_gravity(A, 3.0 * orb.factor(nu), e, rows, (o1, o2, o3))
+        return (a11 * M1 + a12 * M2 + a13 * M3, a21 * M1 + a22 * M2 + a23 * M3, a31 * M1 + a32 * M2 + a33 * M3)
 
     def torques_generic(y: np.ndarray, nu: float) -> tuple[float, ...]:
         # the torque object in body axes, projected on Oy: L = alpha M, C = Y alpha

@@ -31,6 +31,7 @@ from ..core.validate import result_message
 from . import _kernel as _k
 from ._algebra import K2_SPIN_CAP
 from ._full import FullSingle, check_full, full_single, initial_state
+from ._gravity import drag_gravity, radius_in_body
 from ._members import Members, assemble
 from ._model import Body, Orbit
 from ._protocol import ROLE, evaluate
@@ -283,7 +284,7 @@ def _rhs(run: FullRun, t_bad: np.ndarray) -> Any:
     e = run.orbit.e
     drag = run.tensor is not None
     if drag:
-        (I11, I12, I13), (I21, I22, I23), (I31, I32, I33) = np.asarray(run.tensor, dtype=float).tolist()
+        rows = tuple(tuple(row) for row in np.asarray(run.tensor, dtype=float).tolist())
 
     def rhs(t: np.ndarray, y: np.ndarray, ie: np.ndarray, ie2: np.ndarray, nu0: np.ndarray, *lab: np.ndarray
             ) -> np.ndarray:
@@ -293,14 +294,9 @@ def _rhs(run: FullRun, t_bad: np.ndarray) -> Any:
         o1, o2, o3 = g1 / A1, g2 / A2, g3 / A3
         nu = t * ie + nu0 if e == 0.0 else y[:, 7]
         if drag:  # drag plus gravity gradient, written out as in the single run
-            cn, sn = np.cos(nu), np.sin(nu)
-            r1 = (1 - 2 * (yq * yq + z * z)) * cn + 2 * (x * yq + w * z) * sn  # e_r in body axes
-            r2 = 2 * (x * yq - w * z) * cn + (1 - 2 * (x * x + z * z)) * sn
-            r3 = 2 * (x * z + w * yq) * cn + 2 * (yq * z - w * x) * sn
+            r = radius_in_body(w, x, yq, z, np.cos(nu), np.sin(nu))
             f3 = 3.0 * _k.orbit_factor(np, e, nu) if e != 0.0 else 3.0
-            L1 = f3 * (A3 - A2) * r2 * r3 - (I11 * o1 + I12 * o2 + I13 * o3)
-            L2 = f3 * (A1 - A3) * r3 * r1 - (I21 * o1 + I22 * o2 + I23 * o3)
-            L3 = f3 * (A2 - A1) * r1 * r2 - (I31 * o1 + I32 * o2 + I33 * o3)
+            L1, L2, L3 = drag_gravity((A1, A2, A3), f3, r, rows, (o1, o2, o3))
         else:  # the torque's type and shape checked, its finiteness per member (a NaN ends that member only)
             C = dcm_from_unit_quat(w, x, yq, z)
             M = np.broadcast_to(evaluate(run.torque, np.stack([o1, o2, o3], axis=1), C, nu, (t.size, 3),
