@@ -77,19 +77,11 @@ from ._protocol import evaluate
 from ._regions import ARCS, REGIONS, Arc, Region, check_arc, check_region, next_arc, region_arcs
 from ._state import frame
 
-__all__ = ["ARCS", "REGIONS", "Separatrix", "SeparatrixCrossing", "SeparatrixLimits", "separatrix_crossing",
-           "separatrix_limits"]
+__all__ = ["ARCS", "K2_SWITCH", "REGIONS", "Separatrix", "SeparatrixCrossing", "momenta_at", "orbit_nodes",
+           "psi_average", "separatrix_crossing", "separatrix_setup"]
 
 
 TorqueFn = Callable[[np.ndarray, np.ndarray, np.ndarray], Any]
-
-
-
-
-
-
-
-
 
 
 @dataclass(frozen=True)
@@ -101,6 +93,12 @@ class Separatrix:
     body : Body
     G : float
         Magnitude of the angular momentum (> 0).
+
+    See Also
+    --------
+    EulerPoinsot : the motions on either side, of which it is the limit :math:`k\to1`.
+    separatrix_crossing : the drifts along its arcs and the capture probabilities.
+    separatrix_limits : the averaged rates at the separatrix.
 
     Notes
     -----
@@ -148,13 +146,6 @@ class Separatrix:
         c3 = self.G * math.sqrt(A3 * (A1 - A2) / (A2 * (A1 - A3)))
         return c1, c3
 
-    def _g_x(self, x: np.ndarray, arc: Arc) -> np.ndarray:
-        """Body angular momentum at the points ``sin x = tanh(rate t)`` of an arc, shape ``(3, *x.shape)``."""
-        s1, s3 = arc
-        c1, c3 = self.amplitudes
-        cx = np.cos(x)
-        return np.stack([s1 * c1 * cx, -s1 * s3 * self.G * np.sin(x), s3 * c3 * cx])
-
     def g(self, t: Any, arc: Any) -> np.ndarray:
         r"""Body components of the angular momentum on the arc ``(s1, s3)``, shape ``(3, *t.shape)``.
 
@@ -167,12 +158,20 @@ class Separatrix:
         """
         a = check_arc(arc)
         u = self.rate * np.asarray(t, dtype=float)
-        return self._g_x(np.arctan(np.sinh(u)), a)  # gd(u): sin x = tanh u, cos x = sech u
+        return momenta_at(self, np.arctan(np.sinh(u)), a)  # gd(u): sin x = tanh u, cos x = sech u
 
     def omega(self, t: Any, arc: Any) -> np.ndarray:
         """Body angular velocity on the arc ``(s1, s3)``, shape ``(3, *t.shape)``."""
         g = self.g(t, arc)
         return g / self.body.A.reshape((3,) + (1,) * (g.ndim - 1))
+
+
+def momenta_at(sep: Separatrix, x: np.ndarray, arc: Arc) -> np.ndarray:
+    """Body angular momentum at the points ``sin x = tanh(rate t)`` of an arc, shape ``(3, *x.shape)``."""
+    s1, s3 = arc
+    c1, c3 = sep.amplitudes
+    cx = np.cos(x)
+    return np.stack([s1 * c1 * cx, -s1 * s3 * sep.G * np.sin(x), s3 * c3 * cx])
 
 
 # --------------------------------------------------------------------------------------------------
@@ -185,7 +184,7 @@ def _torque_fn(torque: Any, body: Body, orbit: Orbit) -> TorqueFn:
     return tq
 
 
-def _orbit_nodes(nu: float | None, orbit: Orbit, n_nu: int) -> tuple[np.ndarray, np.ndarray]:
+def orbit_nodes(nu: float | None, orbit: Orbit, n_nu: int) -> tuple[np.ndarray, np.ndarray]:
     """True anomalies and weights: ``nu`` itself, or the time mean over one orbit (Kepler's law)."""
     if nu is not None:
         return np.array([nu]), np.array([1.0])
@@ -199,8 +198,8 @@ def _unit_n(delta: Any, lam: Any) -> np.ndarray:
     return np.array([math.sin(d) * math.cos(la), math.sin(d) * math.sin(la), math.cos(d)])
 
 
-def _psi_average(body: Body, torque: TorqueFn, g: np.ndarray, n: np.ndarray, nus: np.ndarray,
-                 wnu: np.ndarray, n_psi: int) -> tuple[np.ndarray, np.ndarray]:
+def psi_average(body: Body, torque: TorqueFn, g: np.ndarray, n: np.ndarray, nus: np.ndarray,
+                wnu: np.ndarray, n_psi: int) -> tuple[np.ndarray, np.ndarray]:
     """Torque at body momenta ``g`` (3, m), averaged over psi (and the orbit nodes).
 
     Returns the mean body torque (3, m) and the mean torque in the orbital axes (3, m).
@@ -229,8 +228,8 @@ def _check_nodes(n: Any, name: str, minimum: int) -> int:
     return int(n)
 
 
-def _setup(body: Any, torque: Any, G: Any, delta: Any, lam: Any, nu: Any, orbit: Any, n_x: Any, n_psi: Any,
-           n_nu: Any) -> tuple[Separatrix, TorqueFn, np.ndarray, float | None, Orbit, tuple[int, int, int]]:
+def separatrix_setup(body: Any, torque: Any, G: Any, delta: Any, lam: Any, nu: Any, orbit: Any, n_x: Any, n_psi: Any,
+                     n_nu: Any) -> tuple[Separatrix, TorqueFn, np.ndarray, float | None, Orbit, tuple[int, int, int]]:
     check_body(body)
     orb = as_orbit(orbit)
     sep = Separatrix(body, G)
@@ -251,7 +250,7 @@ def _arc_drifts(sep: Separatrix, torque: TorqueFn, n: np.ndarray, nus: np.ndarra
     out: dict[Arc, float] = {}
     for arc in ARCS:
         s1, s3 = arc
-        Lb, _ = _psi_average(body, torque, sep._g_x(x, arc), n, nus, wnu, n_psi)
+        Lb, _ = psi_average(body, torque, momenta_at(sep, x, arc), n, nus, wnu, n_psi)
         integrand = s1 * c1 * (1.0 / A1 - 1.0 / A2) * Lb[0] + s3 * c3 * (1.0 / A3 - 1.0 / A2) * Lb[2]
         out[arc] = float(w @ integrand) / sep.rate
     return out
@@ -340,6 +339,12 @@ class SeparatrixCrossing:
     quad_error : float
         Estimated quadrature error of the drifts (difference to the half-node rule).
 
+    See Also
+    --------
+    separatrix_crossing : computes it.
+    averaged_branches : averaged runs through the separatrix into each region.
+    Separatrix : the motions along the arcs.
+
     Examples
     --------
     The drag is odd in :math:`\boldsymbol\omega`: both senses of rotation tie (the tie goes to ``sigma = +1``):
@@ -414,6 +419,13 @@ def separatrix_crossing(
     SeparatrixCrossing
         ``probabilities`` maps each region ``(kind, sigma)`` to its capture probability.
 
+    See Also
+    --------
+    SeparatrixCrossing : its result.
+    separatrix_limits : the averaged rates as the separatrix is approached.
+    averaged : continues a run through the separatrix in a region chosen with these probabilities.
+    averaged_branches : runs each region.
+
     Examples
     --------
     A constant body-fixed torque that brakes a spin about the minor axis and pushes about the major one:
@@ -426,11 +438,12 @@ def separatrix_crossing(
     >>> {r: round(p, 3) for r, p in c.probabilities.items() if p > 0}
     {('max', 1): 0.464, ('min', -1): 0.536}
     """
-    sep, fn, n, nu_, orb, (n_x, n_psi, n_nu) = _setup(body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu)
+    sep, fn, n, nu_, orb, nodes = separatrix_setup(body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu)
+    n_x, n_psi, n_nu = nodes
     src = check_region(source, "source")
-    nus, wnu = _orbit_nodes(nu_, orb, n_nu)
+    nus, wnu = orbit_nodes(nu_, orb, n_nu)
     drifts = _arc_drifts(sep, fn, n, nus, wnu, n_x, n_psi)
-    nus2, wnu2 = _orbit_nodes(nu_, orb, max(2, n_nu // 2))
+    nus2, wnu2 = orbit_nodes(nu_, orb, max(2, n_nu // 2))
     coarse = _arc_drifts(sep, fn, n, nus2, wnu2, max(4, n_x // 2), max(2, n_psi // 2))
     err = max(abs(drifts[a] - coarse[a]) for a in ARCS)
     # drifts below 1e-12 of the separatrix energy per passage time count as zero: a torque that does not act on
@@ -438,152 +451,6 @@ def separatrix_crossing(
     probs, und, crosses = _propagate(drifts, src, floor=1e-12 * sep.T / sep.rate)
     loops = {r: sum(drifts[a] for a in region_arcs(r)) for r in REGIONS}
     return SeparatrixCrossing(src, drifts, loops, probs, und, crosses, err)
-
-
-# --------------------------------------------------------------------------------------------------
-# limits of the averaged rates at the separatrix
-# --------------------------------------------------------------------------------------------------
-def _rates_at(body: Body, g: np.ndarray, Lb: np.ndarray, Lo: np.ndarray, n: np.ndarray) -> dict[str, np.ndarray]:
-    """dG, dT, dh and dn at body momenta g (3, m) for the psi-averaged torques Lb (body), Lo (orbital)."""
-    G = np.linalg.norm(g, axis=0)
-    omega = g / body.A[:, None]
-    dG = (g * Lb).sum(0) / G
-    dT = (omega * Lb).sum(0)
-    dh = dT - G * dG / body.A2
-    dn = (Lo - np.outer(n, n @ Lo)) / G
-    return {"dG": dG, "dT": dT, "dh": dh, "dn": dn}
-
-
-@dataclass(frozen=True)
-class SeparatrixLimits:
-    r"""Limits of the averaged rates at the separatrix and how they are approached.
-
-    The mean of a smooth function over a period of the Euler--Poinsot motion tends, as :math:`k\to1`, to
-    its value at the saddles :math:`\pm G\mathbf e_2` (averaged over :math:`\psi` and over the two
-    saddles): the motion spends all but :math:`O(1)` of its period :math:`4K/\dot u` next to them. The
-    separatrix loop enters only as the correction :math:`J/(4K)`, with :math:`J` the integral along the two
-    arcs of the region of the difference between the function and its value at the saddle being
-    approached or left (in the elliptic argument :math:`u`). So the rates are continuous across the
-    separatrix (the same limit from all four regions), with an infinite slope in :math:`k^2` there, and the
-    convergence is slow: :math:`1/K \approx 1/\ln(4/k')`.
-
-    Attributes
-    ----------
-    dG, dT : float
-        Limits of the averaged :math:`dG/d\tau`, :math:`dT/d\tau`.
-    dn : numpy.ndarray
-        Limit of :math:`d\mathbf n/d\tau` (unit vector of :math:`\mathbf G` in the orbital axes).
-    dk2 : float
-        Limit of :math:`dk^2/d\tau` (0: the averaged drift of the energy vanishes at the separatrix).
-    slope : dict
-        Region -> dict of :math:`J/4` for ``'dG'``, ``'dT'``, ``'dh'``, ``'dk2'`` (floats) and ``'dn'``
-        (array), so that the averaged rate near the separatrix is ``limit + slope / K(k)``.
-
-    Examples
-    --------
-    At :math:`k^2 = 1 - 10^{-4}` the limit is 8 % off (6) (a :math:`1/K` term), ``near`` less than :math:`10^{-4}`:
-
-    >>> from rigidbody import euler_poinsot as ep
-    >>> body, I = ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425]
-    >>> lim, exact = ep.separatrix_limits(body, I, 1.0, 0.7, 0.3, None), ep.drag_rates(body, I, 1.0, 1 - 1e-4)[0]
-    >>> print(f"{abs(lim.dG / exact - 1):.2f}", bool(abs(lim.near(("max", 1), 1e-4)["dG"] / exact - 1) < 1e-4))
-    0.08 True
-    """
-
-    dG: float
-    dT: float
-    dn: np.ndarray
-    dk2: float
-    slope: dict[Region, dict[str, Any]] = field(repr=False)
-
-    def near(self, region: Any, mc: float) -> dict[str, Any]:
-        r"""The two-term asymptotic rates ``limit + slope/K`` at :math:`1 - k^2 = ` ``mc`` in ``region``."""
-        from ..core.elliptic import K
-
-        reg = check_region(region)
-        mcf = real(mc, "mc")
-        if not (0.0 < mcf <= 1.0):
-            raise ValueError(f"mc (= 1 - k**2) must lie in (0, 1], got {mcf}")
-        kk = float(K(mc=mcf))
-        s = self.slope[reg]
-        base = {"dG": self.dG, "dT": self.dT, "dn": self.dn, "dk2": self.dk2, "dh": 0.0}
-        return {q: base[q] + s[q] / kk for q in ("dG", "dT", "dn", "dk2", "dh")}
-
-
-def separatrix_limits(
-    body: Body,
-    torque: Any,
-    G: float,
-    delta: float,
-    lam: float,
-    nu: float | None,
-    *,
-    orbit: Orbit | None = None,
-    n_x: int = 48,
-    n_psi: int = 16,
-    n_nu: int = 32,
-) -> SeparatrixLimits:
-    r"""Limits at :math:`k^2\to1` of the averaged rates of :math:`G`, :math:`T`, :math:`\mathbf n`, :math:`k^2`.
-
-    Parameters
-    ----------
-    body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu
-        As in :func:`separatrix_crossing`.
-
-    Returns
-    -------
-    SeparatrixLimits
-        The common limit from the four regions and, per region, the coefficient of the :math:`1/K(k)`
-        correction. For the paper's drag (diagonal :math:`I`): :math:`dG/d\tau\to -I_{22}G/A_2`,
-        :math:`dT/d\tau\to -I_{22}G^2/A_2^2` (rotation about the intermediate axis), and
-        :math:`K\,dk^2/d\tau\to \mp2(I_{33}/A_3 - I_{11}/A_1)` from the ``"max"``/``"min"`` side, the
-        limit of (8).
-
-    Examples
-    --------
-    The paper's drag: the limits :math:`-I_{22}G/A_2` and :math:`-I_{22}G^2/A_2^2` above:
-
-    >>> from rigidbody import euler_poinsot as ep
-    >>> lim = ep.separatrix_limits(ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425], 1.0, 0.7, 0.3, None)
-    >>> print(f"{lim.dG:.6f} {-1.31 / 2.6:.6f} {lim.dT:.6f} {-1.31 / 2.6**2:.6f}")
-    -0.503846 -0.503846 -0.193787 -0.193787
-    """
-    sep, fn, n, nu_, orb, (n_x, n_psi, n_nu) = _setup(body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu)
-    nus, wnu = _orbit_nodes(nu_, orb, n_nu)
-    A1, A2, A3 = body.A1, body.A2, body.A3
-    Gf = sep.G
-    saddles = np.array([[0.0, 0.0], [Gf, -Gf], [0.0, 0.0]])  # +e2, -e2
-    Lb, Lo = _psi_average(body, fn, saddles, n, nus, wnu, n_psi)
-    at = _rates_at(body, saddles, Lb, Lo, n)
-    lim = {q: 0.5 * (v[..., 0] + v[..., 1]) for q, v in at.items()}
-    # J along an arc, in u = rate * t: from the start saddle to the middle and from the middle to the end
-    x, w = np.polynomial.legendre.leggauss(n_x)
-    xh = 0.25 * math.pi * (x - 1.0)  # (-pi/2, 0)
-    wh = 0.25 * math.pi * w
-    arc_J: dict[Arc, dict[str, Any]] = {}
-    for arc in ARCS:
-        s1, s3 = arc
-        start = 0 if s1 * s3 == 1 else 1  # index of the saddle the arc leaves: +e2 when s1 s3 = 1
-        J: dict[str, Any] = {}
-        for half, xs, sad in ((0, xh, start), (1, -xh[::-1], 1 - start)):
-            g = sep._g_x(xs, arc)
-            Lb_, Lo_ = _psi_average(body, fn, g, n, nus, wnu, n_psi)
-            r = _rates_at(body, g, Lb_, Lo_, n)
-            wq = wh if half == 0 else wh[::-1]
-            for q, v in r.items():
-                diff = (v - at[q][..., sad : sad + 1]) / np.cos(xs)  # du = dx / cos x
-                J[q] = J.get(q, 0.0) + diff @ wq
-        arc_J[arc] = J
-    dk2_dD = (A1 - A3) / ((A1 - A2) * (A2 - A3))  # |dk^2/dD| at D = A2, both kinds
-    slope: dict[Region, dict[str, Any]] = {}
-    for reg in REGIONS:
-        a, b = region_arcs(reg)
-        s = {q: 0.25 * (arc_J[a][q] + arc_J[b][q]) for q in ("dG", "dT", "dh", "dn")}
-        # D = G^2/2T: dD = -(2 A2^2/G^2) dh at the separatrix; k^2 decreases with D for 'max', increases for 'min'
-        sign = float(reg.h_sign)
-        s["dk2"] = sign * dk2_dD * (-2.0 * A2 * A2 / (Gf * Gf)) * s["dh"]
-        slope[reg] = {q: (float(v) if np.ndim(v) == 0 else np.asarray(v)) for q, v in s.items()}
-    return SeparatrixLimits(float(lim["dG"]), float(lim["dT"]), np.asarray(lim["dn"]), 0.0, slope)
 
 
 # --------------------------------------------------------------------------------------------------
