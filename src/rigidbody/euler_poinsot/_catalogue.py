@@ -290,7 +290,23 @@ class MagneticDipole(ArrayEq):
             object.__setattr__(self, "B", _vector(self.B, "B"))
 
     def field_at(self, nu: Any) -> np.ndarray:
-        """:math:`\\mathbf B` in the orbital axes at the true anomaly ``nu``, shape ``(..., 3)``."""
+        r""":math:`\mathbf B` in the orbital axes at the true anomaly ``nu``, shape ``(..., 3)``.
+
+        Examples
+        --------
+        A constant field is the same at every :math:`\nu`. The Earth's dipole on an equatorial circular orbit of
+        radius :math:`a_E` is :math:`-g_1^0` = 29404.8 nT (IGRF-13) to the north, along the orbit normal, at every
+        :math:`\nu`:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> ep.MagneticDipole([0.2, 0.0, 0.0], [0.0, 0.0, 0.5]).field_at(np.array([0.0, 1.0])).tolist()
+        [[0.0, 0.0, 0.5], [0.0, 0.0, 0.5]]
+        >>> earth = ep.DipoleField(0.0, 0.0, ep.IGRF_RADIUS, scale=1e9)  # in nanotesla
+        >>> B = ep.MagneticDipole([0.2, 0.0, 0.0], earth).field_at(np.array([0.0, 2.0]))
+        >>> (np.round(B, 6) + 0.0).tolist()
+        [[0.0, 0.0, 29404.8], [0.0, 0.0, 29404.8]]
+        """
         return orbital_field(self.B, nu)
 
     def __call__(self, omega: Any, C: Any, nu: Any) -> np.ndarray:

@@ -220,7 +220,21 @@ class GravityGradient(ArrayEq):
         object.__setattr__(self, "omega0", float(w))
 
     def factor(self, nu: Any) -> Any:
-        """:math:`3\\omega_0^2 f(\\nu)`, vectorised."""
+        r""":math:`3\omega_0^2 f(\nu)`, vectorised.
+
+        Examples
+        --------
+        :math:`f = (a/r)^3` with :math:`r` the distance from the centre: at the pericentre :math:`r = a(1 - e)`, at
+        the apocentre :math:`a(1 + e)`, so for :math:`e = 1/2` the factor is :math:`3\cdot2^3 = 24` and
+        :math:`3/1.5^3 = 0.888889`; on a circular orbit it is :math:`3\omega_0^2` at every :math:`\nu`:
+
+        >>> import math
+        >>> from rigidbody import euler_poinsot as ep
+        >>> body = ep.Body(3.2, 2.6, 1.67)
+        >>> gg = ep.GravityGradient(body, ep.Orbit(0.5))
+        >>> print(f"{gg.factor(0.0):.6f} {gg.factor(math.pi):.6f}", ep.GravityGradient(body, omega0=2.0).factor(1.0))
+        24.000000 0.888889 12.0
+        """
         e = self.orbit.e  # type: ignore[union-attr]  # set to an Orbit in __post_init__
         c = 3.0 * self.omega0**2
         if e == 0.0:
