@@ -12,7 +12,8 @@ from scipy.optimize import brentq
 
 from rigidbody import euler_poinsot as ep
 from rigidbody.euler_poinsot import _resonance
-from rigidbody.euler_poinsot._engine import State, harmonic
+from rigidbody.euler_poinsot._engine import State
+from rigidbody.euler_poinsot._resonance import harmonic
 from rigidbody.euler_poinsot._segment import rotation_number
 
 BODY = ep.Body(3.2, 2.6, 1.67)

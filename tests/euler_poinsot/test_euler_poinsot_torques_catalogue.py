@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from rigidbody import euler_poinsot as ep
-from rigidbody.euler_poinsot._torques import _sn4_mean
+from rigidbody.euler_poinsot._catalogue import _sn4_mean
 
 BODY = ep.Body(3.2, 2.6, 1.67)
 DELTA, LAM = 1.0, 0.3

@@ -81,8 +81,9 @@ All quantities are nondimensional in the paper's section-3 scaling (G0 = 1, A~ =
 I~ = I/(G0 eps^2), orbital rate eps, tau = eps^2 t~); see :ref:`ep-scaling`.
 """
 
-from ._algebra import N_star, N_time, T_from, chi, dk2_dtau, drag_rates, k2_equilibria, k2_from, kind_of, spin_ratio
+from ._algebra import N_star, N_time, T_from, chi, dk2_dtau, drag_rates, k2_equilibria, k2_from, kind_of
 from ._averaged import averaged, averaged_branches
+from ._catalogue import ConstantTorque, MagneticDipole, ViscousCavity
 from ._eddy import EddyCurrent
 from ._engine import TorqueAverage
 from ._full import initial_state
@@ -93,28 +94,13 @@ from ._motion import EulerPoinsot
 from ._options import Solver, Stops
 from ._physical import FreeMotion
 from ._rates import average_torque, averaged_rates, precession_rate
-from ._separatrix import (
-    ARCS,
-    REGIONS,
-    Separatrix,
-    SeparatrixCrossing,
-    SeparatrixLimits,
-    separatrix_crossing,
-    separatrix_limits,
-)
+from ._separatrix import ARCS, REGIONS, Separatrix, SeparatrixCrossing, separatrix_crossing
+from ._seplimits import SeparatrixLimits, separatrix_limits
 from ._simulate import simulate
 from ._spacecraft import PaperStart, Spacecraft, SpacecraftSolution
+from ._spin import spin_ratio
 from ._state import Mean, State
-from ._torques import (
-    ConstantTorque,
-    FunctionTorque,
-    GravityGradient,
-    LinearDrag,
-    MagneticDipole,
-    Torque,
-    TorqueSum,
-    ViscousCavity,
-)
+from ._torques import FunctionTorque, GravityGradient, LinearDrag, Torque, TorqueSum
 
 __all__ = [
     "ARCS",

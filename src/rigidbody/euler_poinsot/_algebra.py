@@ -3,23 +3,17 @@ inertia, the drag tensor and the slow variables :math:`(G, k^2)` (the notation o
 
 from __future__ import annotations
 
-import math
 from typing import Any
 
 import numpy as np
-from scipy import special
 
 from ..core.validate import real
 from ._model import Body, as_drag, check_body, check_kind, elliptic_ratios, float_array, labelled
 
-__all__ = ["K2_SPIN_CAP", "N_star", "N_time", "T_from", "chi", "dk2_dtau", "dk2_labelled", "drag_rates",
-           "drag_rates_labelled", "k2_equilibria", "k2_from", "kind_of", "nstar_labelled", "nutation_frequency",
-           "spin_ratio"]
+__all__ = ["N_star", "N_time", "T_from", "chi", "dk2_dtau", "dk2_labelled", "drag_rates", "drag_rates_labelled",
+           "k2_equilibria", "k2_from", "kind_of", "nstar_labelled"]
 
 
-# --------------------------------------------------------------------------------------------------
-# public algebra
-# --------------------------------------------------------------------------------------------------
 def _S_over_R(A: tuple[float, float, float], k2: float) -> float:
     A1, A2, A3 = A
     return (A2 - A3 + (A1 - A2) * k2) / (A1 * (A2 - A3) + A3 * (A1 - A2) * k2)
@@ -115,6 +109,12 @@ def T_from(body: Body, G: Any, k2: Any, kind: str = "max") -> Any:
     -------
     float or numpy.ndarray
 
+    See Also
+    --------
+    k2_from : its inverse, formula (5).
+    kind_of : the kind of motion of a state :math:`(G, T)`.
+    EulerPoinsot : the motion at :math:`(G, k^2)`.
+
     Examples
     --------
     :math:`T` runs from :math:`G^2/2A_1 = 1/6.4` (:math:`k^2 = 0`) to :math:`G^2/2A_2 = 1/5.2` (:math:`k^2 = 1`):
@@ -164,6 +164,12 @@ def kind_of(body: Body, G: float, T: float) -> str:
     ValueError
         If ``G`` or ``T`` is not positive, or :math:`G^2/2T` lies outside :math:`[A_3, A_1]` (no rigid-body
         state has it).
+
+    See Also
+    --------
+    k2_from : :math:`k^2` of a state, formula (5).
+    T_from : the energy from :math:`G` and :math:`k^2`.
+    Separatrix : the motions of kind ``'separatrix'``.
 
     Examples
     --------
@@ -220,6 +226,12 @@ def chi(body: Body, I: Any) -> float:
         :class:`Drag`); or if :math:`I_{33}A_1 = I_{11}A_3` (then :math:`N = \infty` and :math:`\chi` is
         undefined; the :math:`k^2` equation itself stays finite: use :func:`dk2_dtau`).
 
+    See Also
+    --------
+    N_time : the time scale of (7).
+    dk2_dtau : the :math:`k^2` equation (8).
+    k2_equilibria : its roots, whose stability :math:`\chi` decides.
+
     Examples
     --------
     The paper's two drag cases, printed as -4.477 and 3.853 (the first is sensitive to the rounding of
@@ -262,6 +274,12 @@ def N_time(body: Body, I: Any) -> float:
     ValueError
         If ``I`` is not a valid drag tensor (see :class:`Drag`), or :math:`I_{33}A_1 = I_{11}A_3` (then
         :math:`N` is infinite).
+
+    See Also
+    --------
+    chi : the other parameter of (7).
+    dk2_dtau : the :math:`k^2` equation (8).
+    k2_equilibria : its roots and their stability.
 
     Examples
     --------
@@ -390,6 +408,13 @@ def drag_rates(body: Body, I: Any, G: float, k2: float, kind: str = "max") -> tu
     dG, dT : float
         Per unit dimensional time :math:`t` (or per :math:`\tau` with the nondimensional :math:`\tilde I`).
 
+    See Also
+    --------
+    dk2_dtau : the drag's rate of :math:`k^2`, (8).
+    N_star : the gravity-gradient term of (6).
+    LinearDrag : the torque object with these averages.
+    averaged_rates : all right-hand sides of (6) and (9).
+
     Examples
     --------
     An isotropic drag :math:`-c\boldsymbol\omega` gives :math:`dG/dt = -c\,\mathbf g\cdot\boldsymbol\omega/G =
@@ -446,6 +471,12 @@ def N_star(body: Body, k2: Any, kind: str = "max") -> Any:
     ValueError
         If ``kind`` is unknown or ``k2`` is not finite and in :math:`[0, 1]`.
 
+    See Also
+    --------
+    GravityGradient : the torque whose average :math:`N^*` sets.
+    precession_rate : the orbit-averaged precession of :math:`\mathbf G` it drives.
+    drag_rates : the drag's right-hand sides of (6).
+
     Examples
     --------
     At :math:`k^2 = 0` the body turns about the axis of :math:`A_1`: :math:`J_{GG} = A_1`,
@@ -488,6 +519,12 @@ def k2_equilibria(body: Body, I: Any, kind: str = "max", n_grid: int = 2001) -> 
     -------
     list of (k2, 'stable' | 'unstable' | 'neutral')
 
+    See Also
+    --------
+    dk2_dtau : the equation whose roots they are.
+    chi : the parameter of (7) that, with :math:`N`, decides the stability of :math:`k^2 = 0`.
+    N_time : the time scale of (7).
+
     Examples
     --------
     The paper's first drag case: :math:`\chi < -3` and :math:`N > 0` make :math:`k^2 = 0` unstable; the
@@ -517,82 +554,3 @@ def k2_equilibria(body: Body, I: Any, kind: str = "max", n_grid: int = 2001) -> 
             stab = "stable" if fs[i] > 0 or fs[i + 1] < 0 else "unstable"
             out.append((float(r), stab))
     return out
-
-
-#: The rotation-speed check (``min_spin_ratio``) takes the period at ``min(k2, K2_SPIN_CAP)``: next to the
-#: separatrix the period grows without bound (like ln(1/(1 - k^2))) while the body still turns fast (about the
-#: intermediate axis, at rate G/A2); the momentary infinite period of a passage must not end a run. At
-#: k^2 = 0.99 the period is about 2.4 times that at k = 0.
-K2_SPIN_CAP = 0.99
-
-
-def nutation_frequency(A: tuple[float, float, float], G: float, k2: float) -> float:
-    r"""Angular frequency :math:`2\pi/P = \pi\dot u/(2K)` of the Euler--Poinsot motion (labelled moments)."""
-    A1, A2, A3 = A
-    mc = 1.0 - k2
-    if mc <= 0.0:
-        return 0.0
-    R = A1 * (A2 - A3) + A3 * (A1 - A2) * k2
-    rate = G * math.sqrt((A1 - A2) * (A1 - A3) * (A2 - A3) / (A1 * A2 * A3 * R))
-    return math.pi * rate / (2.0 * float(special.elliprf(0.0, mc, 1.0)))
-
-
-def spin_ratio(body: Body, eps: float, G: float, k2: float, kind: str = "max") -> float:
-    r"""How fast the rotation is compared with the orbit: :math:`(2\pi/P)/\omega_0`.
-
-    :math:`P = 4K/\dot u` is the period of the Euler--Poinsot motion (the slowest fast oscillation; it
-    grows without bound at the separatrix) and :math:`\omega_0 = \varepsilon` in the section-3 scaling
-    (dimensional use: pass :math:`\omega_0` as ``eps``). The averaging needs this ratio to be large; the
-    integrators stop when it falls to ``min_spin_ratio``.
-
-    The period follows from the closed-form Euler--Poinsot motion of section 2 with the modulus (5),
-    :math:`\dot u = G\sqrt{(A_1-A_2)(A_1-A_3)(A_2-A_3)/(A_1A_2A_3R)}` (labels 1 and 3 exchanged for
-    ``kind='min'``).
-
-    Parameters
-    ----------
-    body : Body
-    eps : float
-        Orbital rate in the section-3 scaling, :math:`\tilde\omega_0 = \varepsilon` (> 0); or the
-        dimensional mean motion :math:`\omega_0` with dimensional ``G`` and moments.
-    G : float
-        Magnitude of the angular momentum (> 0; :math:`\tilde G` in the section-3 scaling).
-    k2 : float
-        Modulus squared of the Euler--Poinsot motion (5), in :math:`[0, 1]`.
-    kind : {'max', 'min'}
-        Kind of Euler--Poinsot motion ('max' is the paper's).
-
-    Returns
-    -------
-    float
-        The dimensionless ratio :math:`(2\pi/P)/\omega_0` (0 at the separatrix :math:`k^2 = 1`).
-
-    Raises
-    ------
-    TypeError
-        If ``body`` is not a :class:`Body` or ``eps``, ``G``, ``k2`` is not a real number.
-    ValueError
-        If ``kind`` is unknown, ``eps <= 0``, ``G <= 0`` or ``k2`` is outside :math:`[0, 1]`.
-
-    Examples
-    --------
-    The ratio is :math:`2\pi/(P\varepsilon)` with the period of :class:`EulerPoinsot`:
-
-    >>> import math
-    >>> from rigidbody import euler_poinsot as ep
-    >>> body = ep.Body(3.2, 2.6, 1.67)
-    >>> P = ep.EulerPoinsot(body, 1.0, 0.5).period
-    >>> print(f"{ep.spin_ratio(body, 0.1, 1.0, 0.5):.6f} {2 * math.pi / (P * 0.1):.6f}")
-    1.126246 1.126246
-    """
-    check_body(body)
-    check_kind(kind)
-    eps = real(eps, "eps")
-    if eps <= 0:
-        raise ValueError("eps must be positive")
-    G, k2 = real(G, "G"), real(k2, "k2")
-    if G <= 0:
-        raise ValueError(f"G must be positive, got {G}")
-    if not (0.0 <= k2 <= 1.0):
-        raise ValueError(f"k2 must lie in [0, 1], got {k2}")
-    return nutation_frequency(labelled(body, kind), G, k2) / eps

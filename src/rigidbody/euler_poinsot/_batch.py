@@ -22,7 +22,6 @@ import numpy as np
 
 from ..core.ode import Solution
 from ..core.validate import positive, real
-from ._algebra import K2_SPIN_CAP
 from ._boundary import as_torque, drag_equivalent
 from ._branches import check_branch
 from ._checks import check_averaging, check_sigma
@@ -32,6 +31,7 @@ from ._full import initial_state
 from ._fullrun import FullRun, run_full_members
 from ._members import check_members, common_checks, drag_batch, member_inputs
 from ._model import as_orbit
+from ._spin import K2_SPIN_CAP
 from ._start import StartRules
 from ._torques import probe
 

@@ -23,12 +23,13 @@ from ..core.kernel import ARRAY, SCALAR
 from ..core.ode import Event, Solution
 from ..core.piecewise import Continue, MemberRecords, PieceEnd, PieceSpec, Stop, run_pieces
 from . import _kernel as _k
-from ._algebra import K2_SPIN_CAP, dk2_labelled
+from ._algebra import dk2_labelled
 from ._crossing import Piece, assemble_pieces, cross_separatrix
 from ._members import FIELDS, Members
 from ._model import Body, Drag, Orbit, labelled, relabel
 from ._regions import Region
 from ._separatrix import K2_SWITCH
+from ._spin import K2_SPIN_CAP
 from ._stops import stop_message
 from ._torques import drag_as_torque
 

@@ -443,6 +443,12 @@ class TorqueAverage:
         The last ratio :math:`d_2/d_1` of successive differences per axis (``'psi'``, ``'u'``, ``'nu'``):
         near 0 for spectral convergence, about :math:`2^{-p}` for algebraic convergence of order :math:`p`.
 
+    See Also
+    --------
+    average_torque : computes it.
+    averaged_rates : the same rates (closed forms where a torque has them), without an error estimate.
+    Mean : what a torque's own closed form gives.
+
     Examples
     --------
     The paper's drag: the engine's rate is that of the closed form (6), -0.665135 (:func:`drag_rates`):
@@ -562,38 +568,3 @@ def _same_state(a: State, b: State, rel: float = 1e-12) -> bool:
             and (a.nu is None or b.nu is None or abs(a.nu - b.nu) <= rel * (1.0 + abs(b.nu)))
             and abs(a.G - b.G) <= rel * abs(b.G) and abs(a.k2 - b.k2) <= rel
             and float(np.abs(np.asarray(a.n) - np.asarray(b.n)).max()) <= rel)
-
-
-def harmonic(torque: Any, st: State, j: int, m: int) -> np.ndarray:
-    r"""The Fourier coefficient :math:`c_{jm}` of the six quantities on the torus of the motion.
-
-    In the angle variables of the Euler--Poinsot motion, :math:`\tilde\psi = \psi - \chi(t)` (:math:`\chi`
-    the periodic part of the precession angle) and the phase :math:`\vartheta = 2\pi t/P`, the flow is
-    linear: :math:`\dot{\tilde\psi} = \langle\dot\psi\rangle`, :math:`\dot\vartheta = 2\pi/P`. The
-    coefficient of :math:`e^{i(j\tilde\psi + m\vartheta)}` drives a resonance where
-    :math:`j\langle\dot\psi\rangle + 2\pi m/P = 0`. The nu of ``st`` is held (it must be a number).
-    """
-    from ._motion import EulerPoinsot
-
-    mot = EulerPoinsot(st.body, st.G, st.k2, st.kind, st.sigma, mc=st.mc)
-    n_u = 2 * max(Grid().n_u(st.mc), 4 * abs(m) + 8)
-    n_u += (-n_u) % 4
-    n_psi = max(8, 4 * abs(j))
-    omega, al = motion_nodes(st, n_u)
-    t = np.arange(n_u) * (mot.period / n_u)
-    psi_t, _, _ = mot.angles(t)
-    chi = np.asarray(psi_t) - mot.psi_rate_mean() * t
-    ang = np.arange(n_psi)[:, None] * (2.0 * math.pi / n_psi) + chi[None, :]
-    c, s = np.cos(ang), np.sin(ang)
-    Y = frame(st.n)
-    B = np.empty((n_psi, n_u, 3, 3))  # Y R3(psi)
-    B[..., 0] = Y[:, 0] * c[..., None] + Y[:, 1] * s[..., None]
-    B[..., 1] = Y[:, 1] * c[..., None] - Y[:, 0] * s[..., None]
-    B[..., 2] = Y[:, 2]
-    C = B @ al[None]
-    shape = (n_psi, n_u)
-    assert st.nu is not None
-    M = np.asarray(torque(np.broadcast_to(omega, (*shape, 3)), C, np.full(shape, st.nu)), dtype=float)
-    V = quantities(st, omega, C, np.broadcast_to(M, (*shape, 3)))
-    F = np.fft.fft2(V, axes=(0, 1)) / (n_psi * n_u)
-    return F[j % n_psi, m % n_u]

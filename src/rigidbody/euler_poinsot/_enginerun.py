@@ -20,7 +20,6 @@ import numpy as np
 
 from ..core.ode import Solution
 from ..core.piecewise import Continue, MemberRecords, PieceEnd, PieceSpec, Stop, run_pieces
-from ._algebra import K2_SPIN_CAP
 from ._crossing import Piece, assemble_pieces, cross_separatrix
 from ._engine import Averager
 from ._members import FIELDS, Members, assemble
@@ -28,6 +27,7 @@ from ._output import unit_of_angles
 from ._regions import Region
 from ._segment import KindRun, RunOptions, Setup, finish_kind
 from ._separatrix import K2_SWITCH
+from ._spin import K2_SPIN_CAP
 from ._state import State
 from ._stops import stop_message
 

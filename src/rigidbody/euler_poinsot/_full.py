@@ -33,7 +33,6 @@ import numpy as np
 from ..core import euler
 from ..core.ode import Event, Solution
 from ..core.validate import RESULT_ERRORS, real, span
-from ._algebra import K2_SPIN_CAP, nutation_frequency
 from ._boundary import as_torque, drag_equivalent
 from ._checks import check_tau_eval, check_tol
 from ._gravity import drag_gravity, radius_in_body
@@ -41,6 +40,7 @@ from ._model import Body, Orbit, as_orbit, check_body, frame_y, relabel
 from ._motion import EulerPoinsot
 from ._output import finish_output
 from ._protocol import Misfire, evaluate
+from ._spin import K2_SPIN_CAP, nutation_frequency
 from ._start import StartRules, check_start, initial_kind
 from ._stops import stop_message
 from ._torques import probe

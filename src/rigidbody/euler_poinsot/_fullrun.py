@@ -29,12 +29,12 @@ from ..core.ode import Event, Solution
 from ..core.piecewise import MemberRecords, PieceEnd, PieceSpec, Stop, run_pieces
 from ..core.validate import result_message
 from . import _kernel as _k
-from ._algebra import K2_SPIN_CAP
 from ._full import FullSingle, check_full, full_single, initial_state
 from ._gravity import drag_gravity, radius_in_body
 from ._members import Members, assemble
 from ._model import Body, Orbit
 from ._protocol import ROLE, evaluate
+from ._spin import K2_SPIN_CAP
 from ._stops import stop_message
 
 __all__ = ["FullRun", "run_full", "run_full_members"]

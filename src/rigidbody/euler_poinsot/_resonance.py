@@ -3,7 +3,7 @@ r"""Resonance crossings of an averaged run: where :math:`j\rho = N` and the jump
 Along a run with :math:`\varepsilon > 0` the rotation number :math:`\rho = \langle\dot\psi\rangle P/2\pi` (a
 function of :math:`k^2`) crosses the resonances :math:`j\rho = N`, :math:`j = 1, 2`. A passage changes the slow
 variables by the jump :math:`2|c_{j,-N}|\varepsilon\sqrt{P/|j\dot\rho|}` (stationary phase; :math:`c_{jm}` the
-Fourier coefficient of the torque's effect on the torus of the motion, :func:`._engine.harmonic`).
+Fourier coefficient of the torque's effect on the torus of the motion, :func:`harmonic`).
 
 Cost. One coefficient costs a grid of :math:`8\times 2\max(n_u, 4N + 8)` nodes: its phase factor
 :math:`e^{iN\vartheta}` has to be resolved. Near a symmetric body (:math:`A_2 \approx A_3` or
@@ -41,7 +41,8 @@ from typing import Any
 import numpy as np
 
 from ..core.ode import Solution
-from ._engine import Grid, harmonic, quantities, torque_grid
+from ._engine import Grid, motion_nodes, quantities, torque_grid
+from ._state import State, frame
 
 #: orders |m| <= EXACT_ORDERS get their coefficient at the crossing, as before the bound (so every crossing of a
 #: body whose moments differ by 3 per cent or more: its rotation number stays below 20); above, the bound first
@@ -125,6 +126,41 @@ class _StepFit:
             v = np.einsum("pn,pn->p", c, T[:, :c.shape[1]])
             out.append(v * (2.0 / safe) if derivative else v)
         return out
+
+
+def harmonic(torque: Any, st: State, j: int, m: int) -> np.ndarray:
+    r"""The Fourier coefficient :math:`c_{jm}` of the six quantities on the torus of the motion.
+
+    In the angle variables of the Euler--Poinsot motion, :math:`\tilde\psi = \psi - \chi(t)` (:math:`\chi`
+    the periodic part of the precession angle) and the phase :math:`\vartheta = 2\pi t/P`, the flow is
+    linear: :math:`\dot{\tilde\psi} = \langle\dot\psi\rangle`, :math:`\dot\vartheta = 2\pi/P`. The
+    coefficient of :math:`e^{i(j\tilde\psi + m\vartheta)}` drives a resonance where
+    :math:`j\langle\dot\psi\rangle + 2\pi m/P = 0`. The nu of ``st`` is held (it must be a number).
+    """
+    from ._motion import EulerPoinsot
+
+    mot = EulerPoinsot(st.body, st.G, st.k2, st.kind, st.sigma, mc=st.mc)
+    n_u = 2 * max(Grid().n_u(st.mc), 4 * abs(m) + 8)
+    n_u += (-n_u) % 4
+    n_psi = max(8, 4 * abs(j))
+    omega, al = motion_nodes(st, n_u)
+    t = np.arange(n_u) * (mot.period / n_u)
+    psi_t, _, _ = mot.angles(t)
+    chi = np.asarray(psi_t) - mot.psi_rate_mean() * t
+    ang = np.arange(n_psi)[:, None] * (2.0 * math.pi / n_psi) + chi[None, :]
+    c, s = np.cos(ang), np.sin(ang)
+    Y = frame(st.n)
+    B = np.empty((n_psi, n_u, 3, 3))  # Y R3(psi)
+    B[..., 0] = Y[:, 0] * c[..., None] + Y[:, 1] * s[..., None]
+    B[..., 1] = Y[:, 1] * c[..., None] - Y[:, 0] * s[..., None]
+    B[..., 2] = Y[:, 2]
+    C = B @ al[None]
+    shape = (n_psi, n_u)
+    assert st.nu is not None
+    M = np.asarray(torque(np.broadcast_to(omega, (*shape, 3)), C, np.full(shape, st.nu)), dtype=float)
+    V = quantities(st, omega, C, np.broadcast_to(M, (*shape, 3)))
+    F = np.fft.fft2(V, axes=(0, 1)) / (n_psi * n_u)
+    return F[j % n_psi, m % n_u]
 
 
 def harmonic_bound(torque: Any, st: Any) -> np.ndarray:

@@ -19,12 +19,12 @@ from scipy import special
 from ..core.ode import Event, Solution
 from ..core.validate import RESULT_ERRORS
 from . import _kernel as _k
-from ._algebra import K2_SPIN_CAP, nutation_frequency
 from ._engine import Averager
 from ._model import Body, Orbit, labelled
 from ._output import PiecewiseDense, finish_output, lam_unwrapped
 from ._protocol import Misfire
 from ._resonance import resonance_crossings
+from ._spin import K2_SPIN_CAP, nutation_frequency
 from ._state import Mean, State
 from ._stops import stop_message
 

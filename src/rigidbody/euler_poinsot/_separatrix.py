@@ -77,19 +77,11 @@ from ._protocol import evaluate
 from ._regions import ARCS, REGIONS, Arc, Region, check_arc, check_region, next_arc, region_arcs
 from ._state import frame
 
-__all__ = ["ARCS", "REGIONS", "Separatrix", "SeparatrixCrossing", "SeparatrixLimits", "separatrix_crossing",
-           "separatrix_limits"]
+__all__ = ["ARCS", "K2_SWITCH", "REGIONS", "Separatrix", "SeparatrixCrossing", "momenta_at", "orbit_nodes",
+           "psi_average", "separatrix_crossing", "separatrix_setup"]
 
 
 TorqueFn = Callable[[np.ndarray, np.ndarray, np.ndarray], Any]
-
-
-
-
-
-
-
-
 
 
 @dataclass(frozen=True)
@@ -101,6 +93,12 @@ class Separatrix:
     body : Body
     G : float
         Magnitude of the angular momentum (> 0).
+
+    See Also
+    --------
+    EulerPoinsot : the motions on either side, of which it is the limit :math:`k\to1`.
+    separatrix_crossing : the drifts along its arcs and the capture probabilities.
+    separatrix_limits : the averaged rates at the separatrix.
 
     Notes
     -----
@@ -131,29 +129,57 @@ class Separatrix:
 
     @property
     def T(self) -> float:
-        """Kinetic energy on the separatrix, :math:`G^2/(2A_2)`."""
+        r"""Kinetic energy on the separatrix, :math:`G^2/(2A_2)`.
+
+        Examples
+        --------
+        The energy of the Euler--Poinsot motion at :math:`k^2 = 1` (the inverse of (5), :func:`T_from`), and
+        :math:`1/(2\cdot2.6)` by hand:
+
+        >>> from rigidbody import euler_poinsot as ep
+        >>> body = ep.Body(3.2, 2.6, 1.67)
+        >>> print(f"{ep.Separatrix(body, 1.0).T:.6f} {ep.T_from(body, 1.0, 1.0):.6f} {1 / 5.2:.6f}")
+        0.192308 0.192308 0.192308
+        """
         return self.G**2 / (2.0 * self.body.A2)
 
     @property
     def rate(self) -> float:
-        r""":math:`\lambda = G\sqrt{(A_1-A_2)(A_2-A_3)/(A_1A_2^2A_3)}`: the exponent of the saddles."""
+        r""":math:`\lambda = G\sqrt{(A_1-A_2)(A_2-A_3)/(A_1A_2^2A_3)}`: the exponent of the saddles.
+
+        Examples
+        --------
+        On an arc :math:`g_2 = -s_1s_3G\tanh(\lambda t)`, so at its middle :math:`\dot g_2 = -s_1s_3G\lambda`;
+        Euler's equation :math:`\dot{\mathbf g} = \mathbf g\times\boldsymbol\omega` gives
+        :math:`\dot g_2 = g_3\omega_1 - g_1\omega_3` there:
+
+        >>> from rigidbody import euler_poinsot as ep
+        >>> sep = ep.Separatrix(ep.Body(3.2, 2.6, 1.67), 1.0)
+        >>> g, w = sep.g(0.0, (1, 1)), sep.omega(0.0, (1, 1))
+        >>> print(f"{sep.rate:.6f} {-(g[2] * w[0] - g[0] * w[2]) / sep.G:.6f}")
+        0.124283 0.124283
+        """
         A1, A2, A3 = self.body.A1, self.body.A2, self.body.A3
         return self.G * math.sqrt((A1 - A2) * (A2 - A3) / (A1 * A2 * A2 * A3))
 
     @property
     def amplitudes(self) -> tuple[float, float]:
-        r""":math:`(c_1, c_3)`, the largest :math:`|g_1|` and :math:`|g_3|` on the separatrix."""
+        r""":math:`(c_1, c_3)`, the largest :math:`|g_1|` and :math:`|g_3|` on the separatrix.
+
+        Examples
+        --------
+        Both are reached at the middle of an arc (:math:`g_2 = 0`), where :math:`c_1^2 + c_3^2 = G^2` and the
+        energy is that of the separatrix, :math:`c_1^2/A_1 + c_3^2/A_3 = 2T = G^2/A_2`:
+
+        >>> from rigidbody import euler_poinsot as ep
+        >>> c1, c3 = ep.Separatrix(ep.Body(3.2, 2.6, 1.67), 1.0).amplitudes
+        >>> print(f"{c1**2 + c3**2:.6f} {c1**2 / 3.2 + c3**2 / 1.67:.6f} {1 / 2.6:.6f}")
+        1.000000 0.384615 0.384615
+        """
         A1, A2, A3 = self.body.A1, self.body.A2, self.body.A3
         c1 = self.G * math.sqrt(A1 * (A2 - A3) / (A2 * (A1 - A3)))
         c3 = self.G * math.sqrt(A3 * (A1 - A2) / (A2 * (A1 - A3)))
         return c1, c3
-
-    def _g_x(self, x: np.ndarray, arc: Arc) -> np.ndarray:
-        """Body angular momentum at the points ``sin x = tanh(rate t)`` of an arc, shape ``(3, *x.shape)``."""
-        s1, s3 = arc
-        c1, c3 = self.amplitudes
-        cx = np.cos(x)
-        return np.stack([s1 * c1 * cx, -s1 * s3 * self.G * np.sin(x), s3 * c3 * cx])
 
     def g(self, t: Any, arc: Any) -> np.ndarray:
         r"""Body components of the angular momentum on the arc ``(s1, s3)``, shape ``(3, *t.shape)``.
@@ -164,15 +190,51 @@ class Separatrix:
             Time from the middle of the arc.
         arc : (int, int)
             Signs ``(s1, s3)`` of :math:`g_1, g_3` on the arc.
+
+        Examples
+        --------
+        The motion leaves one saddle and tends to the other, :math:`\mp s_1s_3G\mathbf e_2` as
+        :math:`t\to\pm\infty` (at :math:`\lambda t = \pm25`, :math:`\operatorname{sech} = 3\cdot10^{-11}`):
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> sep = ep.Separatrix(ep.Body(3.2, 2.6, 1.67), 1.0)
+        >>> t = 25.0 / sep.rate
+        >>> (np.round(sep.g(np.array([-t, t]), (1, -1)), 9) + 0.0).T.tolist()
+        [[0.0, -1.0, 0.0], [0.0, 1.0, 0.0]]
         """
         a = check_arc(arc)
         u = self.rate * np.asarray(t, dtype=float)
-        return self._g_x(np.arctan(np.sinh(u)), a)  # gd(u): sin x = tanh u, cos x = sech u
+        return momenta_at(self, np.arctan(np.sinh(u)), a)  # gd(u): sin x = tanh u, cos x = sech u
 
     def omega(self, t: Any, arc: Any) -> np.ndarray:
-        """Body angular velocity on the arc ``(s1, s3)``, shape ``(3, *t.shape)``."""
+        r"""Body angular velocity on the arc ``(s1, s3)``, shape ``(3, *t.shape)``.
+
+        Examples
+        --------
+        It obeys Euler's equations :math:`A\dot{\boldsymbol\omega} = A\boldsymbol\omega\times\boldsymbol\omega`:
+        a central difference with :math:`h = 10^{-4}` errs by :math:`h^2|\dddot{\boldsymbol\omega}|/6 \approx
+        10^{-12}` (and :math:`10^{-16}/h` of rounding), far below the bound :math:`10^{-9}`:
+
+        >>> import numpy as np
+        >>> from rigidbody import euler_poinsot as ep
+        >>> body = ep.Body(3.2, 2.6, 1.67)
+        >>> sep, h = ep.Separatrix(body, 1.0), 1e-4
+        >>> w = sep.omega(3.0, (-1, 1))
+        >>> dw = (sep.omega(3.0 + h, (-1, 1)) - sep.omega(3.0 - h, (-1, 1))) / (2 * h)
+        >>> bool(np.abs(dw - np.cross(body.A * w, w) / body.A).max() < 1e-9)
+        True
+        """
         g = self.g(t, arc)
         return g / self.body.A.reshape((3,) + (1,) * (g.ndim - 1))
+
+
+def momenta_at(sep: Separatrix, x: np.ndarray, arc: Arc) -> np.ndarray:
+    """Body angular momentum at the points ``sin x = tanh(rate t)`` of an arc, shape ``(3, *x.shape)``."""
+    s1, s3 = arc
+    c1, c3 = sep.amplitudes
+    cx = np.cos(x)
+    return np.stack([s1 * c1 * cx, -s1 * s3 * sep.G * np.sin(x), s3 * c3 * cx])
 
 
 # --------------------------------------------------------------------------------------------------
@@ -185,7 +247,7 @@ def _torque_fn(torque: Any, body: Body, orbit: Orbit) -> TorqueFn:
     return tq
 
 
-def _orbit_nodes(nu: float | None, orbit: Orbit, n_nu: int) -> tuple[np.ndarray, np.ndarray]:
+def orbit_nodes(nu: float | None, orbit: Orbit, n_nu: int) -> tuple[np.ndarray, np.ndarray]:
     """True anomalies and weights: ``nu`` itself, or the time mean over one orbit (Kepler's law)."""
     if nu is not None:
         return np.array([nu]), np.array([1.0])
@@ -199,8 +261,8 @@ def _unit_n(delta: Any, lam: Any) -> np.ndarray:
     return np.array([math.sin(d) * math.cos(la), math.sin(d) * math.sin(la), math.cos(d)])
 
 
-def _psi_average(body: Body, torque: TorqueFn, g: np.ndarray, n: np.ndarray, nus: np.ndarray,
-                 wnu: np.ndarray, n_psi: int) -> tuple[np.ndarray, np.ndarray]:
+def psi_average(body: Body, torque: TorqueFn, g: np.ndarray, n: np.ndarray, nus: np.ndarray,
+                wnu: np.ndarray, n_psi: int) -> tuple[np.ndarray, np.ndarray]:
     """Torque at body momenta ``g`` (3, m), averaged over psi (and the orbit nodes).
 
     Returns the mean body torque (3, m) and the mean torque in the orbital axes (3, m).
@@ -229,8 +291,8 @@ def _check_nodes(n: Any, name: str, minimum: int) -> int:
     return int(n)
 
 
-def _setup(body: Any, torque: Any, G: Any, delta: Any, lam: Any, nu: Any, orbit: Any, n_x: Any, n_psi: Any,
-           n_nu: Any) -> tuple[Separatrix, TorqueFn, np.ndarray, float | None, Orbit, tuple[int, int, int]]:
+def separatrix_setup(body: Any, torque: Any, G: Any, delta: Any, lam: Any, nu: Any, orbit: Any, n_x: Any, n_psi: Any,
+                     n_nu: Any) -> tuple[Separatrix, TorqueFn, np.ndarray, float | None, Orbit, tuple[int, int, int]]:
     check_body(body)
     orb = as_orbit(orbit)
     sep = Separatrix(body, G)
@@ -251,7 +313,7 @@ def _arc_drifts(sep: Separatrix, torque: TorqueFn, n: np.ndarray, nus: np.ndarra
     out: dict[Arc, float] = {}
     for arc in ARCS:
         s1, s3 = arc
-        Lb, _ = _psi_average(body, torque, sep._g_x(x, arc), n, nus, wnu, n_psi)
+        Lb, _ = psi_average(body, torque, momenta_at(sep, x, arc), n, nus, wnu, n_psi)
         integrand = s1 * c1 * (1.0 / A1 - 1.0 / A2) * Lb[0] + s3 * c3 * (1.0 / A3 - 1.0 / A2) * Lb[2]
         out[arc] = float(w @ integrand) / sep.rate
     return out
@@ -340,6 +402,12 @@ class SeparatrixCrossing:
     quad_error : float
         Estimated quadrature error of the drifts (difference to the half-node rule).
 
+    See Also
+    --------
+    separatrix_crossing : computes it.
+    averaged_branches : averaged runs through the separatrix into each region.
+    Separatrix : the motions along the arcs.
+
     Examples
     --------
     The drag is odd in :math:`\boldsymbol\omega`: both senses of rotation tie (the tie goes to ``sigma = +1``):
@@ -360,12 +428,42 @@ class SeparatrixCrossing:
 
     @property
     def capturing(self) -> tuple[Region, ...]:
-        """The regions that keep the motions entering them (loop drift away from the separatrix)."""
+        r"""The regions that keep the motions entering them (loop drift away from the separatrix).
+
+        Examples
+        --------
+        For the drag :math:`I = \mathrm{diag}(3, 2, 1)`, :math:`I_{11}/A_1 - I_{33}/A_3 > 0`: next to the separatrix
+        (8) drives :math:`k^2` up on the ``'max'`` side and, the labels 1 and 3 exchanged, down on the ``'min'``
+        side (:func:`k2_equilibria`), so the two ``'min'`` regions keep the motions and the ``'max'`` ones do not:
+
+        >>> from rigidbody import euler_poinsot as ep
+        >>> print(f"{3.0 / 3.2 - 1.0 / 1.67:.3f}")
+        0.339
+        >>> c = ep.separatrix_crossing(ep.Body(3.2, 2.6, 1.67), [3.0, 2.0, 1.0], 1.0, 0.7, 0.3, None, ("max", 1))
+        >>> c.capturing
+        (('min', 1), ('min', -1))
+        """
         scale = max(abs(v) for v in self.drifts.values()) if self.drifts else 0.0
         return tuple(r for r in REGIONS if _captures(r, self.loop_drifts[r], scale))
 
     def most_probable(self) -> Region:
-        """The region of largest capture probability (ties: ``sigma = +1`` first, then ``'max'``)."""
+        r"""The region of largest capture probability (ties: ``sigma = +1`` first, then ``'max'``).
+
+        Examples
+        --------
+        The drag is odd in :math:`\boldsymbol\omega`: the two senses of rotation are mirror images and tie, and
+        the tie goes to ``sigma = +1``. Motions of a region that moves away from the separatrix (``'min'`` for
+        this drag, see ``capturing``) do not reach it:
+
+        >>> from rigidbody import euler_poinsot as ep
+        >>> body, I = ep.Body(3.2, 2.6, 1.67), [3.0, 2.0, 1.0]
+        >>> ep.separatrix_crossing(body, I, 1.0, 0.7, 0.3, None, ("max", 1)).most_probable()
+        ('min', 1)
+        >>> ep.separatrix_crossing(body, I, 1.0, 0.7, 0.3, None, ("min", 1)).most_probable()
+        Traceback (most recent call last):
+        ...
+        ValueError: motions of ('min', 1) do not cross the separatrix: no capture
+        """
         if not self.crosses:
             raise ValueError(f"motions of {self.source} do not cross the separatrix: no capture")
         return max(REGIONS, key=lambda r: (round(self.probabilities[r], 12), r.sigma, r.about_a1))
@@ -414,6 +512,13 @@ def separatrix_crossing(
     SeparatrixCrossing
         ``probabilities`` maps each region ``(kind, sigma)`` to its capture probability.
 
+    See Also
+    --------
+    SeparatrixCrossing : its result.
+    separatrix_limits : the averaged rates as the separatrix is approached.
+    averaged : continues a run through the separatrix in a region chosen with these probabilities.
+    averaged_branches : runs each region.
+
     Examples
     --------
     A constant body-fixed torque that brakes a spin about the minor axis and pushes about the major one:
@@ -426,11 +531,12 @@ def separatrix_crossing(
     >>> {r: round(p, 3) for r, p in c.probabilities.items() if p > 0}
     {('max', 1): 0.464, ('min', -1): 0.536}
     """
-    sep, fn, n, nu_, orb, (n_x, n_psi, n_nu) = _setup(body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu)
+    sep, fn, n, nu_, orb, nodes = separatrix_setup(body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu)
+    n_x, n_psi, n_nu = nodes
     src = check_region(source, "source")
-    nus, wnu = _orbit_nodes(nu_, orb, n_nu)
+    nus, wnu = orbit_nodes(nu_, orb, n_nu)
     drifts = _arc_drifts(sep, fn, n, nus, wnu, n_x, n_psi)
-    nus2, wnu2 = _orbit_nodes(nu_, orb, max(2, n_nu // 2))
+    nus2, wnu2 = orbit_nodes(nu_, orb, max(2, n_nu // 2))
     coarse = _arc_drifts(sep, fn, n, nus2, wnu2, max(4, n_x // 2), max(2, n_psi // 2))
     err = max(abs(drifts[a] - coarse[a]) for a in ARCS)
     # drifts below 1e-12 of the separatrix energy per passage time count as zero: a torque that does not act on
@@ -438,152 +544,6 @@ def separatrix_crossing(
     probs, und, crosses = _propagate(drifts, src, floor=1e-12 * sep.T / sep.rate)
     loops = {r: sum(drifts[a] for a in region_arcs(r)) for r in REGIONS}
     return SeparatrixCrossing(src, drifts, loops, probs, und, crosses, err)
-
-
-# --------------------------------------------------------------------------------------------------
-# limits of the averaged rates at the separatrix
-# --------------------------------------------------------------------------------------------------
-def _rates_at(body: Body, g: np.ndarray, Lb: np.ndarray, Lo: np.ndarray, n: np.ndarray) -> dict[str, np.ndarray]:
-    """dG, dT, dh and dn at body momenta g (3, m) for the psi-averaged torques Lb (body), Lo (orbital)."""
-    G = np.linalg.norm(g, axis=0)
-    omega = g / body.A[:, None]
-    dG = (g * Lb).sum(0) / G
-    dT = (omega * Lb).sum(0)
-    dh = dT - G * dG / body.A2
-    dn = (Lo - np.outer(n, n @ Lo)) / G
-    return {"dG": dG, "dT": dT, "dh": dh, "dn": dn}
-
-
-@dataclass(frozen=True)
-class SeparatrixLimits:
-    r"""Limits of the averaged rates at the separatrix and how they are approached.
-
-    The mean of a smooth function over a period of the Euler--Poinsot motion tends, as :math:`k\to1`, to
-    its value at the saddles :math:`\pm G\mathbf e_2` (averaged over :math:`\psi` and over the two
-    saddles): the motion spends all but :math:`O(1)` of its period :math:`4K/\dot u` next to them. The
-    separatrix loop enters only as the correction :math:`J/(4K)`, with :math:`J` the integral along the two
-    arcs of the region of the difference between the function and its value at the saddle being
-    approached or left (in the elliptic argument :math:`u`). So the rates are continuous across the
-    separatrix (the same limit from all four regions), with an infinite slope in :math:`k^2` there, and the
-    convergence is slow: :math:`1/K \approx 1/\ln(4/k')`.
-
-    Attributes
-    ----------
-    dG, dT : float
-        Limits of the averaged :math:`dG/d\tau`, :math:`dT/d\tau`.
-    dn : numpy.ndarray
-        Limit of :math:`d\mathbf n/d\tau` (unit vector of :math:`\mathbf G` in the orbital axes).
-    dk2 : float
-        Limit of :math:`dk^2/d\tau` (0: the averaged drift of the energy vanishes at the separatrix).
-    slope : dict
-        Region -> dict of :math:`J/4` for ``'dG'``, ``'dT'``, ``'dh'``, ``'dk2'`` (floats) and ``'dn'``
-        (array), so that the averaged rate near the separatrix is ``limit + slope / K(k)``.
-
-    Examples
-    --------
-    At :math:`k^2 = 1 - 10^{-4}` the limit is 8 % off (6) (a :math:`1/K` term), ``near`` less than :math:`10^{-4}`:
-
-    >>> from rigidbody import euler_poinsot as ep
-    >>> body, I = ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425]
-    >>> lim, exact = ep.separatrix_limits(body, I, 1.0, 0.7, 0.3, None), ep.drag_rates(body, I, 1.0, 1 - 1e-4)[0]
-    >>> print(f"{abs(lim.dG / exact - 1):.2f}", bool(abs(lim.near(("max", 1), 1e-4)["dG"] / exact - 1) < 1e-4))
-    0.08 True
-    """
-
-    dG: float
-    dT: float
-    dn: np.ndarray
-    dk2: float
-    slope: dict[Region, dict[str, Any]] = field(repr=False)
-
-    def near(self, region: Any, mc: float) -> dict[str, Any]:
-        r"""The two-term asymptotic rates ``limit + slope/K`` at :math:`1 - k^2 = ` ``mc`` in ``region``."""
-        from ..core.elliptic import K
-
-        reg = check_region(region)
-        mcf = real(mc, "mc")
-        if not (0.0 < mcf <= 1.0):
-            raise ValueError(f"mc (= 1 - k**2) must lie in (0, 1], got {mcf}")
-        kk = float(K(mc=mcf))
-        s = self.slope[reg]
-        base = {"dG": self.dG, "dT": self.dT, "dn": self.dn, "dk2": self.dk2, "dh": 0.0}
-        return {q: base[q] + s[q] / kk for q in ("dG", "dT", "dn", "dk2", "dh")}
-
-
-def separatrix_limits(
-    body: Body,
-    torque: Any,
-    G: float,
-    delta: float,
-    lam: float,
-    nu: float | None,
-    *,
-    orbit: Orbit | None = None,
-    n_x: int = 48,
-    n_psi: int = 16,
-    n_nu: int = 32,
-) -> SeparatrixLimits:
-    r"""Limits at :math:`k^2\to1` of the averaged rates of :math:`G`, :math:`T`, :math:`\mathbf n`, :math:`k^2`.
-
-    Parameters
-    ----------
-    body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu
-        As in :func:`separatrix_crossing`.
-
-    Returns
-    -------
-    SeparatrixLimits
-        The common limit from the four regions and, per region, the coefficient of the :math:`1/K(k)`
-        correction. For the paper's drag (diagonal :math:`I`): :math:`dG/d\tau\to -I_{22}G/A_2`,
-        :math:`dT/d\tau\to -I_{22}G^2/A_2^2` (rotation about the intermediate axis), and
-        :math:`K\,dk^2/d\tau\to \mp2(I_{33}/A_3 - I_{11}/A_1)` from the ``"max"``/``"min"`` side, the
-        limit of (8).
-
-    Examples
-    --------
-    The paper's drag: the limits :math:`-I_{22}G/A_2` and :math:`-I_{22}G^2/A_2^2` above:
-
-    >>> from rigidbody import euler_poinsot as ep
-    >>> lim = ep.separatrix_limits(ep.Body(3.2, 2.6, 1.67), [2.322, 1.31, 1.425], 1.0, 0.7, 0.3, None)
-    >>> print(f"{lim.dG:.6f} {-1.31 / 2.6:.6f} {lim.dT:.6f} {-1.31 / 2.6**2:.6f}")
-    -0.503846 -0.503846 -0.193787 -0.193787
-    """
-    sep, fn, n, nu_, orb, (n_x, n_psi, n_nu) = _setup(body, torque, G, delta, lam, nu, orbit, n_x, n_psi, n_nu)
-    nus, wnu = _orbit_nodes(nu_, orb, n_nu)
-    A1, A2, A3 = body.A1, body.A2, body.A3
-    Gf = sep.G
-    saddles = np.array([[0.0, 0.0], [Gf, -Gf], [0.0, 0.0]])  # +e2, -e2
-    Lb, Lo = _psi_average(body, fn, saddles, n, nus, wnu, n_psi)
-    at = _rates_at(body, saddles, Lb, Lo, n)
-    lim = {q: 0.5 * (v[..., 0] + v[..., 1]) for q, v in at.items()}
-    # J along an arc, in u = rate * t: from the start saddle to the middle and from the middle to the end
-    x, w = np.polynomial.legendre.leggauss(n_x)
-    xh = 0.25 * math.pi * (x - 1.0)  # (-pi/2, 0)
-    wh = 0.25 * math.pi * w
-    arc_J: dict[Arc, dict[str, Any]] = {}
-    for arc in ARCS:
-        s1, s3 = arc
-        start = 0 if s1 * s3 == 1 else 1  # index of the saddle the arc leaves: +e2 when s1 s3 = 1
-        J: dict[str, Any] = {}
-        for half, xs, sad in ((0, xh, start), (1, -xh[::-1], 1 - start)):
-            g = sep._g_x(xs, arc)
-            Lb_, Lo_ = _psi_average(body, fn, g, n, nus, wnu, n_psi)
-            r = _rates_at(body, g, Lb_, Lo_, n)
-            wq = wh if half == 0 else wh[::-1]
-            for q, v in r.items():
-                diff = (v - at[q][..., sad : sad + 1]) / np.cos(xs)  # du = dx / cos x
-                J[q] = J.get(q, 0.0) + diff @ wq
-        arc_J[arc] = J
-    dk2_dD = (A1 - A3) / ((A1 - A2) * (A2 - A3))  # |dk^2/dD| at D = A2, both kinds
-    slope: dict[Region, dict[str, Any]] = {}
-    for reg in REGIONS:
-        a, b = region_arcs(reg)
-        s = {q: 0.25 * (arc_J[a][q] + arc_J[b][q]) for q in ("dG", "dT", "dh", "dn")}
-        # D = G^2/2T: dD = -(2 A2^2/G^2) dh at the separatrix; k^2 decreases with D for 'max', increases for 'min'
-        sign = float(reg.h_sign)
-        s["dk2"] = sign * dk2_dD * (-2.0 * A2 * A2 / (Gf * Gf)) * s["dh"]
-        slope[reg] = {q: (float(v) if np.ndim(v) == 0 else np.asarray(v)) for q, v in s.items()}
-    return SeparatrixLimits(float(lim["dG"]), float(lim["dT"]), np.asarray(lim["dn"]), 0.0, slope)
 
 
 # --------------------------------------------------------------------------------------------------

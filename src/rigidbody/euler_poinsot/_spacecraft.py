@@ -29,6 +29,7 @@ from scipy.spatial.transform import Rotation
 from ..core.ode import Solution
 from ..core.validate import finite_array, span
 from ._averaged import averaged
+from ._catalogue import ConstantTorque, MagneticDipole
 from ._checks import check_tau_eval
 from ._full import initial_state
 from ._kepler import KeplerOrbit
@@ -36,7 +37,7 @@ from ._model import Body, Orbit, frame_y
 from ._motion import EulerPoinsot
 from ._physical import FreeMotion, as_attitude
 from ._simulate import simulate
-from ._torques import ConstantTorque, GravityGradient, LinearDrag, MagneticDipole
+from ._torques import GravityGradient, LinearDrag
 
 __all__ = ["PaperStart", "Spacecraft", "SpacecraftSolution"]
 

@@ -14,9 +14,10 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..core.validate import real
-from ._algebra import K2_SPIN_CAP, k2_from, kind_of, nutation_frequency
+from ._algebra import k2_from, kind_of
 from ._model import Body, check_kind, labelled
 from ._separatrix import K2_SWITCH
+from ._spin import K2_SPIN_CAP, nutation_frequency
 
 __all__ = ["StartRules", "check_start", "initial_kind"]
 

@@ -49,6 +49,12 @@ class State:
         The body axes in that order.
     Q, T : float
         :math:`G^2 - 2Ta_3` and the kinetic energy :math:`T` of the motion.
+
+    See Also
+    --------
+    Mean : what a torque's ``closed_mean`` returns at a State.
+    Torque : the protocol whose ``closed_mean`` takes a State.
+    EulerPoinsot : the torque-free motion a State stands for.
     """
 
     body: Body
@@ -116,6 +122,12 @@ class Mean:
         :math:`\langle\boldsymbol\omega\cdot\mathbf M\rangle = dT/d\tau`.
     dk2 : float
         :math:`dk^2/d\tau`.
+
+    See Also
+    --------
+    State : the slow state at which a mean is taken.
+    Torque : the protocol whose ``closed_mean`` returns a Mean.
+    TorqueAverage : the engine's average, with its quadrature error.
     """
 
     L: np.ndarray
