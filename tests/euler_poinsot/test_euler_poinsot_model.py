@@ -66,7 +66,11 @@ def test_T_from_inverts_k2_from(k2, G, kind):
     T = ep.T_from(BODY, G, k2, kind)
     # rational round trip: a few ulp relative to 1, amplified at most by the conditioning of (5)
     assert ep.k2_from(BODY, G, T, kind) == pytest.approx(k2, abs=1e-12)
-    assert ep.kind_of(BODY, G, T) in (kind, "separatrix")
+    got = ep.kind_of(BODY, G, T)
+    if got not in (kind, "separatrix"):
+        # kind_of compares G^2/2T with A2 exactly; at k2 = 1 (T on the separatrix) T's rounding may fall an ulp on
+        # the other side. That is the only way to get the other kind, and that kind then reads k2 = 1 as well
+        assert k2 > 1.0 - 1e-12 and ep.k2_from(BODY, G, T, got) == pytest.approx(1.0, abs=1e-12)
 
 
 def test_k2_limits_are_the_pure_rotations_and_the_separatrix():
