@@ -51,6 +51,7 @@ import numpy as np
 
 from ..core.validate import RESULT_ERRORS
 from ._algebra import dk2_labelled, drag_rates_labelled, nstar_labelled
+from ._gravity import drag_gravity
 from ._model import Body, Orbit, as_drag, as_orbit, check_body
 from ._protocol import FunctionTorque, Torque, TorqueSum, evaluate
 from ._state import Mean, State
@@ -265,9 +266,7 @@ class GravityGradient(ArrayEq):
             r2 = C[..., 0, 1] * cn + C[..., 1, 1] * sn
             r3 = C[..., 0, 2] * cn + C[..., 1, 2] * sn
         out = np.empty((*r1.shape, 3))
-        out[..., 0] = f * (A3 - A2) * r2 * r3  # rho x (A rho)
-        out[..., 1] = f * (A1 - A3) * r3 * r1
-        out[..., 2] = f * (A2 - A1) * r1 * r2
+        out[..., 0], out[..., 1], out[..., 2] = drag_gravity((A1, A2, A3), f, (r1, r2, r3))  # f rho x (A rho)
         return out
 
     def closed_mean(self, st: State) -> Mean:
