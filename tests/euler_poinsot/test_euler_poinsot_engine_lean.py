@@ -121,3 +121,20 @@ def test_torques_that_declare_broadcasting_broadcast(i, nu):
     # and a plain function, or a torque calling a user's field, is checked by the engine instead
     assert not ep.MagneticDipole([0.5, -0.3, 0.2], lambda v: np.zeros((*np.shape(v), 3)))._broadcasts
     assert not as_torque(skewed)._broadcasts
+
+
+def test_an_averager_not_yet_calibrated_calibrates_at_the_first_state_it_is_asked_about():
+    # the issue: the object worked only after calibrate(); mean() raised AssertionError (no parts, no grid) and
+    # report() likewise. Now the first call calibrates there: the same numbers as calibrating first by hand, to
+    # rounding of the same sums on the same grid (bitwise equal in practice; 1e-15 relative allows reordering)
+    tq = ep.LinearDrag(I_OFF) + ep.GravityGradient(BODY)
+    st = State(BODY, "max", 1, 1.0, 0.5, N_DIR, 0.4, ep.Orbit(0.0))
+    by_hand = Averager(tq, "numerical", 1e-12)
+    by_hand.calibrate(st)
+    for ask in ("mean", "report"):
+        lazy = Averager(tq, "numerical", 1e-12)
+        got, ref = getattr(lazy, ask)(st), getattr(by_hand, ask)(st)
+        got, ref = (got[0], ref[0]) if ask == "report" else (got, ref)
+        assert np.allclose(got.L, ref.L, rtol=1e-15, atol=1e-15 * np.abs(ref.L).max())
+        assert got.dT == pytest.approx(ref.dT, rel=1e-15, abs=1e-17) and got.dk2 == pytest.approx(ref.dk2, rel=1e-15,
+                                                                                                   abs=1e-17)

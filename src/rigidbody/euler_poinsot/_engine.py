@@ -476,7 +476,8 @@ class Averager:
     """Averages of one torque at slow states: the closed forms of its parts where they have them (unless
     ``method='numerical'``), the engine for the rest. ``calibrate`` chooses the engine's grid at a state
     (adaptively, to ``tol``); ``mean`` then evaluates on that grid (the integrators' right-hand sides);
-    ``report`` re-estimates the quadrature error at a state on that grid."""
+    ``report`` re-estimates the quadrature error at a state on that grid. Not yet calibrated, ``mean`` and
+    ``report`` calibrate at the state they are given."""
 
     def __init__(self, torque: Any, method: str, tol: float) -> None:
         self.parts = list(torque.parts())
@@ -489,8 +490,10 @@ class Averager:
         self.first: Quadrature | None = None
         self.lean: Any = None
         self.first_state: State | None = None
+        self.calibrated = False
 
     def calibrate(self, st: State) -> None:
+        self.calibrated = True
         closed: list[Any] = []
         rest: list[Any] = []
         for p in self.parts:
@@ -509,6 +512,8 @@ class Averager:
                                  st.nu is not None)
 
     def mean(self, st: State) -> Mean:
+        if not self.calibrated:
+            self.calibrate(st)
         total: Mean | None = None
         for p in self.closed:
             m = checked_closed_mean(p, st)
@@ -540,6 +545,8 @@ class Averager:
         """(mean on the integrators' grid, a bound on its quadrature error) at a state. The bound is
         |lean - fine| + (estimated error of the fine, calibration grid): the triangle inequality. Closed
         forms count as exact."""
+        if not self.calibrated:
+            self.calibrate(st)
         total = Mean(np.zeros(3), 0.0, 0.0)
         for p in self.closed:
             total = total + checked_closed_mean(p, st)
