@@ -13,7 +13,6 @@ from ._boundary import as_torque
 from ._checks import check_averaging, check_sigma
 from ._engine import Averager, TorqueAverage, error_of, mean_of
 from ._model import Body, Orbit, as_orbit, check_body, check_kind, frame_y, labelled
-from ._protocol import checked_closed_mean
 from ._state import Mean, State
 
 __all__ = ["average_torque", "averaged_rates", "precession_rate"]
@@ -165,9 +164,7 @@ def _once(tq: Any, st: State, method: str, tol: float = _TOL) -> tuple[Mean, Mea
     """Averages at one state with their error bound: closed forms where allowed, adaptive engine otherwise."""
     av = Averager(tq, method, tol)
     av.calibrate(st)
-    total = Mean(np.zeros(3), 0.0, 0.0)
-    for p in av.closed:
-        total = total + checked_closed_mean(p, st)
+    total = av.closed_sum(st)
     err = Mean(np.zeros(3), 0.0, 0.0)
     if av.first is not None:
         total = total + mean_of(av.first.mean, st)
