@@ -10,6 +10,9 @@ Model
 -----
 ``Body(A1, A2, A3)``
     principal moments, validated (A1 > A2 > A3, triangle inequality).
+``SymmetricBody(A, C)``
+    a body with two equal moments (transverse A, axial C; the sphere A = C): ``averaged`` averages over
+    its regular precession (slow variables G, the nutation angle theta, delta, lam).
 ``Drag(I)``
     drag tensor (3x3, any; symmetric part positive definite); torque :math:`-I\boldsymbol\omega`.
 ``Orbit(e=0.0)``
@@ -100,6 +103,7 @@ from ._simulate import simulate
 from ._spacecraft import PaperStart, Spacecraft, SpacecraftSolution
 from ._spin import spin_ratio
 from ._state import Mean, State
+from ._symbody import SymmetricBody
 from ._torques import FunctionTorque, GravityGradient, LinearDrag, Torque, TorqueSum
 
 __all__ = [
@@ -135,6 +139,7 @@ __all__ = [
     "SpacecraftSolution",
     "State",
     "Stops",
+    "SymmetricBody",
     "T_from",
     "Torque",
     "TorqueAverage",

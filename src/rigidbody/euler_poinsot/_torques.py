@@ -52,9 +52,10 @@ import numpy as np
 from ..core.validate import RESULT_ERRORS
 from ._algebra import dk2_labelled, drag_rates_labelled, nstar_labelled
 from ._gravity import drag_gravity
-from ._model import Body, Orbit, as_drag, as_orbit, check_body
+from ._model import Body, Orbit, as_drag, as_orbit
 from ._protocol import FunctionTorque, Torque, TorqueSum, evaluate
 from ._state import Mean, State
+from ._symbody import check_any_body
 
 __all__ = [
     "ArrayEq",
@@ -211,7 +212,7 @@ class GravityGradient(ArrayEq):
     omega0: float = 1.0
 
     def __post_init__(self) -> None:
-        check_body(self.body)
+        check_any_body(self.body)
         object.__setattr__(self, "orbit", as_orbit(self.orbit))
         w = self.omega0
         if isinstance(w, bool) or not isinstance(w, (int, float, np.integer, np.floating)) or not math.isfinite(w):
