@@ -262,7 +262,7 @@ def averaged(
     >>> drag = ep.LinearDrag([0.1, 0.1, 0.3])
     >>> sol = ep.averaged(body, drag, 0.0, theta0=1.0, tau_span=(0, 3), tau_eval=[0, 3])
     >>> print(sol.status, f"{sol.theta[-1]:.6f} {math.atan(math.tan(1.0) * math.exp(0.75)):.6f}", sol.kind[-1])
-    0 1.276216 1.276216 min
+    0 1.276312 1.276312 min
 
     The paper's first drag case, orbit-averaged (``eps = 0``): the drag dissipates, so :math:`G` falls:
 
