@@ -169,6 +169,12 @@ def test_a_batch_is_its_members_single_calls():
         for f in ("G", "theta", "delta", "lam", "T"):
             assert np.max(np.abs(getattr(b, f)[i] - getattr(one, f))) < 1e-9, f
         assert np.max(np.abs(b.g[i] - one.g)) < 1e-9
+    # a member alone in the batch (the other refused) runs on the scalar integrator inside the batch
+    alone = ep.simulate(body, [0.5, 0.3, 0.4], 0.2, 1.0, theta0=np.array([0.4, -0.2]), phi0=0.7, **kw)
+    one = ep.simulate(body, [0.5, 0.3, 0.4], 0.2, 1.0, theta0=0.4, phi0=0.7, **kw)
+    assert alone.status.tolist() == [0, -1] and "theta0" in alone.message[1]
+    for f in ("G", "theta", "lam"):  # the same scalar DOP853 (output through its dense output): as above
+        assert np.max(np.abs(getattr(alone, f)[0] - getattr(one, f))) < 1e-9, f
 
 
 def test_a_batch_on_an_eccentric_orbit_matches_an_independent_integration():
@@ -208,6 +214,11 @@ def test_T0_with_sigma_gives_the_nutation_angle():
         sol = ep.simulate(body, [0.1, 0.1, 0.1], 0.2, G0, T0=T0, sigma=sigma, tau_span=(0.0, 0.01), tau_eval=[0.0])
         # T0 fixes cos^2(theta) to rounding; arccos amplifies it by 1/sin(0.7) < 2
         assert sol.theta[0] == pytest.approx(want, rel=0, abs=1e-12)
+    # a batch over T0: a member whose energy no nutation angle gives is refused, naming T0
+    b = ep.simulate(body, [0.1, 0.1, 0.1], 0.2, G0, T0=np.array([T0, 10.0]), sigma=-1, tau_span=(0.0, 0.01),
+                    tau_eval=[0.0])
+    assert b.status.tolist() == [0, -1] and "T0" in b.message[1]
+    assert b.theta[0, 0] == pytest.approx(math.pi - th, rel=0, abs=1e-12)
 
 
 def near_symmetric_gap(d: float) -> float:
