@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -44,7 +44,7 @@ from ._start import StartRules, check_start, initial_kind
 from ._symbody import SymmetricBody
 from ._torques import probe
 
-__all__ = ["FullSingle", "check_full", "full_single", "initial_state"]
+__all__ = ["FullKinds", "FullSingle", "check_full", "full_single", "initial_state"]
 
 
 def initial_state(
@@ -95,6 +95,24 @@ def initial_state(
     Rb = Ry @ euler.dcm(psi0, theta, phi)
     return {"g": g, "R": Rb, "q": euler.quat_from_dcm(Rb), "psi": psi0, "theta": theta, "phi": phi,
             "T": m.T}
+
+
+class FullKinds(Protocol):
+    """What a full run depends on the body for (implemented by :class:`._fullkinds.TriaxialKinds` and
+    :class:`._symfull.SymmetricKinds`; their module :mod:`._fullkinds` describes each part)."""
+
+    event_names: tuple[str, ...]
+    field_names: tuple[str, ...]
+
+    def start(self, i: int, G0: float, delta0: float, lam0: float) -> dict[str, Any]: ...
+
+    def scalar_events(self, i: int, eps: float, G_D: Any) -> list[Event]: ...
+
+    def scalar_fields(self, G: Any, T: Any, gb: np.ndarray) -> dict[str, np.ndarray]: ...
+
+    def vector_events(self, idx: np.ndarray, GD: Any) -> tuple[list[Event], tuple[np.ndarray, ...]]: ...
+
+    def vector_fields(self, g: np.ndarray, G: np.ndarray, T: np.ndarray) -> dict[str, np.ndarray]: ...
 
 
 @dataclass
@@ -322,9 +340,9 @@ class FullSingle:
         return finish_output(res, tau_eval, self.make_fields, self.lam0, self.nvec, producer="euler_poinsot.simulate")
 
 
-def full_single(body: Any, tensor: Any, tq: Any, orb: Orbit, eps: float, G0: float, delta0: float, lam0: float,
-                nu0: float, st: dict[str, Any], kinds: Any, i: int, *, formulation: str, cuts: bool = False
-                ) -> FullSingle:
+def full_single(body: Body | SymmetricBody, tensor: Any, tq: Any, orb: Orbit, eps: float, G0: float, delta0: float,
+                lam0: float, nu0: float, st: dict[str, Any], kinds: FullKinds, i: int, *, formulation: str,
+                cuts: bool = False) -> FullSingle:
     """The full equations of one member (``i`` of ``kinds``, the body's part of the run: see :mod:`._fullkinds`)
     whose start ``st`` is checked: the torque object ``tq`` written out with the drag tensor ``tensor`` when it is
     one's meaning (drag plus gravity gradient), else evaluated through its protocol (probed at the start: its

@@ -75,8 +75,8 @@ class TriaxialKinds:
     ``k2_max``, or the passages recorded when it is None), the slow-rotation stop and the osculating
     ``k2, kind, sigma``."""
 
-    event_names = ("separatrix", "slow_rotation")
-    field_names = ("G", "T", "k2", "delta", "lam", "nu", "n", "kind", "sigma")
+    event_names: tuple[str, ...] = ("separatrix", "slow_rotation")
+    field_names: tuple[str, ...] = ("G", "T", "k2", "delta", "lam", "nu", "n", "kind", "sigma")
 
     def __init__(self, body: Body, k2_0: np.ndarray, kind: np.ndarray, u0: np.ndarray, psi0: np.ndarray, sigma: int,
                  k2_max: float | None, min_spin_ratio: float) -> None:

@@ -29,7 +29,7 @@ from ..core.ode import Event, Solution
 from ..core.piecewise import MemberRecords, PieceEnd, PieceSpec, Stop, run_pieces
 from ..core.validate import result_message
 from . import _kernel as _k
-from ._full import FullSingle, check_full, full_single
+from ._full import FullKinds, FullSingle, check_full, full_single
 from ._fullkinds import TriaxialKinds
 from ._gravity import drag_gravity, radius_in_body
 from ._members import Members, assemble
@@ -54,7 +54,7 @@ class FullRun:
     tensor: np.ndarray | None
     torque: Any
     orbit: Orbit
-    kinds: Any
+    kinds: FullKinds
     rtol: float
     atol: float
     formulation: str = "body"

@@ -123,8 +123,8 @@ class SymmetricKinds:
     precession (``theta0``, ``phi0``, ``psi0``: flat arrays of the members), the slow-rotation stop and the
     osculating nutation angle ``theta``; no separatrix."""
 
-    event_names = ("slow_rotation",)
-    field_names = ("G", "T", "theta", "delta", "lam", "nu", "n", "g", "q")
+    event_names: tuple[str, ...] = ("slow_rotation",)
+    field_names: tuple[str, ...] = ("G", "T", "theta", "delta", "lam", "nu", "n", "g", "q")
 
     def __init__(self, body: SymmetricBody, theta0: np.ndarray, phi0: np.ndarray, psi0: np.ndarray,
                  min_spin_ratio: float) -> None:
