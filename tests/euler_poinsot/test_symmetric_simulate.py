@@ -133,8 +133,7 @@ def test_torqued_run_matches_an_independent_integration(name, kind):
     A = body.A
     s = random_state(23 + len(name) + len(kind))
     I = np.array([[0.6, 0.1, 0.0], [0.1, 0.4, 0.05], [0.0, 0.05, 0.5]])
-    torque, ref_torque = ((I, drag_and_gravity(A, I)) if kind == "drag tensor" else
-                          (callable_torque, lambda w, C, nu: callable_torque(w, C, nu)))
+    torque, ref_torque = (I, drag_and_gravity(A, I)) if kind == "drag tensor" else (callable_torque, callable_torque)
     eps, tau = 0.2, np.linspace(0.0, 0.8, 5)  # 20 units of the fast time
     sol = ep.simulate(body, torque, eps, s["G0"], None, s["delta0"], s["lam0"], (0.0, 0.8), tau, s["nu0"],
                       theta0=s["theta0"], phi0=s["phi0"], psi0=s["psi0"], **TOL)
@@ -177,17 +176,21 @@ def test_a_batch_is_its_members_single_calls():
         assert np.max(np.abs(getattr(alone, f)[0] - getattr(one, f))) < 1e-9, f
 
 
-def test_a_batch_on_an_eccentric_orbit_matches_an_independent_integration():
-    # the members integrated together with the true anomaly as a state (Kepler's law), drag and gravity gradient
+@pytest.mark.parametrize("kind", ["drag tensor", "callable"])
+def test_a_batch_on_an_eccentric_orbit_matches_an_independent_integration(kind):
+    # the members integrated together with the true anomaly as a state (Kepler's law): the drag tensor's torque
+    # written out, or the user's callable evaluated on all members at once
     body, e, eps = BODIES["prolate"], 0.3, 0.2
     I = np.diag([0.5, 0.3, 0.4])
+    torque, ref_torque = (I, drag_and_gravity(body.A, I, e)) if kind == "drag tensor" else (callable_torque,
+                                                                                          callable_torque)
     theta0, tau = np.array([0.5, 2.2]), np.linspace(0.0, 0.6, 4)
     kw = dict(delta0=0.9, lam0=-0.4, tau_span=(0.0, 0.6), tau_eval=tau, nu0=1.0, phi0=0.3, psi0=-1.2)
-    b = ep.simulate(body, I, eps, 1.1, theta0=theta0, orbit=ep.Orbit(e), **kw, **TOL)
+    b = ep.simulate(body, torque, eps, 1.1, theta0=theta0, orbit=ep.Orbit(e), **kw, **TOL)
     assert b.status.tolist() == [0, 0]
     for i, th in enumerate(theta0.tolist()):
         g0, C0 = start(1.1, th, 0.9, -0.4, 0.3, -1.2)
-        g, Cs = reference(body.A, drag_and_gravity(body.A, I, e), eps, g0, C0, 1.0, tau, e)
+        g, Cs = reference(body.A, ref_torque, eps, g0, C0, 1.0, tau, e)
         # as in the circular case: both integrations at rtol <= 1e-12 agree to ~1e-10
         assert np.max(np.abs(b.g[i] - g)) < 1e-8
         assert np.max(np.abs(attitudes(b.q[i]) - Cs)) < 1e-8
