@@ -1,12 +1,13 @@
 """
-The flat spin of Explorer 1: a minor-axis spin decays through the separatrix
-============================================================================
+A minor-axis spin decays through the separatrix into a major-axis spin
+======================================================================
 
-Explorer 1 (1958) was designed to spin about its long axis, the axis of its *smallest* moment of inertia; it
-was found tumbling about the axis of its *largest* moment after about one orbit. A rigid body conserves its
-angular momentum G and loses kinetic energy T to internal dissipation (there, the flexible antennas); a
-spin about the minor axis has the most energy for its G, so it decays, reaches the separatrix
-``G^2 = 2 T A2`` and ends as a spin about the major axis, the state of least energy.
+A rigid body conserves its angular momentum G and loses kinetic energy T to internal dissipation; a spin
+about the axis of its *smallest* moment has the most energy for its G, so it decays, reaches the separatrix
+``G^2 = 2 T A2`` and ends as a spin about the axis of its *largest* moment, the state of least energy. This
+is the mechanism behind the flat spin of Explorer 1 (1958); Explorer itself had two equal transverse moments,
+for which the separatrix degenerates (the example ``explorer1`` runs it with its own numbers). A triaxial
+body shows the passage itself, with its capture into one of two senses of the final spin.
 
 Here the body of Rachinskaya's example, ``A = (3.2, 2.6, 1.67)``, loses energy at constant ``|G|`` through
 a torque written as a plain function, ``M = -kappa (omega - (omega.g) g / G^2)`` (perpendicular to G: it

@@ -1,0 +1,123 @@
+"""Explorer 1 from its own numbers (rigidbody.studies.explorer1, examples/euler_poinsot/explorer1.py).
+
+The moments against a quadrature over the cylinder's volume; the stated scales recomputed from the stated inputs;
+the energy sink's closed-form nutation angle against Euler's equations integrated here; the fitted damping
+against the criterion it was fitted to, through the library's averaged and full runs.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp, tplquad
+
+from rigidbody import euler_poinsot as ep
+from rigidbody.studies import explorer1 as ex
+
+
+def test_cylinder_moments_against_a_quadrature_over_the_volume() -> None:
+    # the moments as integrals of rho (y^2 + z^2) and rho (x^2 + y^2) over the solid cylinder (axis z), by
+    # scipy's adaptive cubature at epsrel 1e-12: agreement to 1e-9 leaves a thousand times the quadrature's error
+    # and catches any wrong coefficient of the closed forms (1/16, 1/12, 1/8)
+    m, L, D = ex.MASS, ex.LENGTH, ex.DIAMETER
+    r = D / 2
+    rho = m / (math.pi * r * r * L)
+    opts = dict(epsabs=0.0, epsrel=1e-12)
+
+    def moment(f: Any) -> float:  # f(z, y, x), the integrand
+        return tplquad(f, -r, r, lambda x: -math.sqrt(r * r - x * x), lambda x: math.sqrt(r * r - x * x),
+                       -L / 2, L / 2, **opts)[0]
+
+    A_quad = rho * moment(lambda z, y, x: y * y + z * z)
+    C_quad = rho * moment(lambda z, y, x: x * x + y * y)
+    A, C = ex.cylinder_moments(m, L, D)
+    assert A == pytest.approx(A_quad, rel=1e-9, abs=0)
+    assert C == pytest.approx(C_quad, rel=1e-9, abs=0)
+
+
+def test_the_case_has_the_scales_of_its_inputs() -> None:
+    case = ex.explorer1_case()
+    # eps = n / Omega0 = (1 / period) / (spin in rev per unit time): one over the spin revolutions in one orbit,
+    # 750 rpm x 114.8 min = 86 100
+    assert case.eps == pytest.approx(1 / (750 * 114.8), rel=1e-13, abs=0)
+    assert case.tau_orbit / case.tau_per_minute == pytest.approx(114.8, rel=1e-13, abs=0)
+    # the unit of rate is the initial |omega|: |g / A| = 1 at G = 1, theta0
+    t0 = case.theta0
+    g = np.array([math.sin(t0), 0.0, math.cos(t0)])
+    assert np.linalg.norm(g / case.body.A) == pytest.approx(1.0, rel=1e-14, abs=0)
+    A, C = case.moments
+    assert case.body.transverse / case.body.axial == pytest.approx(A / C, rel=1e-14, abs=0)
+
+
+def _euler_theta(body: ep.SymmetricBody, kappa: float, theta0: float, eps: float, tau: np.ndarray) -> np.ndarray:
+    """theta = arccos(g3/G) along Euler's equations dg/dtau = g x omega / eps^2 + M, integrated here."""
+    Am = body.A
+
+    def rhs(_t: float, g: np.ndarray) -> np.ndarray:
+        w = g / Am
+        M = -kappa * (w - (w @ g) * g / (g @ g))
+        return np.cross(g, w) / eps**2 + M
+
+    g0 = [math.sin(theta0) * 0.6, math.sin(theta0) * 0.8, math.cos(theta0)]
+    sol = solve_ivp(rhs, (0.0, tau[-1]), g0, method="DOP853", t_eval=tau, rtol=1e-12, atol=1e-14)
+    assert sol.success
+    return np.arccos(sol.y[2] / np.linalg.norm(sol.y, axis=0))
+
+
+@pytest.mark.parametrize("theta0_deg", [1.0, 30.0, 120.0])
+def test_closed_form_nutation_against_euler_equations(theta0_deg: float) -> None:
+    # a prolate body of Explorer's ratio with a large eps (the law is the same at every eps: the torque's
+    # g3-component depends on theta alone, exactly), kappa turning theta by tens of degrees; 120 deg starts G
+    # against the axis and runs to 90 deg from above. The integration's error (rtol 1e-12 over ~1e3 steps) is
+    # below 1e-10 rad; 1e-8 rad bounds it, and a wrong rate (a factor in 1/C - 1/A, a sign) is off by degrees.
+    body = ep.SymmetricBody(119.4, 1.0)
+    kappa, eps = 1.0, 0.1
+    tau = np.linspace(0.0, 4.0, 41)
+    theta0 = math.radians(theta0_deg)
+    expected = ex.nutation_angle(body, kappa, theta0, tau)
+    assert abs(math.degrees(expected[-1] - expected[0])) > 10.0  # a real change, not a constant
+    np.testing.assert_allclose(_euler_theta(body, kappa, theta0, eps, tau), expected, rtol=0, atol=1e-8)
+
+
+def test_the_torque_keeps_G_and_takes_energy() -> None:
+    # M . g = 0 (G kept) and omega . M = -kappa |omega across G|^2 at random states of both kinds of body
+    rng = np.random.default_rng(7)
+    for body in (ep.SymmetricBody(3.0, 1.0), ep.Body(3.2, 2.6, 1.67)):
+        w = rng.normal(size=(50, 3))
+        g = w * body.A
+        M = ex.AntennaDamping(body, 1.7)(w, np.eye(3), 0.0)
+        across = w - (np.sum(w * g, -1) / np.sum(g * g, -1))[:, None] * g
+        np.testing.assert_allclose(np.sum(M * g, -1), 0.0, atol=1e-12 * np.abs(g).max() ** 2)
+        np.testing.assert_allclose(np.sum(M * w, -1), -1.7 * np.sum(across * across, -1), rtol=1e-12, atol=1e-14)
+
+
+def test_fitted_kappa_inverts_the_closed_form() -> None:
+    # the fit and the law are written separately: the fitted kappa put back into the law gives the criterion
+    case = ex.explorer1_case()
+    theta = ex.nutation_angle(case.body, case.kappa, case.theta0, case.tau_orbit)
+    assert math.degrees(theta) == pytest.approx(80.0, rel=0, abs=1e-10)
+    # ln(tan 80 / tan theta0) over (1/C - 1/A) tau: the criterion's log-ratio, 5.78 for theta0 = 1 deg
+    lam = case.kappa * (1 / case.body.axial - 1 / case.body.transverse) * case.tau_orbit
+    assert lam == pytest.approx(math.log(math.tan(math.radians(80)) / math.tan(math.radians(1))), rel=1e-13, abs=0)
+
+
+def test_bad_inputs_name_the_parameter() -> None:
+    with pytest.raises(ValueError, match="diameter"):
+        ex.cylinder_moments(1.0, 2.0, -0.1)
+    with pytest.raises(TypeError, match="mass"):
+        ex.cylinder_moments("14 kg", 2.0, 0.1)
+    with pytest.raises(ValueError, match="kappa"):
+        ex.AntennaDamping(ep.SymmetricBody(2.0, 1.0), -1.0)
+    with pytest.raises(TypeError, match="body"):
+        ex.AntennaDamping([2.0, 2.0, 1.0], 1.0)
+    with pytest.raises(ValueError, match="prolate"):
+        ex.fitted_kappa(ep.SymmetricBody(1.0, 1.5), 0.1, 1.0, 1.0)
+    with pytest.raises(ValueError, match="theta_flat"):
+        ex.fitted_kappa(ep.SymmetricBody(2.0, 1.0), 0.5, 0.2, 1.0)
+    with pytest.raises(ValueError, match="tau_flat"):
+        ex.fitted_kappa(ep.SymmetricBody(2.0, 1.0), 0.1, 1.0, 0.0)
+    with pytest.raises(ValueError, match="AntennaDamping was built for"):
+        ex.AntennaDamping(ep.SymmetricBody(2.0, 1.0), 1.0).check_setup(ep.SymmetricBody(3.0, 1.0), None)
