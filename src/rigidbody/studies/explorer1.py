@@ -28,16 +28,17 @@ damping, the initial nutation angle. So:
   (:func:`cylinder_moments`): :math:`A/C = 1/2 + (2/3)(L/D)^2 \approx 119`. The antennas (mass unpublished)
   would add :math:`4m_w(r^2 + rl + l^2/3)` to :math:`C` and half of that to :math:`A` for whips of mass
   :math:`m_w` and length :math:`l` at radius :math:`r`; left out. The ratio sets the rate of the final flat spin,
-  :math:`G/A`, about 6 rpm: Bollay's "about 2 cycles per second" of the antenna pattern would need
-  :math:`A/C \approx 5`, which no mass distribution inside a 2 m by 0.15 m envelope gives (:math:`C \le mD^2/4`
-  and :math:`A` at least that of the mass within the length): the pattern's cycles are not the body's
-  turns, or the reading is rough. It does not change the spin-axis history below (only the product of the
-  damping constant and :math:`1/C - 1/A` enters it, and that product is fitted).
+  :math:`G/A`, about 6 rpm, and it does not change the spin-axis history below (only the product of the damping
+  constant and :math:`1/C - 1/A` enters it, and that product is fitted).
 - the damping is the energy-sink torque :class:`AntennaDamping`, :math:`\mathbf M = -\kappa(\boldsymbol\omega -
   (\boldsymbol\omega\cdot\mathbf g)\mathbf g/G^2)`, with :math:`\kappa` FITTED (:func:`fitted_kappa`) to the
   criterion "flat spin after about one orbit", taken as :math:`\theta` reaching :data:`THETA_FLAT` = 80 degrees
   at one orbital period from :data:`THETA0` = 1 degree (our choice of the unknown initial nutation; the fitted
-  :math:`\kappa` grows as :math:`\ln(\tan 80^\circ/\tan\theta_0)`).
+  :math:`\kappa` grows as :math:`\ln(\tan 80^\circ/\tan\theta_0)`). Bollay's two rates are consistent with that
+  reading: at constant :math:`G` the spin about the long axis, :math:`\omega_3 = G\cos\theta/C`, falls as
+  :math:`\cos\theta`, and the turnstile's pattern turns with the body about that axis: "about 2" after "about
+  10" (or 12.5, for 750 rpm) revolutions per second is :math:`\cos\theta` = 0.2 (0.16), :math:`\theta` = 78
+  (81) degrees (if the pattern's cycles are the body's turns about its axis: our reading).
 
 The module's scaling is that of :mod:`rigidbody.euler_poinsot` (:ref:`ep-scaling`): the unit of rate is the
 initial :math:`|\boldsymbol\omega|` (750 rpm), the unit of angular momentum the initial :math:`|\mathbf G|`,
