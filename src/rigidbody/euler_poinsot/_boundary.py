@@ -9,12 +9,13 @@ import numpy as np
 
 from ._model import Body, Drag, Orbit
 from ._protocol import Torque
+from ._symbody import SymmetricBody
 from ._torques import GravityGradient, LinearDrag, drag_as_torque, resolve
 
 __all__ = ["as_torque", "drag_equivalent"]
 
 
-def as_torque(torque: Any, body: Body, orbit: Orbit, omega0: float = 1.0) -> tuple[Torque, Drag | None]:
+def as_torque(torque: Any, body: Body | SymmetricBody, orbit: Orbit, omega0: float = 1.0) -> tuple[Torque, Drag | None]:
     """The ``torque`` argument of :func:`averaged` and :func:`simulate` as a torque object: a drag tensor (3x3, its
     diagonal or a :class:`Drag`) becomes its meaning, linear drag plus the gravity gradient of ``body`` on ``orbit``
     (returned with the :class:`Drag`: the paper's closed forms (9) apply to it; ``omega0``: the orbital rate of its

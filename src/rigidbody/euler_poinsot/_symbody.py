@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeGuard
 
 import numpy as np
 
@@ -114,17 +114,39 @@ class SymmetricBody:
     @property
     def A1(self) -> float:
         """The moment about :math:`z_1` (the transverse one; ``A1``, ``A2``, ``A3`` in body order, as :class:`Body`'s
-        attributes, for the torques built from a body's moments)."""
+        attributes, for the torques built from a body's moments).
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> b = ep.SymmetricBody(3.0, 5.0)
+        >>> b.A1, b.A2, b.A3
+        (3.0, 3.0, 5.0)
+        """
         return self.transverse
 
     @property
     def A2(self) -> float:
-        """The moment about :math:`z_2` (the transverse one)."""
+        """The moment about :math:`z_2` (the transverse one).
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> ep.SymmetricBody(3.0, 5.0).A2
+        3.0
+        """
         return self.transverse
 
     @property
     def A3(self) -> float:
-        """The moment about the symmetry axis :math:`z_3`."""
+        """The moment about the symmetry axis :math:`z_3`.
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> ep.SymmetricBody(3.0, 5.0).A3
+        5.0
+        """
         return self.axial
 
     @property
@@ -148,7 +170,7 @@ def check_any_body(body: Any) -> Any:
     return body
 
 
-def is_symmetric(body: Any) -> bool:
+def is_symmetric(body: Any) -> TypeGuard[SymmetricBody]:
     """Whether ``body`` is a :class:`SymmetricBody` (the runs' one test of which system to integrate)."""
     return isinstance(body, SymmetricBody)
 

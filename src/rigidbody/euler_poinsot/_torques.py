@@ -311,7 +311,7 @@ _WHAT = ("torque must be a drag tensor (3x3 matrix, its diagonal or a Drag: drag
          "a torque object (LinearDrag, GravityGradient, ...) or a callable torque(omega, C, nu) -> M")
 
 
-def drag_as_torque(drag: Any, body: Body, orbit: Orbit, omega0: float = 1.0) -> Torque:
+def drag_as_torque(drag: Any, body: Any, orbit: Orbit, omega0: float = 1.0) -> Torque:
     """The torque object equivalent to a drag tensor's meaning: linear drag plus gravity gradient."""
     return LinearDrag(drag) + GravityGradient(body, orbit, omega0)
 
