@@ -121,3 +121,20 @@ def test_bad_inputs_name_the_parameter() -> None:
         ex.fitted_kappa(ep.SymmetricBody(2.0, 1.0), 0.1, 1.0, 0.0)
     with pytest.raises(ValueError, match="AntennaDamping was built for"):
         ex.AntennaDamping(ep.SymmetricBody(2.0, 1.0), 1.0).check_setup(ep.SymmetricBody(3.0, 1.0), None)
+
+
+def test_the_fitted_kappa_gives_its_criterion_through_averaged() -> None:
+    # the library's averaged run at Explorer's own eps (its engine averages AntennaDamping over the regular
+    # precession), with the kappa explorer1_case fitted from the stated inputs: theta reaches 80 degrees at one
+    # orbital period, G is kept, and theta follows tan(theta) = tan(theta0) exp(kappa (1/C - 1/A) tau) all the way.
+    # The run's rtol 1e-10 over ~6 e-foldings of tan(theta) leaves ~1e-7 rad; 1e-6 rad bounds it, and a kappa
+    # off by 1e-5 of itself moves theta(one orbit) by 1e-5 rad.
+    case = ex.explorer1_case()
+    tau = np.linspace(0.0, case.tau_orbit, 9)
+    avg = ep.averaged(case.body, case.torque, case.eps, theta0=case.theta0, tau_span=(0.0, case.tau_orbit),
+                      tau_eval=tau)
+    assert avg.status == 0
+    assert avg.theta[-1] == pytest.approx(ex.THETA_FLAT, rel=0, abs=1e-6)
+    np.testing.assert_allclose(avg.theta, ex.nutation_angle(case.body, case.kappa, case.theta0, tau), rtol=0,
+                               atol=1e-6)
+    np.testing.assert_allclose(avg.G, 1.0, rtol=0, atol=1e-9)  # the torque is across G
