@@ -29,9 +29,10 @@ from typing import Any, TypeGuard
 import numpy as np
 
 from ..core.validate import real
-from ._model import Body
+from ._model import Body, frame_y
 
-__all__ = ["SymmetricBody", "attitude", "check_any_body", "cos_theta_of", "energy", "is_symmetric", "omega_body"]
+__all__ = ["SymmetricBody", "attitude", "check_any_body", "cos_theta_of", "energy", "is_symmetric", "omega_body",
+           "regular_precession_start"]
 
 
 @dataclass(frozen=True)
@@ -216,3 +217,12 @@ def attitude(Y: np.ndarray, psi: np.ndarray, theta: float, phi: np.ndarray) -> n
     R[..., 2, 1] = st * cf
     R[..., 2, 2] = ct
     return np.einsum("ij,...jk->...ik", Y, R)
+
+
+def regular_precession_start(G: float, theta: float, delta: float, lam: float, phi: float, psi: float
+                             ) -> tuple[np.ndarray, np.ndarray]:
+    """The body components of G and the attitude (body -> orbital axes) at the nutation angle ``theta``, the
+    direction ``(delta, lam)`` of G, the body azimuth ``phi`` of G and the precession angle ``psi``."""
+    g = G * np.array([math.sin(theta) * math.sin(phi), math.sin(theta) * math.cos(phi), math.cos(theta)])
+    R = attitude(frame_y(delta, lam), np.array([psi]), theta, np.array([phi]))[0, 0]
+    return g, R

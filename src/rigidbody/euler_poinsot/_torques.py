@@ -55,7 +55,7 @@ from ._gravity import drag_gravity
 from ._model import Body, Orbit, as_drag, as_orbit
 from ._protocol import FunctionTorque, Torque, TorqueSum, evaluate
 from ._state import Mean, State
-from ._symbody import check_any_body
+from ._symbody import SymmetricBody, check_any_body
 
 __all__ = [
     "ArrayEq",
@@ -207,7 +207,7 @@ class GravityGradient(ArrayEq):
 
     _broadcasts: ClassVar[bool] = True
 
-    body: Body
+    body: Body | SymmetricBody
     orbit: Orbit | None = None
     omega0: float = 1.0
 
@@ -327,6 +327,6 @@ def probe(torque: Torque, omega: np.ndarray, C: np.ndarray, nu: Any) -> np.ndarr
         raise type(exc)(f"the torque failed on omega of shape {omega.shape}, C of shape {C.shape}: {exc}") from exc
 
 
-def check_same_body(name: str, own: Body, body: Body) -> None:
+def check_same_body(name: str, own: Any, body: Any) -> None:
     if body != own:
         raise ValueError(f"{name} was built for {own!r}, but the run is for {body!r}")
