@@ -138,3 +138,22 @@ def test_the_fitted_kappa_gives_its_criterion_through_averaged() -> None:
     np.testing.assert_allclose(avg.theta, ex.nutation_angle(case.body, case.kappa, case.theta0, tau), rtol=0,
                                atol=1e-6)
     np.testing.assert_allclose(avg.G, 1.0, rtol=0, atol=1e-9)  # the torque is across G
+
+
+def test_the_case_is_the_spacecrafts_start_in_si_units() -> None:
+    # the same physical state given to Spacecraft (SI units: the cylinder's moments in kg m^2, omega in rad/s with G
+    # at theta0 from the long axis, the orbit's mean motion) is scaled by its own code into the same body, eps and
+    # nutation angle: explorer1_case's scaling written once more, independently (agreement to rounding; theta0
+    # comes from a rotation near the axis, ~1e-14 relative measured: 1e-9 leaves room)
+    case = ex.explorer1_case()
+    A, C = case.moments
+    t0 = case.theta0
+    w = np.array([math.sin(t0) / A, 0.0, math.cos(t0) / C])
+    w *= ex.SPIN_RPM * 2 * math.pi / 60 / np.linalg.norm(w)
+    orbit = ep.KeplerOrbit(mean_motion=2 * math.pi / (60 * ex.ORBIT_PERIOD_MIN))
+    p = ep.Spacecraft([A, A, C], w, orbit=orbit).paper
+    assert isinstance(p.body, ep.SymmetricBody)
+    assert p.body.transverse == pytest.approx(case.body.transverse, rel=1e-12, abs=0)
+    assert p.body.axial == pytest.approx(case.body.axial, rel=1e-12, abs=0)
+    assert p.eps == pytest.approx(case.eps, rel=1e-12, abs=0)
+    assert p.theta0 == pytest.approx(t0, rel=1e-9, abs=0)
