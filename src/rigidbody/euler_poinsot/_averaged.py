@@ -70,7 +70,6 @@ def averaged(
     T0: Any = None,
     orbit: Orbit | None = None,
     sigma: int = 1,
-    theta0: Any = None,
     **options: Any,
 ) -> Solution:
     r"""Integrate the nondimensional averaged system (9) in the slow time :math:`\tau = \varepsilon^2\tilde t`.
@@ -113,9 +112,9 @@ def averaged(
         Sense of rotation of the Euler--Poinsot motion (torque objects; the drag tensor's averages do not
         depend on it).
     theta0 : float or array_like, optional
-        A :class:`SymmetricBody`'s start: the nutation angle of :math:`\mathbf G` from the symmetry axis
-        :math:`z_3`, in :math:`[0, \pi]` (or give ``T0`` and ``sigma``, the sign of :math:`\cos\theta`); ``k2_0``
-        and ``kind`` do not apply (:math:`k^2 = 0` in every motion of such a body).
+        (By keyword, in ``options``.) A :class:`SymmetricBody`'s start: the nutation angle of :math:`\mathbf G`
+        from the symmetry axis :math:`z_3`, in :math:`[0, \pi]` (or give ``T0`` and ``sigma``, the sign of
+        :math:`\cos\theta`); ``k2_0`` and ``kind`` do not apply (:math:`k^2 = 0` in every motion of such a body).
     **options
         The options below (Other Parameters), by keyword: each group as one value or field by field; an unknown
         keyword raises ``TypeError`` naming it.
@@ -274,6 +273,7 @@ def averaged(
     (True, 0)
     """
     opts = averaged_options(kind=kind, T0=T0, orbit=orbit, sigma=sigma, **options)
+    theta0 = opts.pop("theta0")
     if is_symmetric(body):
         return averaged_symmetric(body, torque, eps, G0, k2_0, delta0, lam0, tau_span, tau_eval, nu0, theta0, opts)
     if theta0 is not None:

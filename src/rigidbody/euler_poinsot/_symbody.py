@@ -9,10 +9,10 @@ sphere is :math:`A = C`. With :math:`\mathbf G` of magnitude :math:`G` at the nu
 .. math::
     \boldsymbol\omega = (g_1/A, g_2/A, g_3/C),\qquad
     2T = G^2\Bigl(\frac{1-c^2}{A} + \frac{c^2}{C}\Bigr),\qquad
-    \dot\psi = G/A,\qquad \dot\varphi = Gc\Bigl(\frac1A - \frac1C\Bigr)
+    \dot\psi = G/A,\qquad \dot\varphi = Gc\Bigl(\frac1C - \frac1A\Bigr)
 
 (:math:`\psi` the precession angle about :math:`\mathbf G`, :math:`\varphi` the azimuth of :math:`\mathbf G` in the
-body about :math:`z_3`, turning at minus the body's proper rate). The attitude (body -> orbital axes) is
+body about :math:`z_3`, turning opposite to the body's proper rotation). The attitude (body -> orbital axes) is
 :math:`C = Y R_3(\psi) R_1(\theta) R_3(\varphi)` with :math:`Y = (\mathbf y_1, \mathbf y_2, \mathbf n)` of
 :func:`._model.frame_y`. Under a torque :math:`\mathbf M` (body components) the symmetry-axis component obeys
 :math:`\dot g_3 = M_3` exactly (the gyroscopic term :math:`(\mathbf g\times\boldsymbol\omega)_3` vanishes when

@@ -3,7 +3,7 @@ rates of its slow variables.
 
 The torque-free motion of a :class:`SymmetricBody` (:mod:`._symbody`) turns the body about :math:`\mathbf G` (the
 precession angle :math:`\psi`, at :math:`G/A`) and about its symmetry axis (the azimuth :math:`\varphi` of
-:math:`\mathbf G` in the body, at :math:`Gc(1/A - 1/C)`). The averaged system takes the means over both angles
+:math:`\mathbf G` in the body, at :math:`Gc(1/C - 1/A)`). The averaged system takes the means over both angles
 (uniform, independent: no resonance between them) and, in the orbit-averaged limit, over the orbit (Kepler's
 weights, :func:`._grid.nu_nodes`):
 
