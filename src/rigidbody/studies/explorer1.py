@@ -26,8 +26,9 @@ damping, the initial nutation angle. So:
 
 - the moments are those of a homogeneous solid cylinder of the published mass and envelope
   (:func:`cylinder_moments`): :math:`A/C = 1/2 + (2/3)(L/D)^2 \approx 119`. The antennas (mass unpublished)
-  would add :math:`4m_w(r^2 + rl + l^2/3)` to :math:`C` and half of that to :math:`A` for whips of mass
-  :math:`m_w` and length :math:`l` at radius :math:`r`; left out. The ratio sets the rate of the final flat spin,
+  would add :math:`4m_w(r^2 + rl + l^2/3)` to :math:`C` and half of that to :math:`A` for four radial whips of
+  mass :math:`m_w` and length :math:`l` from the radius :math:`r` (and :math:`4m_wz^2` to :math:`A` at a distance
+  :math:`z` along the axis from the centre of mass); left out. The ratio sets the rate of the final flat spin,
   :math:`G/A`, about 6 rpm, and it does not change the spin-axis history below (only the product of the damping
   constant and :math:`1/C - 1/A` enters it, and that product is fitted).
 - the damping is the energy-sink torque :class:`AntennaDamping`, :math:`\mathbf M = -\kappa(\boldsymbol\omega -
