@@ -27,7 +27,7 @@ def as_torque(torque: Any, body: Body | SymmetricBody, orbit: Orbit, omega0: flo
     return tq, None
 
 
-def drag_equivalent(torque: Any, body: Body, orbit: Orbit) -> np.ndarray | None:
+def drag_equivalent(torque: Any, body: Body | SymmetricBody, orbit: Orbit) -> np.ndarray | None:
     """The drag tensor whose meaning (linear drag plus the gravity gradient) a torque object has, or None: a sum
     of :class:`LinearDrag` parts and one :class:`GravityGradient` of this body and orbit in the module's scaling
     (``omega0 = 1``). Its averages have the closed forms (9), and its torque the written-out formula of the full

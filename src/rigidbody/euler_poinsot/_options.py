@@ -140,5 +140,6 @@ def averaged_options(**options: Any) -> dict[str, Any]:
 
 def simulate_options(**options: Any) -> dict[str, Any]:
     """The flat keyword options of :func:`simulate` (its defaults where not given)."""
-    other = {"kind": None, "T0": None, "orbit": None, "u0": 0.0, "psi0": 0.0, "sigma": 1, "formulation": "body"}
+    other = {"kind": None, "T0": None, "orbit": None, "u0": None, "psi0": 0.0, "sigma": 1, "formulation": "body",
+             "theta0": None, "phi0": None}
     return collect("simulate", options, _SIMULATE, other)
