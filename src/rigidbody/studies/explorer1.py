@@ -55,7 +55,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core.validate import real
+from ..core.validate import positive, real
 from ..euler_poinsot import Body, SymmetricBody, Torque
 
 __all__ = [
@@ -127,15 +127,8 @@ def cylinder_moments(mass: float, length: float, diameter: float) -> tuple[float
     >>> print(f"A = {A:.4f} kg m^2, C = {C:.5f} kg m^2, A/C = {A / C:.1f}")
     A = 4.8176 kg m^2, C = 0.04035 kg m^2, A/C = 119.4
     """
-    m, L, D = (_positive(v, name) for v, name in ((mass, "mass"), (length, "length"), (diameter, "diameter")))
+    m, L, D = (positive(v, name) for v, name in ((mass, "mass"), (length, "length"), (diameter, "diameter")))
     return m * (D * D / 16.0 + L * L / 12.0), m * D * D / 8.0
-
-
-def _positive(value: Any, name: str) -> float:
-    v = real(value, name)
-    if not (0.0 < v < math.inf):
-        raise ValueError(f"{name} must be positive and finite, got {value!r}")
-    return v
 
 
 def _wobble(body: Any) -> float:
@@ -292,12 +285,10 @@ def fitted_kappa(body: SymmetricBody, theta0: float, theta_flat: float, tau_flat
     1.098612 1.098612
     """
     wobble = _wobble(body)
-    t0, t1, tf = real(theta0, "theta0"), real(theta_flat, "theta_flat"), real(tau_flat, "tau_flat")
+    t0, t1, tf = real(theta0, "theta0"), real(theta_flat, "theta_flat"), positive(tau_flat, "tau_flat")
     if not (0.0 < t0 < t1 < 0.5 * math.pi):
         raise ValueError(f"need 0 < theta0 < theta_flat < pi/2 (rad), got theta0={theta0!r}, "
                          f"theta_flat={theta_flat!r}")
-    if not (0.0 < tf < math.inf):
-        raise ValueError(f"tau_flat must be positive and finite, got {tau_flat!r}")
     return math.log(math.tan(t1) / math.tan(t0)) / (wobble * tf)
 
 
@@ -386,8 +377,8 @@ def explorer1_case(theta0: float = THETA0, theta_flat: float = THETA_FLAT, *, ma
     """
     A, C = cylinder_moments(mass, length, diameter)
     t0 = real(theta0, "theta0")
-    spin = _positive(spin_rpm, "spin_rpm") * 2.0 * math.pi / 60.0
-    n = 2.0 * math.pi / (60.0 * _positive(period_min, "period_min"))
+    spin = positive(spin_rpm, "spin_rpm") * 2.0 * math.pi / 60.0
+    n = 2.0 * math.pi / (60.0 * positive(period_min, "period_min"))
     scale = math.hypot(math.sin(t0) / A, math.cos(t0) / C)  # |omega| / G
     body = SymmetricBody(A * scale, C * scale)
     eps = n / spin
