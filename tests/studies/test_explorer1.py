@@ -44,7 +44,8 @@ def test_cylinder_moments_against_a_quadrature_over_the_volume() -> None:
 def test_the_case_has_the_scales_of_its_inputs() -> None:
     case = ex.explorer1_case()
     # eps = n / Omega0 = (1 / period) / (spin in rev per unit time): one over the spin revolutions in one orbit,
-    # 750 rpm x 114.8 min = 86 100
+    # 750 rpm x 114.8 min = 86 100. Each check below is a few float operations: rounding (1e-16) is all that may
+    # differ, so 1e-13 (1e-14) relative leaves room and catches any wrong factor (60, 2 pi, a square)
     assert case.eps == pytest.approx(1 / (750 * 114.8), rel=1e-13, abs=0)
     assert case.tau_orbit / case.tau_per_minute == pytest.approx(114.8, rel=1e-13, abs=0)
     # the unit of rate is the initial |omega|: |g / A| = 1 at G = 1, theta0
@@ -86,7 +87,8 @@ def test_closed_form_nutation_against_euler_equations(theta0_deg: float) -> None
 
 
 def test_the_torque_keeps_G_and_takes_energy() -> None:
-    # M . g = 0 (G kept) and omega . M = -kappa |omega across G|^2 at random states of both kinds of body
+    # M . g = 0 (G kept) and omega . M = -kappa |omega across G|^2 at random states of both kinds of body; sums
+    # of three products of O(1) numbers (times |g|^2 for M . g): rounding 1e-15, bounded at 1e-12
     rng = np.random.default_rng(7)
     for body in (ep.SymmetricBody(3.0, 1.0), ep.Body(3.2, 2.6, 1.67)):
         w = rng.normal(size=(50, 3))
@@ -99,6 +101,7 @@ def test_the_torque_keeps_G_and_takes_energy() -> None:
 
 def test_fitted_kappa_inverts_the_closed_form() -> None:
     # the fit and the law are written separately: the fitted kappa put back into the law gives the criterion
+    # (closed forms on floats: rounding of a log, tan, exp and atan2, 1e-15 relative; 1e-10 deg, 1e-13 bound it)
     case = ex.explorer1_case()
     theta = ex.nutation_angle(case.body, case.kappa, case.theta0, case.tau_orbit)
     assert math.degrees(theta) == pytest.approx(80.0, rel=0, abs=1e-10)
