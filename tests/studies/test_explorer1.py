@@ -199,3 +199,21 @@ def test_the_gallery_script_shows_the_fit_and_the_agreement() -> None:
     assert np.interp(ex.ORBIT_PERIOD_MIN, minutes, avg.theta) == pytest.approx(ex.THETA_FLAT, rel=0, abs=1e-4)
     np.testing.assert_allclose(full.theta[::30], avg.theta[common], rtol=0, atol=1e-7)
     assert full.theta[-1] - full.theta[0] > math.radians(2.5)  # the window sees theta move
+
+
+def test_the_gravity_gradient_left_out_does_not_move_theta() -> None:
+    # what the gallery script states for leaving the gravity gradient out: on Explorer's eccentric orbit (e from
+    # perigee and apogee, 0.14) it has no component along the axis of a body with two equal moments, so theta after
+    # one orbit is that of the damping alone (to the runs' 1e-6 rad, argued above), while G does turn (by a
+    # fraction of a degree: more than 0.05 deg, so the torque is really in the run)
+    case = ex.explorer1_case()
+    rp, ra = ep.R_EARTH + 1e3 * ex.PERIGEE_KM, ep.R_EARTH + 1e3 * ex.APOGEE_KM
+    orbit = ep.Orbit(e=(ra - rp) / (ra + rp))
+    runs = [ep.averaged(case.body, torque, case.eps, theta0=case.theta0, tau_span=(0.0, case.tau_orbit),
+                        tau_eval=[0.0, case.tau_orbit], orbit=orbit)
+            for torque in (case.torque, case.torque + ep.GravityGradient(case.body, orbit))]
+    assert all(r.status == 0 for r in runs)
+    assert runs[1].theta[-1] == pytest.approx(runs[0].theta[-1], rel=0, abs=1e-6)
+    n = runs[1].n  # (3, times)
+    turned = np.degrees(np.arccos(np.clip(n[:, -1] @ n[:, 0], -1.0, 1.0)))
+    assert 0.05 < turned < 5.0
