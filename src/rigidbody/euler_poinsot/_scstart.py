@@ -15,7 +15,8 @@ from ._full import initial_state
 from ._kepler import KeplerOrbit
 from ._model import Body, Orbit, frame_y
 from ._physical import SYMMETRY_RTOL, FreeMotion
-from ._symbody import SymmetricBody, regular_precession_start
+from ._symbody import SymmetricBody
+from ._symfull import symmetric_start
 
 __all__ = ["PaperStart", "angles_of", "paper_start", "symmetry_axes"]
 
@@ -162,8 +163,8 @@ class PaperStart:
         """
         if isinstance(self.body, SymmetricBody):
             assert self.theta0 is not None
-            g, R = regular_precession_start(self.G0, self.theta0, self.delta0, self.lam0, self.u0, self.psi0)
-            return self.physical(g, Rotation.from_matrix(R))
+            st = symmetric_start(self.body, self.G0, self.theta0, self.delta0, self.lam0, self.u0, self.psi0)
+            return self.physical(st["g"], Rotation.from_matrix(st["R"]))
         st = initial_state(self.body, self.G0, self.k2_0, self.delta0, self.lam0, kind=self.kind, u0=self.u0,
                            psi0=self.psi0, sigma=self.sigma)
         return self.physical(st["g"], Rotation.from_matrix(st["R"]))

@@ -334,10 +334,10 @@ class Spacecraft:
         _check_options(options, "simulate")
         torques = {"gravity_gradient": gravity_gradient, "drag": drag, "dipole": dipole, "field": field,
                    "torque": torque, "eddy": eddy}
-        if self.motion.paper is not None:
-            options = {"u0": self.paper.u0, "psi0": self.paper.psi0, **options}
-        elif self.motion.kind != "rest" and symmetry_axes(self.motion.moments) is not None:
+        if self.motion.kind != "rest" and symmetry_axes(self.motion.moments) is not None:  # a SymmetricBody
             options = {"phi0": self.paper.u0, "psi0": self.paper.psi0, **options}
+        elif self.motion.paper is not None:
+            options = {"u0": self.paper.u0, "psi0": self.paper.psi0, **options}
         return self._run(simulate, t_span, t_eval, torques, True, **options)
 
     def _run(self, run: Any, t_span: Any, t_eval: Any, torques: dict[str, Any], with_attitude: bool, *,

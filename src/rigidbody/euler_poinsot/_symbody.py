@@ -29,10 +29,10 @@ from typing import Any, TypeGuard
 import numpy as np
 
 from ..core.validate import real
-from ._model import Body, frame_y
+from ._model import Body
 
-__all__ = ["SymmetricBody", "attitude", "check_any_body", "cos_theta_of", "energy", "is_symmetric", "omega_body",
-           "regular_precession_start"]
+__all__ = ["SymmetricBody", "attitude", "check_any_body", "cos_theta_of", "energy", "is_symmetric", "kind_fields",
+           "omega_body"]
 
 
 @dataclass(frozen=True)
@@ -194,6 +194,15 @@ def cos_theta_of(body: SymmetricBody, G: float, T: float, sigma: int) -> float:
     return sigma * math.sqrt(min(max(c2, 0.0), 1.0))
 
 
+def kind_fields(body: SymmetricBody, c: Any) -> dict[str, np.ndarray]:
+    """The triaxial fields a symmetric body's result carries at the nutation cosines ``c`` (the limits of a
+    near-symmetric body's): ``k2`` 0, ``kind`` ``'max'`` (oblate, the sphere) or ``'min'`` (prolate), ``sigma`` the
+    sign of ``c`` (+1 at 0)."""
+    c = np.asarray(c, dtype=float)
+    return {"k2": np.zeros(c.shape), "kind": np.full(c.shape, "max" if body.axial >= body.transverse else "min"),
+            "sigma": np.where(c < 0.0, -1, 1)}
+
+
 def omega_body(body: SymmetricBody, g: np.ndarray) -> np.ndarray:
     """The angular velocity of body components ``g`` of G (shape ``(..., 3)``)."""
     return g / body.A
@@ -218,11 +227,3 @@ def attitude(Y: np.ndarray, psi: np.ndarray, theta: float, phi: np.ndarray) -> n
     R[..., 2, 2] = ct
     return np.einsum("ij,...jk->...ik", Y, R)
 
-
-def regular_precession_start(G: float, theta: float, delta: float, lam: float, phi: float, psi: float
-                             ) -> tuple[np.ndarray, np.ndarray]:
-    """The body components of G and the attitude (body -> orbital axes) at the nutation angle ``theta``, the
-    direction ``(delta, lam)`` of G, the body azimuth ``phi`` of G and the precession angle ``psi``."""
-    g = G * np.array([math.sin(theta) * math.sin(phi), math.sin(theta) * math.cos(phi), math.cos(theta)])
-    R = attitude(frame_y(delta, lam), np.array([psi]), theta, np.array([phi]))[0, 0]
-    return g, R

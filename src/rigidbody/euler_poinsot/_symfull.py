@@ -6,7 +6,8 @@ runs through the same driver and equations as a triaxial one (:mod:`._fullrun`, 
 gathered in :class:`SymmetricKinds` (see :mod:`._fullkinds`): the start on the regular precession at the nutation
 angle :math:`\theta_0` (:func:`symmetric_start`), no separatrix (the only event is the slow-rotation stop, at the
 precession rate :math:`G/A`, :func:`symmetric_spin_frequency`) and the osculating nutation angle
-:math:`\theta = \arccos(g_3/G)` as an output field instead of :math:`k^2`, ``kind``, ``sigma``.
+:math:`\theta = \arccos(g_3/G)` as an output field besides ``k2`` (0), ``kind`` and ``sigma`` (the sign of
+:math:`g_3`).
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ from ._model import as_orbit, frame_y
 from ._options import Stops
 from ._start import check_direction, check_eps_G0, check_full_eps, check_spin
 from ._stops import stop_message
-from ._symbody import SymmetricBody, cos_theta_of, energy
+from ._symbody import SymmetricBody, cos_theta_of, energy, kind_fields
 
 __all__ = ["SymmetricKinds", "check_symmetric_start", "simulate_symmetric", "symmetric_spin_frequency",
            "symmetric_start"]
@@ -124,7 +125,7 @@ class SymmetricKinds:
     osculating nutation angle ``theta``; no separatrix."""
 
     event_names: tuple[str, ...] = ("slow_rotation",)
-    field_names: tuple[str, ...] = ("G", "T", "theta", "delta", "lam", "nu", "n", "g", "q")
+    field_names: tuple[str, ...] = ("G", "T", "theta", "k2", "delta", "lam", "nu", "n", "kind", "sigma", "g", "q")
 
     def __init__(self, body: SymmetricBody, theta0: np.ndarray, phi0: np.ndarray, psi0: np.ndarray,
                  min_spin_ratio: float) -> None:
@@ -143,14 +144,15 @@ class SymmetricKinds:
         return [self._spin_event(lambda t, y: symmetric_spin_frequency(body, G_D(y)[0]) / eps - r)]
 
     def scalar_fields(self, G: Any, T: Any, gb: np.ndarray) -> dict[str, np.ndarray]:
-        return {"theta": np.arctan2(np.hypot(gb[0], gb[1]), gb[2])}  # arccos(g3/G), accurate near 0 and pi too
+        # arccos(g3/G), accurate near 0 and pi too
+        return {"theta": np.arctan2(np.hypot(gb[0], gb[1]), gb[2]), **kind_fields(self.body, gb[2])}
 
     def vector_events(self, idx: np.ndarray, GD: Any) -> tuple[list[Event], tuple[np.ndarray, ...]]:
         r, body = self.min_spin_ratio, self.body
         return [self._spin_event(lambda t, y, ie, *a: symmetric_spin_frequency(body, GD(y)[0]) * ie - r)], ()
 
     def vector_fields(self, g: np.ndarray, G: np.ndarray, T: np.ndarray) -> dict[str, np.ndarray]:
-        return {"theta": np.arctan2(np.hypot(g[:, 0], g[:, 1]), g[:, 2])}
+        return {"theta": np.arctan2(np.hypot(g[:, 0], g[:, 1]), g[:, 2]), **kind_fields(self.body, g[:, 2])}
 
 
 def _check_options(k2_0: Any, opts: dict[str, Any]) -> None:

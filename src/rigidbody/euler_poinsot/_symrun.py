@@ -32,8 +32,9 @@ from ._model import Orbit, as_orbit
 from ._options import Stops
 from ._output import lam_unwrapped, unit_of_angles
 from ._stops import stop_message
-from ._symbody import SymmetricBody, cos_theta_of, energy
+from ._symbody import SymmetricBody, cos_theta_of, energy, kind_fields
 from ._symengine import choose_grid, phase_invariant, sym_mean, sym_rates
+from ._symfull import symmetric_spin_frequency
 
 __all__ = ["SYM_FIELDS", "SymMembers", "SymSetup", "averaged_symmetric", "run_symmetric"]
 
@@ -124,7 +125,7 @@ class _Member:
         """The slowest fast frequency the averaging needs, over the orbital rate."""
         body = self.run.body
         G = math.exp(y[0])
-        f = G / body.transverse
+        f = symmetric_spin_frequency(body, G)
         if not self.invariant:
             f = min(f, G * abs(float(y[4])) * abs(1.0 / body.transverse - 1.0 / body.axial))
         return f / self.eps
@@ -148,10 +149,8 @@ class _Member:
         nu = (y[-1] if self.nu_state else self.nu_start + (tau - self.t0) / self.eps) if self.held else \
             np.full(tau.size, self.nu_start)
         lam = lam_unwrapped(tau, n, float(math.atan2(n[1, 0], n[0, 0]))) if tau.size else np.empty(0)
-        out = {"G": G, "T": energy(body, G, c), "theta": np.arccos(c), "k2": np.zeros(tau.size),
-               "delta": np.arccos(np.clip(n[2], -1.0, 1.0)), "lam": lam, "nu": nu, "n": n,
-               "kind": np.full(tau.size, "max" if body.axial >= body.transverse else "min"),
-               "sigma": np.where(c < 0.0, -1, 1)}
+        out = {"G": G, "T": energy(body, G, c), "theta": np.arccos(c), "delta": np.arccos(np.clip(n[2], -1.0, 1.0)),
+               "lam": lam, "nu": nu, "n": n, **kind_fields(body, c)}
         if self.sphere:
             out["gb"] = gb
         return out
