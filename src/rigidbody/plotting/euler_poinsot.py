@@ -490,7 +490,7 @@ def separatrix_passage(body: Any, full: Any, averaged: Any = None, axes: Any = N
 
     Examples
     --------
-    A minor-axis spin losing energy at constant :math:`G` (the gallery's ``explorer1``, shortened); panel
+    A minor-axis spin losing energy at constant :math:`G` (the gallery's ``separatrix_passage``, shortened); panel
     (a) starts at :math:`2T_0A_2/G_0^2` and carries the levels :math:`A_2/A_3`, 1 and :math:`A_2/A_1`:
 
     >>> import numpy as np
