@@ -246,3 +246,22 @@ def test_the_standard_plot_shows_the_nutation_angle():
     axes = s.plot()
     assert axes[2].get_ylabel() == "$\\theta$"
     assert np.array_equal(axes[2].lines[0].get_ydata(), s.theta)
+
+
+def test_a_torque_that_turns_bad_part_way_ends_its_run_with_a_status():
+    """A torque that returns NaN once G has fallen to 0.9 (here: after a drag of 0.3 has acted for about half a unit
+    of tau) ends the run there with status -1 and a message naming the torque and the time, G at 0.9 to the
+    integrator's step control; in a batch the member whose torque stays finite is not touched."""
+    body = ep.SymmetricBody(2.0, 1.0)
+
+    def turns_bad(w, C, nu):
+        G = np.linalg.norm(w * body.A, axis=-1, keepdims=True)
+        return np.where(G < 0.9, np.nan, -0.3 * w)
+
+    s = ep.averaged(body, turns_bad, 0.0, theta0=1.0, tau_span=(0, 3))
+    assert s.status == -1 and "turns_bad" in s.message and "at tau = " in s.message
+    assert s.G[-1] == pytest.approx(0.9, rel=0, abs=1e-6)
+    b = ep.averaged(body, turns_bad, 0.0, G0=[1.0, 10.0], theta0=1.0, tau_span=(0, 0.3), tau_eval=[0.0, 0.3])
+    assert list(b.status) == [0, 0]  # neither reaches G = 0.9 within tau = 0.3 (G(0.3) is 0.94 and 9.4)
+    b = ep.averaged(body, turns_bad, 0.0, G0=[1.0, 10.0], theta0=1.0, tau_span=(0, 3), tau_eval=[0.0, 3.0])
+    assert b.status[0] == -1 and b.status[1] == 0

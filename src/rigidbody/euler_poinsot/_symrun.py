@@ -24,13 +24,14 @@ import numpy as np
 
 from ..core.ode import Event, Solution
 from ..core.piecewise import Continue, MemberRecords, PieceEnd, PieceSpec, Stop, run_pieces
-from ..core.validate import positive, real, span
+from ..core.validate import RESULT_ERRORS, positive, real, span
 from ._boundary import as_torque
 from ._checks import check_averaging, check_sigma, check_tau_eval, check_tol
 from ._members import assemble, batch_grid
 from ._model import Orbit, as_orbit
 from ._options import Stops
 from ._output import lam_unwrapped, unit_of_angles
+from ._protocol import Misfire
 from ._stops import stop_message
 from ._symbody import SymmetricBody, cos_theta_of, energy, kind_fields
 from ._symengine import choose_grid, phase_invariant, sym_mean, sym_rates
@@ -91,6 +92,7 @@ class _Member:
         self.grid, m0 = choose_grid(run.torque, body, G0, gb0, n0, nu, run.orbit, run.quad_tol)
         self.invariant = self.sphere or phase_invariant(run.torque, body, self.grid, G0, n0, nu, run.orbit)
         self.errors = [m0.error / m0.scale if m0.scale > 0.0 else 0.0]
+        self.misfire = Misfire()  # a torque that misbehaves part-way ends the run with a status naming it
         y0 = [math.log(G0), *n0.tolist(), *(gb0.tolist() if self.sphere else [float(gb0[2])])]
         self.y0 = y0 + ([nu0] if self.nu_state else [])
         if self.held and run.min_spin_ratio > 0.0:
@@ -115,7 +117,12 @@ class _Member:
     def rhs(self, t: float, y: Any) -> list[float]:
         G, n, gb, nu = self.unpack(t, y)
         run = self.run
-        r = sym_rates(run.body, sym_mean(run.torque, run.body, self.grid, G, gb, n, nu, run.orbit), G, gb, n)
+        try:
+            m = sym_mean(run.torque, run.body, self.grid, G, gb, n, nu, run.orbit)
+        except RESULT_ERRORS as exc:  # NaN rates: the step fails here, the run ends with misfire's message
+            self.misfire.note(t, exc)
+            return [math.nan] * len(y)
+        r = sym_rates(run.body, m, G, gb, n)
         out = [r["dG"] / G, *r["dn"].tolist(), *(r["dgb"].tolist() if self.sphere else [r["dc"]])]
         if self.nu_state:
             out.append(run.orbit.nu_rate(float(y[-1])) / self.eps)
@@ -186,7 +193,8 @@ class SymProblem:
                          self.run.method)
 
     def record(self, mode: Any, members: list[int], sol: Solution, end: PieceEnd) -> None:
-        self.sols[members[0]] = sol
+        self.sols[members[0]] = self.members[members[0]].misfire.settle(sol)
+        end.message[0] = str(sol.message)
 
     def on_event(self, mode: Any, i: int, j: int, end: PieceEnd) -> Continue | Stop:  # pragma: no cover - none
         raise AssertionError("a symmetric body's averaged run has no continued event")
