@@ -77,6 +77,11 @@ class SpinDecayCase:
         A number that is not real, positive (``mass``, ``radius``, ``a``, ``period0``, ``rate``), or an
         eccentricity outside [0, 1) or an inclination outside [0, pi].
 
+    See Also
+    --------
+    LARETS, STELLA : the published cases.
+    predicted_period, observed_period : the model's and the fit's period histories.
+
     Examples
     --------
     The period of Larets grows by :math:`e` in :math:`1/k` = 50.7 days:
@@ -110,18 +115,42 @@ class SpinDecayCase:
 
     @property
     def decay_time(self) -> float:
-        """The observed e-folding time of the spin period, :math:`1/k`, in s."""
+        """The observed e-folding time of the spin period, :math:`1/k`, in s.
+
+        Examples
+        --------
+        >>> from rigidbody.studies import STELLA
+        >>> print(f"{STELLA.decay_time:.6g} s")
+        2.00356e+07 s
+        """
         return SECONDS_PER_DAY / self.rate
 
     @property
     def orbit(self) -> ep.KeplerOrbit:
-        """The orbit (SI units; the inertial frame is the orbital axes)."""
+        """The orbit (SI units; the inertial frame is the orbital axes).
+
+        Examples
+        --------
+        >>> from rigidbody.studies import LARETS
+        >>> print(f"{LARETS.orbit.period / 60:.1f} min")
+        98.6 min
+        """
         return ep.KeplerOrbit(radius=self.a, e=self.e)
 
     @property
     def field(self) -> ep.DipoleField:
         """The axial dipole (IGRF-13) along the orbit, in tesla; the pericentre at the ascending node (the orbits
-        are nearly circular: the argument of pericentre only turns :math:`\\bar S` about the orbit normal)."""
+        are nearly circular: the argument of pericentre only turns :math:`\\bar S` about the orbit normal).
+
+        Examples
+        --------
+        The field over the ascending node, pointing north (along the Earth's axis), tens of microtesla:
+
+        >>> from rigidbody.studies import LARETS
+        >>> B = LARETS.field(0.0)
+        >>> print(f"{B @ LARETS.field.axis * 1e6:.2f} uT")
+        21.54 uT
+        """
         return ep.DipoleField(self.inclination, 0.0, self.a, orbit=ep.Orbit(self.e))
 
 
@@ -146,6 +175,10 @@ STELLA = SpinDecayCase(
 def observed_period(case: SpinDecayCase, days: Any) -> np.ndarray:
     r"""The published fit of the spin period, :math:`T_0\exp(kD)`, in s at ``days`` since launch.
 
+    See Also
+    --------
+    predicted_period : the model's.
+
     Examples
     --------
     >>> from rigidbody.studies import STELLA, observed_period
@@ -161,6 +194,10 @@ def field_axes(case: SpinDecayCase) -> tuple[np.ndarray, np.ndarray]:
 
     A spin along the eigenvector of :math:`s_k` decays at :math:`(p/A)(\operatorname{tr}\bar S - s_k)`, a pure
     exponential: the first column (the weakest mean field, near the orbit normal for a polar orbit) is the fastest.
+
+    See Also
+    --------
+    rigidbody.euler_poinsot.EddyCurrent.field_square : the mean it diagonalises.
 
     Examples
     --------
@@ -184,6 +221,10 @@ def fitted_eddy_rate(case: SpinDecayCase) -> float:
     the conductivity and geometry it is computed from), and neither is the spin axis: this is the one constant
     fitted to the observation.
 
+    See Also
+    --------
+    equivalent_conductivity : what it means as a material property.
+
     Examples
     --------
     >>> from rigidbody.studies import LARETS, STELLA, fitted_eddy_rate
@@ -201,6 +242,10 @@ def equivalent_conductivity(case: SpinDecayCase, p_over_A: float) -> float:
     A solid sphere has :math:`p = 2\pi\sigma r^5/15` (Gómez & Walker 2015; :class:`~rigidbody.euler_poinsot.
     EddyCurrent`) and :math:`A = \tfrac25 mr^2`, so :math:`\sigma = 3m\,(p/A)/(\pi r^3)`: what the fitted rate
     means as a material property, for a satellite that is *not* homogeneous (a dense core in a lighter shell).
+
+    See Also
+    --------
+    fitted_eddy_rate : the fitted :math:`p/A`.
 
     Examples
     --------
@@ -249,6 +294,11 @@ def predicted_period(case: SpinDecayCase, days: Any, axis: Any, p_over_A: float 
     RuntimeError
         If the averaged run ends early (its message says why).
 
+    See Also
+    --------
+    rigidbody.euler_poinsot.averaged : the run.
+    decay_time_ratio : its e-folding time against the observed one.
+
     Examples
     --------
     A spin along the weakest mean field decays fastest:
@@ -279,6 +329,10 @@ def predicted_period(case: SpinDecayCase, days: Any, axis: Any, p_over_A: float 
 def decay_time_ratio(case: SpinDecayCase, axis: Any, p_over_A: float | None = None) -> float:
     r"""Predicted over observed decay time: the mean e-folding time of :func:`predicted_period` over one
     observed decay time :math:`1/k`, divided by :math:`1/k`.
+
+    See Also
+    --------
+    predicted_period : the history it is read from.
 
     Examples
     --------
