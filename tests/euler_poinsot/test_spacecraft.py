@@ -149,15 +149,11 @@ def test_orbit_in_si_units():
     assert ecc.true_anomaly(2 * math.pi / 1e-3) == pytest.approx(2.0 + 2 * math.pi, rel=0, abs=1e-12)
 
 
-def test_symmetric_body_torque_free_in_closed_form_else_refused():
+def test_symmetric_body_torque_free_in_closed_form_and_averaged_with_torques():
     J, w, R = [2.0, 2.0, 1.5], np.array([0.03, 0.01, 0.1]), Rotation.from_euler("xyz", [0.3, -0.2, 1.0])
     sc = ep.Spacecraft(J, w, R, orbit=LEO)
-    with pytest.raises(ValueError, match=r"equal principal moments.*near-symmetric"):
-        sc.paper
-    with pytest.raises(ValueError, match=r"equal principal moments.*near-symmetric"):
-        sc.simulate((0.0, 10.0), drag=[1e-4, 1e-4, 1e-4])
-    with pytest.raises(ValueError, match="equal principal moments"):
-        sc.averaged((0.0, 10.0))  # the gravity gradient is on by default
+    assert isinstance(sc.paper.body, ep.SymmetricBody)
+    assert sc.averaged((0.0, 10.0)).status == 0  # the gravity gradient is on by default
     t = np.linspace(0.0, 100.0, 5)
     sol = sc.simulate((0.0, 100.0), t, gravity_gradient=False)
     # regular precession: omega_3 fixed, the transverse part turns at (At - As) w3 / At in body axes (exact)
@@ -181,6 +177,32 @@ def quat_rate(q, w):
     wx, wy, wz = w
     return np.array([s * wx + y * wz - z * wy, s * wy + z * wx - x * wz, s * wz + x * wy - y * wx,
                      -x * wx - y * wy - z * wz])
+
+
+@pytest.mark.parametrize("moments", [(2.0, 2.0, 1.5), (1.5, 2.0, 2.0), (3.0, 3.0, 3.0)])
+@pytest.mark.parametrize("seed", range(3))
+def test_round_trip_of_a_symmetric_body(moments, seed):
+    """Two equal moments (in a random tensor: equal to rounding only): the start is a SymmetricBody whose axial
+    moment is the distinct one, theta0 the angle of G from that principal axis (its eigenvector, found here), and
+    the state comes back to rounding through the regular precession's start (1e-13, as for a triaxial body)."""
+    rng = np.random.default_rng(seed)
+    J = random_tensor(rng, moments)
+    w = rng.normal(size=3) * 0.07
+    R = Rotation.random(random_state=rng)
+    p = ep.Spacecraft(J, w, R, orbit=LEO).paper
+    assert isinstance(p.body, ep.SymmetricBody)
+    vals, vecs = np.linalg.eigh(J)
+    distinct = 0 if abs(vals[1] - vals[2]) < 1e-9 else 2  # the moment that differs (any for the sphere)
+    scale = np.linalg.norm(w) / np.linalg.norm(J @ w)
+    assert p.body.axial == pytest.approx(vals[distinct] * scale, rel=1e-13, abs=0)
+    assert p.body.transverse == pytest.approx(vals[1] * scale, rel=1e-13, abs=0)
+    if moments[0] != moments[2]:
+        g = J @ w
+        cos_theta = abs(vecs[:, distinct] @ g) / np.linalg.norm(g)
+        assert abs(math.cos(p.theta0)) == pytest.approx(cos_theta, rel=0, abs=1e-14)
+    omega, attitude = p.state()
+    assert np.abs(omega - w).max() <= 1e-13 * np.linalg.norm(w)
+    assert angle_between(attitude, R) <= 1e-13
 
 
 @pytest.mark.parametrize(("w", "match"), [([0.0, 0.0, 0.0], "at rest"), ([0.0, 0.1, 0.0], "separatrix")])
@@ -209,7 +231,7 @@ def test_bad_input_is_refused_naming_the_parameter():
     with pytest.raises(TypeError, match="orbit must be a KeplerOrbit"):
         ep.Spacecraft(J, w, orbit=ep.Orbit())
     sc = ep.Spacecraft(J, w, orbit=LEO)
-    with pytest.raises(ValueError, match=r"dipole .* and field .* go together"):
+    with pytest.raises(ValueError, match=r"field .* goes with dipole .* or eddy"):
         sc.averaged((0.0, 10.0), dipole=[1.0, 0.0, 0.0])
     with pytest.raises(ValueError, match="drag must be a 3x3 tensor"):
         sc.averaged((0.0, 10.0), drag=[1.0, 2.0])

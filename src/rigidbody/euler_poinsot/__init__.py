@@ -97,10 +97,11 @@ from ._motion import EulerPoinsot
 from ._options import Solver, Stops
 from ._physical import FreeMotion
 from ._rates import average_torque, averaged_rates, precession_rate
+from ._scstart import PaperStart
 from ._separatrix import ARCS, REGIONS, Separatrix, SeparatrixCrossing, separatrix_crossing
 from ._seplimits import SeparatrixLimits, separatrix_limits
 from ._simulate import simulate
-from ._spacecraft import PaperStart, Spacecraft, SpacecraftSolution
+from ._spacecraft import Spacecraft, SpacecraftSolution
 from ._spin import spin_ratio
 from ._state import Mean, State
 from ._symbody import SymmetricBody

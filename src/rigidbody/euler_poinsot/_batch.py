@@ -27,13 +27,11 @@ from ._branches import check_branch
 from ._checks import check_averaging, check_sigma
 from ._closed import ClosedSetup, drag_members, run_closed
 from ._enginerun import EngineSetup, run_engine
-from ._full import initial_state
-from ._fullrun import FullRun, run_full_members
+from ._fullkinds import TriaxialKinds
+from ._fullrun import FullRun, probe_members, run_full_members
 from ._members import check_members, common_checks, drag_batch, member_inputs
 from ._model import as_orbit
-from ._spin import K2_SPIN_CAP
 from ._start import StartRules
-from ._torques import probe
 
 __all__ = ["averaged_batch", "simulate_batch"]
 
@@ -108,16 +106,8 @@ def simulate_batch(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0:
     tq, _ = as_torque(torque, body, orb)
     tq.check_setup(body, orb)
     check_members(mem, StartRules(body, k2_max, min_spin, True), ph, ps)  # the single run's checks, member by member
-    run = FullRun(body, drag_equivalent(tq, body, orb), tq, orb, mem.kind, sigma, float(opts["rtol"]),
-                  float(opts["atol"]), k2_max, min_spin,
-                  K2_SPIN_CAP if k2_max is None else 1.0, opts["formulation"], opts["method"])
-    if run.tensor is None and run.formulation == "body" and run.method == "DOP853":
-        # the members integrated together: one evaluation at a valid member's start, with the single run's message
-        # on failure (member by member, each member's start probes it)
-        good = [i for i in range(mem.eps.size) if i not in mem.refused]
-        if good:
-            i = good[0]
-            st = initial_state(body, float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]), float(mem.lam0[i]),
-                               kind=mem.kind[i], u0=float(ph[i]), psi0=float(ps[i]), sigma=sigma)
-            probe(tq, st["g"] / body.A, st["R"], float(mem.nu0[i]))
-    return run_full_members(run, mem, ph, ps, (t0, t1), te, False)
+    kinds = TriaxialKinds(body, mem.k2_0, mem.kind, ph, ps, sigma, k2_max, min_spin)
+    run = FullRun(body, drag_equivalent(tq, body, orb), tq, orb, kinds, float(opts["rtol"]), float(opts["atol"]),
+                  opts["formulation"], opts["method"])
+    probe_members(run, mem)
+    return run_full_members(run, mem, (t0, t1), te, False)

@@ -9,12 +9,13 @@ import numpy as np
 
 from ._model import Body, Drag, Orbit
 from ._protocol import Torque
+from ._symbody import SymmetricBody
 from ._torques import GravityGradient, LinearDrag, drag_as_torque, resolve
 
 __all__ = ["as_torque", "drag_equivalent"]
 
 
-def as_torque(torque: Any, body: Body, orbit: Orbit, omega0: float = 1.0) -> tuple[Torque, Drag | None]:
+def as_torque(torque: Any, body: Body | SymmetricBody, orbit: Orbit, omega0: float = 1.0) -> tuple[Torque, Drag | None]:
     """The ``torque`` argument of :func:`averaged` and :func:`simulate` as a torque object: a drag tensor (3x3, its
     diagonal or a :class:`Drag`) becomes its meaning, linear drag plus the gravity gradient of ``body`` on ``orbit``
     (returned with the :class:`Drag`: the paper's closed forms (9) apply to it; ``omega0``: the orbital rate of its
@@ -26,7 +27,7 @@ def as_torque(torque: Any, body: Body, orbit: Orbit, omega0: float = 1.0) -> tup
     return tq, None
 
 
-def drag_equivalent(torque: Any, body: Body, orbit: Orbit) -> np.ndarray | None:
+def drag_equivalent(torque: Any, body: Body | SymmetricBody, orbit: Orbit) -> np.ndarray | None:
     """The drag tensor whose meaning (linear drag plus the gravity gradient) a torque object has, or None: a sum
     of :class:`LinearDrag` parts and one :class:`GravityGradient` of this body and orbit in the module's scaling
     (``omega0 = 1``). Its averages have the closed forms (9), and its torque the written-out formula of the full

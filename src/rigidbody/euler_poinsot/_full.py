@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
@@ -36,16 +36,15 @@ from ..core.validate import RESULT_ERRORS, real, span
 from ._boundary import as_torque, drag_equivalent
 from ._checks import check_tau_eval, check_tol
 from ._gravity import drag_gravity, radius_in_body
-from ._model import Body, Orbit, as_orbit, check_body, frame_y, relabel
+from ._model import Body, Orbit, as_orbit, check_body, frame_y
 from ._motion import EulerPoinsot
 from ._output import finish_output
 from ._protocol import Misfire, evaluate
-from ._spin import K2_SPIN_CAP, nutation_frequency
 from ._start import StartRules, check_start, initial_kind
-from ._stops import stop_message
+from ._symbody import SymmetricBody
 from ._torques import probe
 
-__all__ = ["FullSingle", "check_full", "full_single", "initial_state"]
+__all__ = ["FullKinds", "FullSingle", "check_full", "full_single", "initial_state"]
 
 
 def initial_state(
@@ -98,24 +97,29 @@ def initial_state(
             "T": m.T}
 
 
-def _k2_osc(A: tuple[float, float, float], D: float) -> float:
-    """Osculating k2 of (5) from D = G^2/2T, with the moments in the labelling of the kind ('max' formula)."""
-    A1, A2, A3 = A
-    den = (A1 - A2) * (D - A3)
-    return (A2 - A3) * (A1 - D) / den if den > 0 else math.inf
+class FullKinds(Protocol):
+    """What a full run depends on the body for (implemented by :class:`._fullkinds.TriaxialKinds` and
+    :class:`._symfull.SymmetricKinds`; their module :mod:`._fullkinds` describes each part)."""
 
+    event_names: tuple[str, ...]
+    field_names: tuple[str, ...]
 
-def _osculating(A: tuple[float, float, float], D: float) -> tuple[tuple[float, float, float], float]:
-    """Moments labelled for the kind of motion D = G^2/2T belongs to, and its osculating k2 (in [0, 1])."""
-    Alab = A if D >= A[1] else (A[2], A[1], A[0])
-    return Alab, min(max(_k2_osc(Alab, D), 0.0), 1.0)
+    def start(self, i: int, G0: float, delta0: float, lam0: float) -> dict[str, Any]: ...
+
+    def scalar_events(self, i: int, eps: float, G_D: Any) -> list[Event]: ...
+
+    def scalar_fields(self, G: Any, T: Any, gb: np.ndarray) -> dict[str, np.ndarray]: ...
+
+    def vector_events(self, idx: np.ndarray, GD: Any) -> tuple[list[Event], tuple[np.ndarray, ...]]: ...
+
+    def vector_fields(self, g: np.ndarray, G: np.ndarray, T: np.ndarray) -> dict[str, np.ndarray]: ...
 
 
 @dataclass
 class _Common:
     """What both formulations of a single run share."""
 
-    body: Body
+    body: Body | SymmetricBody
     orbit: Orbit
     torque: Any
     generic: bool
@@ -336,21 +340,17 @@ class FullSingle:
         return finish_output(res, tau_eval, self.make_fields, self.lam0, self.nvec, producer="euler_poinsot.simulate")
 
 
-def full_single(body: Body, tensor: Any, tq: Any, orb: Orbit, eps: float, G0: float, k2_0: float, delta0: float,
-                lam0: float, nu0: float, *, kind: str, u0: float, psi0: float, sigma: int, formulation: str,
-                k2_max: float | None, min_spin_ratio: float, cuts: bool = False) -> FullSingle:
-    """The full equations of one member whose start is checked: the torque object ``tq`` written out with the drag
-    tensor ``tensor`` when it is one's meaning (drag plus gravity gradient), else evaluated through its protocol
-    (probed at the start: its failure raises)."""
+def full_single(body: Body | SymmetricBody, tensor: Any, tq: Any, orb: Orbit, eps: float, G0: float, delta0: float,
+                lam0: float, nu0: float, st: dict[str, Any], kinds: FullKinds, i: int, *, formulation: str,
+                cuts: bool = False) -> FullSingle:
+    """The full equations of one member (``i`` of ``kinds``, the body's part of the run: see :mod:`._fullkinds`)
+    whose start ``st`` is checked: the torque object ``tq`` written out with the drag tensor ``tensor`` when it is
+    one's meaning (drag plus gravity gradient), else evaluated through its protocol (probed at the start: its
+    failure raises)."""
     generic = tensor is None
     Im = np.zeros((3, 3)) if generic else np.asarray(tensor, dtype=float)
-    A1, A2, A3 = body.A1, body.A2, body.A3
-    Aall = (A1, A2, A3)
-    Alab = relabel(kind, (A1, A2, A3))
     ie = 1.0 / eps
     circular = orb.e == 0.0
-    spin_cap = K2_SPIN_CAP if k2_max is None else 1.0  # see K2_SPIN_CAP: only a run through the separatrix
-    st = initial_state(body, G0, k2_0, delta0, lam0, kind=kind, u0=u0, psi0=psi0, sigma=sigma)
 
     def nu_of(tau: float, y: np.ndarray, i: int) -> float:
         return y[i] if not circular else tau * ie + nu0
@@ -360,43 +360,18 @@ def full_single(body: Body, tensor: Any, tq: Any, orb: Orbit, eps: float, G0: fl
     c = _Common(body, orb, tq, generic, Im, eps, st, nu0, G0, delta0, lam0, misfire, nu_of)
     rhs, y0, GT, nvec, G_D, body_dir, extra_events = (_body_form if formulation == "body" else _angles_form)(c)
     inu = 7
-
-    def ev_spin(tau: float, y: np.ndarray) -> float:
-        G, D = G_D(y)
-        Ak, k2 = _osculating(Aall, D)
-        return nutation_frequency(Ak, G, min(k2, spin_cap)) / eps - min_spin_ratio
-
-    if k2_max is None:
-        # every passage of D = G^2/2T through A2 is recorded; the run goes on
-        ev_sep = Event(lambda t, y: G_D(y)[1] - A2, "separatrix", False, 0.0, "")
-    else:
-        stop = k2_max
-
-        def ev_k2(tau: float, y: np.ndarray) -> float:
-            return _k2_osc(Alab, G_D(y)[1]) - stop
-
-        ev_sep = Event(ev_k2, "separatrix", True, 1.0, stop_message("separatrix_full", k2_max=k2_max))
     if not circular:
         y0.append(nu0)
-    events = [
-        ev_sep,
-        Event(ev_spin, "slow_rotation", True, -1.0, stop_message("slow_rotation", min_spin_ratio=min_spin_ratio)),
-        *extra_events,
-    ]
+    events = [*kinds.scalar_events(i, eps, G_D), *extra_events]
     if cuts:
         events += [Event(_n2, "_cut_up", False, 1.0, ""), Event(_n2, "_cut_down", False, -1.0, "")]
 
     def make_fields(tau: np.ndarray, y: np.ndarray) -> dict[str, np.ndarray]:
         G, T = GT(y)
-        D = np.atleast_1d(G**2 / (2 * T))
-        k2 = np.array([_osculating(Aall, float(d))[1] for d in D])
-        kinds = np.where(D >= A2, "max", "min")
-        gb = body_dir(y)
-        sig = np.where(np.where(D >= A2, gb[0], gb[2]) >= 0, 1, -1)
         n = nvec(y) if y.shape[1] else np.empty((3, 0))
         nu = y[inu] if not circular else tau * ie + nu0
-        out = {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[2], -1, 1)), "n": n, "nu": nu,
-               "kind": kinds, "sigma": sig}
+        out = {"G": G, "T": T, **kinds.scalar_fields(G, T, body_dir(y)), "delta": np.arccos(np.clip(n[2], -1, 1)),
+               "n": n, "nu": nu}
         if formulation == "body":
             out["g"] = y[0:3]
             out["q"] = y[3:7] / np.linalg.norm(y[3:7], axis=0)

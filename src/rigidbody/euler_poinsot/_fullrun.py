@@ -29,59 +29,36 @@ from ..core.ode import Event, Solution
 from ..core.piecewise import MemberRecords, PieceEnd, PieceSpec, Stop, run_pieces
 from ..core.validate import result_message
 from . import _kernel as _k
-from ._full import FullSingle, check_full, full_single, initial_state
+from ._full import FullKinds, FullSingle, check_full, full_single
+from ._fullkinds import TriaxialKinds
 from ._gravity import drag_gravity, radius_in_body
 from ._members import Members, assemble
 from ._model import Body, Orbit
 from ._protocol import ROLE, evaluate
-from ._spin import K2_SPIN_CAP
 from ._stops import stop_message
+from ._symbody import SymmetricBody
+from ._torques import probe
 
-__all__ = ["FullRun", "run_full", "run_full_members"]
+__all__ = ["FullRun", "probe_members", "run_full", "run_full_members"]
 
 PRODUCER = "euler_poinsot.simulate"
 
 
 @dataclass
 class FullRun:
-    """What the members share: body, the drag tensor whose meaning the torque has (its formula written out) or None,
-    the torque object,
-    orbit, the initial kind of each member (an array) and the sense of motion, tolerances and the terminal
-    checks."""
+    """What the members share: the body, the drag tensor whose meaning the torque has (its formula written out) or
+    None, the torque object, the orbit, the body's part of the run (``kinds``: each member's start, the events and
+    the body-shape fields; see :mod:`._fullkinds`), tolerances, the formulation and the method."""
 
-    body: Body
+    body: Body | SymmetricBody
     tensor: np.ndarray | None
     torque: Any
     orbit: Orbit
-    kind: np.ndarray
-    sigma: int
+    kinds: FullKinds
     rtol: float
     atol: float
-    k2_max: float | None
-    min_spin_ratio: float
-    spin_cap: float = 1.0
     formulation: str = "body"
     method: str = "DOP853"
-
-
-def _osculating(A: tuple[float, float, float], D: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Labelled moments (arrays) of the kind D = G^2/2T belongs to and its osculating k2 in [0, 1]."""
-    A1, A2, A3 = A
-    mx = D >= A2
-    a1 = np.where(mx, A1, A3)
-    a3 = np.where(mx, A3, A1)
-    den = (a1 - A2) * (D - a3)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        k2 = np.where(den > 0.0, (A2 - a3) * (a1 - D) / np.where(den > 0.0, den, 1.0), np.inf)
-    return a1, a3, np.clip(k2, 0.0, 1.0)
-
-
-def _k2_initial_kind(A1: Any, A2: float, A3: Any, D: np.ndarray) -> np.ndarray:
-    """The osculating k2 by the formula of the initial kind (labelled moments, per member), unclipped (inf beyond
-    the separatrix)."""
-    den = (A1 - A2) * (D - A3)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        return np.where(den > 0.0, (A2 - A3) * (A1 - D) / np.where(den > 0.0, den, 1.0), np.inf)
 
 
 class FullProblem:
@@ -93,9 +70,8 @@ class FullProblem:
 
     continues: tuple[str, ...] = ()
 
-    def __init__(self, run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, te: Any, single: bool
-                 ) -> None:
-        self.run, self.mem, self.u0, self.psi0, self.te, self.single = run, mem, u0, psi0, te, single
+    def __init__(self, run: FullRun, mem: Members, te: Any, single: bool) -> None:
+        self.run, self.mem, self.te, self.single = run, mem, te, single
         B = mem.eps.size
         self.ns = 7 if run.orbit.e == 0.0 else 8
         self.solutions: list[Solution | str] = [mem.refused.get(i, "") for i in range(B)]
@@ -107,7 +83,7 @@ class FullProblem:
             self.lam_shift = np.zeros((B, nt))
             none = np.empty(0)
             none.setflags(write=False)
-            self.t_ev = {name: np.empty(B, dtype=object) for name in ("separatrix", "slow_rotation")}
+            self.t_ev = {name: np.empty(B, dtype=object) for name in run.kinds.event_names}
             for arr in self.t_ev.values():
                 arr.fill(none)
         self.singles: dict[int, FullSingle] = {}
@@ -119,11 +95,10 @@ class FullProblem:
         run, mem = self.run, self.mem
         if scalar:
             i = members[0]
-            one = full_single(run.body, run.tensor, run.torque, run.orbit, float(mem.eps[i]), float(mem.G0[i]),
-                              float(mem.k2_0[i]), float(mem.delta0[i]), float(mem.lam0[i]), float(mem.nu0[i]),
-                              kind=str(run.kind[i]), u0=float(self.u0[i]), psi0=float(self.psi0[i]), sigma=run.sigma,
-                              formulation=run.formulation, k2_max=run.k2_max, min_spin_ratio=run.min_spin_ratio,
-                              cuts=self.vector)
+            G0, delta0, lam0 = float(mem.G0[i]), float(mem.delta0[i]), float(mem.lam0[i])
+            one = full_single(run.body, run.tensor, run.torque, run.orbit, float(mem.eps[i]), G0, delta0, lam0,
+                              float(mem.nu0[i]), run.kinds.start(i, G0, delta0, lam0), run.kinds, i,
+                              formulation=run.formulation, cuts=self.vector)
             self.singles[i] = one
             return PieceSpec(one.rhs, one.y0, run.rtol, run.atol, one.events, (),
                              self.te if self.vector else None, True, run.method)
@@ -131,13 +106,9 @@ class FullProblem:
 
     def _vector_piece(self, idx: np.ndarray) -> PieceSpec:
         run, mem = self.run, self.mem
-        A1, A2, A3 = A = (run.body.A1, run.body.A2, run.body.A3)
-        y0 = _initial_states(run, mem, idx, self.u0, self.psi0, self.ns)
+        Ab = np.array([run.body.A1, run.body.A2, run.body.A3])
+        y0 = _initial_states(run, mem, idx, self.ns)
         ie = 1.0 / mem.eps[idx]
-        mx = run.kind[idx] == "max"  # the labelled moments A1, A3 of each member's initial kind (the k2_max stop)
-        # the last arg: each member's index, to note where its torque turned non-finite (t_bad; see below)
-        args = (ie, ie * ie, mem.nu0[idx], np.where(mx, A1, A3), np.where(mx, A3, A1), idx.astype(float))
-        Ab = np.array(A)
 
         def GD(y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             g2 = y[:, 0:3] ** 2
@@ -153,29 +124,11 @@ class FullProblem:
                 ncache[:] = [y, _n_of(y)[:, 1]]
             return ncache[1]
 
-        r = run.min_spin_ratio
-        cap = run.spin_cap
-
-        def ev_spin(t: np.ndarray, y: np.ndarray, ie: np.ndarray, *a: np.ndarray) -> np.ndarray:
-            G, D = GD(y)
-            a1, a3, k2 = _osculating(A, D)
-            out = np.empty(G.shape)
-            for lab in (True, False):  # the two labellings
-                sel = (a1 == A1) if lab else (a1 != A1)
-                if np.any(sel):
-                    Al = (A1, A2, A3) if lab else (A3, A2, A1)
-                    out[sel] = _k.nut_freq(np, Al, G[sel], np.minimum(k2[sel], cap)) * ie[sel] - r
-            return out
-
-        if run.k2_max is None:
-            ev_sep = Event(lambda t, y, *a: GD(y)[1] - A2, "separatrix", False, 0.0, "")
-        else:
-            stop = run.k2_max
-            ev_sep = Event(lambda t, y, *a: _k2_initial_kind(a[3], A2, a[4], GD(y)[1]) - stop, "separatrix", True, 1.0,
-                           stop_message("separatrix_full", k2_max=stop))
+        events, extra = run.kinds.vector_events(idx, GD)
+        # the fourth arg: each member's index, to note where its torque turned non-finite (t_bad; see _rhs)
+        args = (ie, ie * ie, mem.nu0[idx], idx.astype(float), *extra)
         # passages of the azimuth through its branch cut (n2 = 0 with n1 < 0), both ways
-        events = [ev_sep, Event(ev_spin, "slow_rotation", True, -1.0, stop_message("slow_rotation", min_spin_ratio=r)),
-                  Event(n2, "_cut_up", False, 1.0, ""), Event(n2, "_cut_down", False, -1.0, "")]
+        events = [*events, Event(n2, "_cut_up", False, 1.0, ""), Event(n2, "_cut_down", False, -1.0, "")]
         return PieceSpec(_rhs(run, self.t_bad), y0, run.rtol, run.atol, events, args, self.te)
 
     def record(self, mode: Any, members: list[int], sol: Solution, end: PieceEnd) -> None:
@@ -209,15 +162,13 @@ class FullProblem:
             assert isinstance(out, Solution)
             return out
         if not self.vector:
-            names = ("G", "T", "k2", "delta", "lam", "nu", "n", "kind", "sigma")
-            return assemble(self.solutions, shape, self.te, names, PRODUCER)
+            return assemble(self.solutions, shape, self.te, self.run.kinds.field_names, PRODUCER)
         # a member whose torque turned non-finite where it failed: the message names the torque and the time
         why = result_message(getattr(self.run.torque, "fun", self.run.torque), (3,), "non-finite values (NaN or inf)",
                              ROLE)
         for i in np.nonzero((rec.status == -1) & (self.t_bad >= rec.t_final))[0].tolist():
             rec.message[i] = stop_message("torque", tau=self.t_bad[i], why=why)
-        data = _fields((self.run.body.A1, self.run.body.A2, self.run.body.A3), self.Y, self.lam_shift, mem, self.te,
-                       self.run.orbit.e)
+        data = _fields(self.run, self.Y, self.lam_shift, mem, self.te)
         data = {k: v.reshape(shape + v.shape[1:]) for k, v in data.items()}
         return Solution.build(producer=PRODUCER, time_name="tau", time=self.te,
                               y=self.Y.reshape(shape + self.Y.shape[1:]), fields=data, status=rec.status.reshape(shape),
@@ -226,12 +177,11 @@ class FullProblem:
                               nfev=rec.nfev.reshape(shape), t_final=rec.t_final.reshape(shape))
 
 
-def run_full_members(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarray, tau_span: tuple[float, float],
-                     te: Any, single: bool) -> Solution:
+def run_full_members(run: FullRun, mem: Members, tau_span: tuple[float, float], te: Any, single: bool) -> Solution:
     """Integrate the full equations of the members ``mem`` over ``tau_span`` through the piecewise driver
     (``mem.refused``: members that end at once with status -1 and their message; ``single``: one run, whose errors
     raise and whose output is on ``te``, the call's ``tau_eval``, or the integrator's steps)."""
-    pb = FullProblem(run, mem, u0, psi0, te, single)
+    pb = FullProblem(run, mem, te, single)
     rec = MemberRecords.start([pb.mode(i) for i in range(mem.eps.size)], float(tau_span[0]), mem.refused)
     run_pieces(pb, rec, float(tau_span[1]), strict=single)
     if not pb.vector:
@@ -241,19 +191,28 @@ def run_full_members(run: FullRun, mem: Members, u0: np.ndarray, psi0: np.ndarra
     return pb.result(rec)
 
 
+def probe_members(run: FullRun, mem: Members) -> None:
+    """Evaluate the torque object once at a valid member's start when the members are integrated together, with the
+    single run's message on failure (member by member, each member's start probes it)."""
+    if run.tensor is None and run.formulation == "body" and run.method == "DOP853":
+        good = [i for i in range(mem.eps.size) if i not in mem.refused]
+        if good:
+            i = good[0]
+            st = run.kinds.start(i, float(mem.G0[i]), float(mem.delta0[i]), float(mem.lam0[i]))
+            probe(run.torque, st["g"] / run.body.A, st["R"], float(mem.nu0[i]))
+
+
 def _one(v: Any) -> np.ndarray:
     out = np.empty(1, dtype=object)
     out[0] = np.asarray(v, dtype=float)
     return out
 
 
-def _initial_states(run: FullRun, mem: Members, idx: np.ndarray, u0: np.ndarray, psi0: np.ndarray,
-                    ns: int) -> np.ndarray:
+def _initial_states(run: FullRun, mem: Members, idx: np.ndarray, ns: int) -> np.ndarray:
     """The body-frame start (g, q[, nu]) of each member in ``idx``."""
     y0 = np.empty((idx.size, ns))
-    for j, i in enumerate(idx):
-        st = initial_state(run.body, float(mem.G0[i]), float(mem.k2_0[i]), float(mem.delta0[i]), float(mem.lam0[i]),
-                           kind=str(run.kind[i]), u0=float(u0[i]), psi0=float(psi0[i]), sigma=run.sigma)
+    for j, i in enumerate(idx.tolist()):
+        st = run.kinds.start(i, float(mem.G0[i]), float(mem.delta0[i]), float(mem.lam0[i]))
         y0[j, :3], y0[j, 3:7] = st["g"], st["q"]
         if ns == 8:
             y0[j, 7] = mem.nu0[i]
@@ -286,8 +245,8 @@ def _rhs(run: FullRun, t_bad: np.ndarray) -> Any:
     if drag:
         rows = tuple(tuple(row) for row in np.asarray(run.tensor, dtype=float).tolist())
 
-    def rhs(t: np.ndarray, y: np.ndarray, ie: np.ndarray, ie2: np.ndarray, nu0: np.ndarray, *lab: np.ndarray
-            ) -> np.ndarray:
+    def rhs(t: np.ndarray, y: np.ndarray, ie: np.ndarray, ie2: np.ndarray, nu0: np.ndarray, who: np.ndarray,
+            *rest: np.ndarray) -> np.ndarray:
         g1, g2, g3, w, x, yq, z = y[:, 0], y[:, 1], y[:, 2], y[:, 3], y[:, 4], y[:, 5], y[:, 6]
         nrm = np.sqrt(w * w + x * x + yq * yq + z * z)
         w, x, yq, z = w / nrm, x / nrm, yq / nrm, z / nrm
@@ -303,7 +262,7 @@ def _rhs(run: FullRun, t_bad: np.ndarray) -> Any:
                                          finite=False), (t.size, 3))
             bad = ~np.isfinite(M).all(axis=1)
             if bad.any():
-                t_bad[lab[2][bad].astype(int)] = t[bad]
+                t_bad[who[bad].astype(int)] = t[bad]
             L1, L2, L3 = M[:, 0], M[:, 1], M[:, 2]
         out = np.empty_like(y)
         out[:, 0] = (g2 * o3 - g3 * o2) * ie2 + L1
@@ -321,11 +280,10 @@ def _rhs(run: FullRun, t_bad: np.ndarray) -> Any:
     return rhs
 
 
-def _fields(A: tuple[float, float, float], Y: np.ndarray, lam_shift: np.ndarray, mem: Members, te: np.ndarray,
-            e: float) -> dict[str, np.ndarray]:
+def _fields(run: FullRun, Y: np.ndarray, lam_shift: np.ndarray, mem: Members, te: np.ndarray) -> dict[str, np.ndarray]:
     """The output fields of the batch from its raw rows ``Y`` (g, q[, nu]; NaN after a member's end), lambda
     continuous from the counted passages through the branch cut (``lam_shift``)."""
-    A1, A2, A3 = A
+    A1, A2, A3 = run.body.A1, run.body.A2, run.body.A3
     g = Y[:, 0:3]
     qn = Y[:, 3:7] / np.linalg.norm(Y[:, 3:7], axis=1, keepdims=True)
     R = dcm_from_unit_quat(*np.moveaxis(qn, 1, 0))  # (B, nt, 3, 3)
@@ -333,26 +291,18 @@ def _fields(A: tuple[float, float, float], Y: np.ndarray, lam_shift: np.ndarray,
     G = np.sqrt((g * g).sum(axis=1))
     n = n / G[:, None, :]
     T = 0.5 * (g[:, 0] ** 2 / A1 + g[:, 1] ** 2 / A2 + g[:, 2] ** 2 / A3)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        D = G * G / (2.0 * T)
-        _, _, k2 = _osculating(A, D)
-        mx = D >= A2
-        sig = np.where(np.where(mx, g[:, 0], g[:, 2]) >= 0.0, 1.0, -1.0)
     nan = np.isnan(G)
-    k2 = np.where(nan, np.nan, k2)
-    sig = np.where(nan, np.nan, sig)
-    kinds = np.where(nan, "", np.where(mx, "max", "min"))
     az = np.arctan2(n[:, 1], n[:, 0])
     lam = az + lam_shift
     # the branch of the initial value given by the user
     lam = lam + 2.0 * math.pi * np.round((mem.lam0[:, None] - lam[:, :1]) / (2.0 * math.pi))
-    if e == 0.0:
+    if run.orbit.e == 0.0:
         with np.errstate(divide="ignore", invalid="ignore"):  # refused members (eps = 0) are NaN anyway
             nu = np.where(nan, np.nan, te[None, :] / mem.eps[:, None] + mem.nu0[:, None])
     else:
         nu = Y[:, 7]
-    return {"G": G, "T": T, "k2": k2, "delta": np.arccos(np.clip(n[:, 2], -1.0, 1.0)), "n": n, "nu": nu,
-            "kind": kinds, "sigma": sig, "lam": lam, "g": g, "q": qn}
+    return {"G": G, "T": T, **run.kinds.vector_fields(g, G, T), "delta": np.arccos(np.clip(n[:, 2], -1.0, 1.0)),
+            "n": n, "nu": nu, "lam": lam, "g": g, "q": qn}
 
 
 def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, lam0: Any, tau_span: Any,
@@ -368,7 +318,6 @@ def run_full(body: Any, torque: Any, eps: Any, G0: Any, k2_0: Any, delta0: Any, 
     eps, G0, k2_0, delta0, lam0, nu0 = start
     mem = Members((), eps * one, G0 * one, k2_0 * one, delta0 * one, lam0 * one, nu0 * one,
                   np.array([kind], dtype=object))
-    run = FullRun(body, tensor, tq, orb, mem.kind, sigma, rtol, atol, k2_max, min_spin_ratio,
-                  K2_SPIN_CAP if k2_max is None else 1.0, formulation, method)
-    return run_full_members(run, mem, u0 * one, psi0 * one, (float(tau_span[0]), float(tau_span[1])), tau_eval,
-                            True)
+    kinds = TriaxialKinds(body, mem.k2_0, mem.kind, u0 * one, psi0 * one, sigma, k2_max, min_spin_ratio)
+    run = FullRun(body, tensor, tq, orb, kinds, rtol, atol, formulation, method)
+    return run_full_members(run, mem, (float(tau_span[0]), float(tau_span[1])), tau_eval, True)

@@ -20,8 +20,8 @@ from ._checks import check_tol
 from ._model import Body, check_body, check_kind
 from ._start import StartRules, check_start, initial_kind
 
-__all__ = ["FIELDS", "Members", "assemble", "batch_grid", "check_members", "common_checks", "drag_batch", "is_batch",
-           "member_inputs"]
+__all__ = ["FIELDS", "Members", "assemble", "batch_grid", "check_members", "common_checks", "drag_batch", "grid_checks",
+           "is_batch", "member_inputs"]
 
 
 #: the output fields of an averaged run
@@ -214,7 +214,13 @@ def assemble(solutions: list[Solution | str], batch_shape: tuple[int, ...], te: 
 
 
 def common_checks(body: Any, tau_span: Any, tau_eval: Any, opts: dict[str, Any]) -> tuple[float, float, np.ndarray]:
+    """The checks a batch of a triaxial :class:`Body` shares: the body, then :func:`grid_checks`."""
     check_body(body)
+    return grid_checks(tau_span, tau_eval, opts)
+
+
+def grid_checks(tau_span: Any, tau_eval: Any, opts: dict[str, Any]) -> tuple[float, float, np.ndarray]:
+    """``tau_span``, the common output grid in it, the tolerances and the method (DOP853) of a batch."""
     t0, t1 = span(tau_span, "tau_span")
     te = batch_grid(tau_eval, (t0, t1))
     if te.size and (te[0] < t0 or te[-1] > t1):

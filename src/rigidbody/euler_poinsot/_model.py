@@ -59,7 +59,7 @@ class Body:
         Principal central moments of inertia about the body axes :math:`z_1, z_2, z_3` (the paper's
         :math:`A_i`; nondimensional :math:`\\tilde A_i = A_i\\Omega_0/G_0` in the section-3 scaling).
         The formulas (5)-(9) need the strict ordering ``A1 > A2 > A3`` (label the axes accordingly; a
-        body with two equal moments is dynamically symmetric and outside this module) and a real body
+        body with two equal moments is a :class:`SymmetricBody`) and a real body
         obeys the triangle inequality ``A1 <= A2 + A3``.
 
     Raises
@@ -106,7 +106,7 @@ class Body:
         if not (A1 > A2 > A3):
             raise ValueError(
                 f"the moments must satisfy A1 > A2 > A3 (paper's labelling), got A1={A1}, A2={A2}, A3={A3}; "
-                "relabel the axes (equal moments: a symmetric body, not covered by this module)"
+                "relabel the axes (two equal moments: a SymmetricBody(A, C))"
             )
         if violates_triangle(A1, A2, A3):
             raise ValueError(f"triangle inequality A1 <= A2 + A3 violated: A1={A1} > A2 + A3={A2 + A3}")

@@ -134,11 +134,12 @@ def collect(func: str, options: dict[str, Any], groups: dict[str, tuple[str, ...
 def averaged_options(**options: Any) -> dict[str, Any]:
     """The flat keyword options of :func:`averaged` (its defaults where not given)."""
     other = {"kind": None, "T0": None, "orbit": None, "sigma": 1, "averaging": "auto", "quad_tol": 1e-12,
-             "branch": "likely", "seed": None}
+             "branch": "likely", "seed": None, "theta0": None}
     return collect("averaged", options, _AVERAGED, other)
 
 
 def simulate_options(**options: Any) -> dict[str, Any]:
     """The flat keyword options of :func:`simulate` (its defaults where not given)."""
-    other = {"kind": None, "T0": None, "orbit": None, "u0": 0.0, "psi0": 0.0, "sigma": 1, "formulation": "body"}
+    other = {"kind": None, "T0": None, "orbit": None, "u0": None, "psi0": 0.0, "sigma": 1, "formulation": "body",
+             "theta0": None, "phi0": None}
     return collect("simulate", options, _SIMULATE, other)

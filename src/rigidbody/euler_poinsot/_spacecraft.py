@@ -19,7 +19,6 @@ unchanged, and the gravity gradient :math:`3n^2f(\nu)\boldsymbol\rho\times J\bol
 from __future__ import annotations
 
 import functools
-import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -31,153 +30,17 @@ from ..core.validate import finite_array, span
 from ._averaged import averaged
 from ._catalogue import ConstantTorque, MagneticDipole
 from ._checks import check_tau_eval
-from ._full import initial_state
+from ._eddy import EddyCurrent
+from ._geomag import DipoleField
 from ._kepler import KeplerOrbit
-from ._model import Body, Orbit, frame_y
 from ._motion import EulerPoinsot
-from ._physical import FreeMotion, as_attitude
+from ._physical import as_attitude
+from ._scstart import PaperStart, angles_of, paper_start, symmetry_axes
 from ._simulate import simulate
+from ._symbody import SymmetricBody
 from ._torques import GravityGradient, LinearDrag
 
-__all__ = ["PaperStart", "Spacecraft", "SpacecraftSolution"]
-
-
-@dataclass(frozen=True, eq=False)
-class PaperStart:
-    r"""A spacecraft's start as the paper's nondimensional problem (built by :attr:`Spacecraft.paper`).
-
-    The arguments of :func:`averaged`/:func:`simulate` (``body, eps, G0, k2_0, delta0, lam0, nu0``, ``kind``,
-    ``sigma``, ``orbit``, ``u0``, ``psi0``) and the scales that lead back to SI units.
-
-    Attributes
-    ----------
-    body : Body
-        :math:`\tilde A_i = A_i\Omega_0/G_0` (principal moments, :math:`A_1 > A_2 > A_3`).
-    eps : float
-        :math:`n/\Omega_0`.
-    G0, k2_0, kind, sigma : float, float, str, int
-        :math:`\tilde G_0 = 1`, the modulus squared, ``'max'``/``'min'``, the sense of rotation.
-    delta0, lam0 : float
-        Polar angle and azimuth of :math:`\mathbf G` in the orbital axes :math:`Ox_i` (rad).
-    u0, psi0, nu0 : float
-        Elliptic phase, precession angle about :math:`\mathbf G` (see :func:`initial_state`) and true anomaly.
-    orbit : Orbit
-        The paper's orbit (its eccentricity).
-    Omega0, G_unit : float
-        The units: :math:`\Omega_0 = |\boldsymbol\omega(0)|` (rad/s), :math:`G_0 = |\mathbf G(0)|` (N m s).
-    axes : numpy.ndarray
-        The principal axes (columns) in the user's body axes.
-    to_inertial : scipy.spatial.transform.Rotation
-        :math:`Ox_i` -> the user's inertial frame.
-
-    See Also
-    --------
-    Spacecraft : builds it (``Spacecraft.paper``).
-    averaged, simulate : the functions its arguments are for.
-
-    Examples
-    --------
-    The paper's moments are the physical ones in units of :math:`G_0/\Omega_0`, and a torque of
-    ``torque_unit`` N m is 1 in the module's equations:
-
-    >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
-    >>> p = Spacecraft([12.0, 10.0, 7.0], [0.0, 0.0, 0.1], orbit=KeplerOrbit(mean_motion=1e-3)).paper
-    >>> A = (p.body.A1, p.body.A2, p.body.A3)
-    >>> print(", ".join(f"{a:.6f}" for a in A), f"eps = {p.eps:.6f}", p.kind, p.k2_0)
-    1.714286, 1.428571, 1.000000 eps = 0.010000 min 0.0
-    >>> print(f"{p.torque_unit:.1e} N m, {p.tau_per_second:.1e} per second")
-    7.0e-06 N m, 1.0e-05 per second
-    """
-
-    body: Body
-    eps: float
-    G0: float
-    k2_0: float
-    kind: str
-    sigma: int
-    delta0: float
-    lam0: float
-    u0: float
-    psi0: float
-    nu0: float
-    orbit: Orbit
-    Omega0: float
-    G_unit: float
-    axes: np.ndarray
-    to_inertial: Rotation
-
-    @property
-    def tau_per_second(self) -> float:
-        r""":math:`d\tau/dt = \varepsilon^2\Omega_0` (1/s).
-
-        Examples
-        --------
-        A spin of 0.1 rad/s on an orbit of mean motion 0.001 rad/s (:math:`\varepsilon = 0.01`): one unit of the
-        slow time is :math:`1/(10^{-4}\cdot 0.1)` s, a little under 28 hours:
-
-        >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
-        >>> p = Spacecraft([12.0, 10.0, 7.0], [0.1, 0.0, 0.0], orbit=KeplerOrbit(mean_motion=1e-3)).paper
-        >>> print(f"{1.0 / p.tau_per_second / 3600.0:.4f} h")
-        27.7778 h
-        """
-        return self.eps**2 * self.Omega0
-
-    @property
-    def torque_unit(self) -> float:
-        r"""The torque (N m) that is 1 in the module's scaling: :math:`G_0\varepsilon^2\Omega_0`.
-
-        Examples
-        --------
-        It changes :math:`G` by :math:`G_0` in one unit of the slow time (:math:`d\tilde G/d\tau = 1`):
-
-        >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
-        >>> p = Spacecraft([12.0, 10.0, 7.0], [0.1, 0.0, 0.0], orbit=KeplerOrbit(mean_motion=1e-3)).paper
-        >>> print(f"{p.torque_unit / p.tau_per_second:.6f} N m s = G0 = {p.G_unit:.6f} N m s")
-        1.200000 N m s = G0 = 1.200000 N m s
-        """
-        return self.G_unit * self.eps**2 * self.Omega0
-
-    def physical(self, g: Any, R: Any) -> tuple[np.ndarray, Rotation]:
-        r"""The angular velocity (rad/s, user's body axes) and the attitude (body -> inertial) of the paper's
-        body components :math:`\tilde{\mathbf g}` (shape ``(..., 3)``) and attitudes ``R`` (principal axes ->
-        :math:`Ox_i`, a ``Rotation``).
-
-        Examples
-        --------
-        The paper's :math:`\tilde{\mathbf g} = (1, 0, 0)` along the axis of the largest moment, in the user's
-        units: a spin of :math:`G_0/A_1` rad/s about the axis of :math:`A_1`, here the user's first axis:
-
-        >>> from scipy.spatial.transform import Rotation
-        >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
-        >>> p = Spacecraft([12.0, 10.0, 7.0], [0.1, 0.0, 0.0], orbit=KeplerOrbit(mean_motion=1e-3)).paper
-        >>> omega, R = p.physical([1.0, 0.0, 0.0], Rotation.identity())
-        >>> print([f"{w:.6f}" for w in omega], f"{p.G_unit / 12.0:.6f}")
-        ['0.100000', '0.000000', '0.000000'] 0.100000
-        """
-        A = np.array([self.body.A1, self.body.A2, self.body.A3])
-        omega = self.Omega0 * (np.asarray(g, dtype=float) / A) @ self.axes.T
-        return omega, self.to_inertial * R * Rotation.from_matrix(self.axes.T)
-
-    def state(self) -> tuple[np.ndarray, Rotation]:
-        """The physical state the paper's start describes: the angular velocity (rad/s, user's body axes) and the
-        attitude (body -> inertial), through :func:`initial_state` (the start of :func:`simulate`).
-
-        Examples
-        --------
-        The round trip physical -> paper -> physical gives the state back to rounding:
-
-        >>> import numpy as np
-        >>> from scipy.spatial.transform import Rotation
-        >>> from rigidbody.euler_poinsot import KeplerOrbit, Spacecraft
-        >>> R = Rotation.from_euler("zyx", [0.3, -1.0, 2.0])
-        >>> sc = Spacecraft([12.0, 10.0, 7.0], [0.03, -0.08, 0.05], R, orbit=KeplerOrbit(altitude=700e3))
-        >>> omega, attitude = sc.paper.state()
-        >>> print(np.abs(omega - [0.03, -0.08, 0.05]).max() < 1e-15, (attitude * R.inv()).magnitude() < 1e-13)
-        True True
-        """
-        st = initial_state(self.body, self.G0, self.k2_0, self.delta0, self.lam0, kind=self.kind, u0=self.u0,
-                           psi0=self.psi0, sigma=self.sigma)
-        return self.physical(st["g"], Rotation.from_matrix(st["R"]))
+__all__ = ["Spacecraft", "SpacecraftSolution"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -251,27 +114,6 @@ class SpacecraftSolution:
         return f"<SpacecraftSolution {span_} ({len(self.t)} samples) status={self.status} message={self.message!r}>"
 
 
-def _angles(n: np.ndarray) -> tuple[float, float]:
-    """Polar angle from x3 and azimuth of the unit vector ``n`` (azimuth 0 at a pole)."""
-    return math.atan2(math.hypot(n[0], n[1]), n[2]), math.atan2(n[1], n[0])
-
-
-def _refusal(motion: FreeMotion) -> str:
-    """Why the paper's problem cannot start from this motion, and what to do."""
-    A = ", ".join(f"{a:.17g}" for a in motion.moments)
-    if motion.kind == "rest":
-        return "the body is at rest (G = 0): the paper's scaling takes |G(0)| as the unit of angular momentum"
-    if motion.kind == "separatrix":
-        return ("the state lies exactly on the separatrix (G^2 = 2 T A2, k^2 = 1), where the paper's variables "
-                "(k^2 < 1, a kind of motion) are undefined: start next to it (the torque-free motion on it is "
-                "EulerPoinsot.from_state)")
-    return (f"the body has two or three equal principal moments ({A}): averaged and simulate need A1 > A2 > A3 "
-            "(Body) and do not treat symmetric bodies yet; the torque-free motion is given in closed form "
-            "(no torques, or EulerPoinsot.from_state); with a torque, give a near-symmetric body (moments "
-            "differing by a relative 1e-6, say), whose motion tends to the symmetric one (simulate follows it; "
-            "averaged stops where its nutation is too slow for the averaging)")
-
-
 class Spacecraft:
     r"""A spacecraft's physical state in SI units on an orbit, and its slow evolution under torques.
 
@@ -342,24 +184,12 @@ class Spacecraft:
 
     @functools.cached_property
     def paper(self) -> PaperStart:
-        """The paper's nondimensional start (a ``ValueError`` for a body or state it does not describe: two equal
-        moments, on the separatrix, at rest)."""
-        m = self._in_orbit_axes
-        ep = m.paper
-        if ep is None:
-            raise ValueError(f"Spacecraft: {_refusal(m)}")
-        Omega0 = float(np.linalg.norm(m.omega0))
-        A = m.moments * (Omega0 / m.G)
-        body = Body(float(A[0]), float(A[1]), float(A[2]))
-        F = m.frame  # Oy_i in Ox_i
-        delta, lam = _angles(F[:, 2])
-        Rz = frame_y(delta, lam).T @ F
-        return PaperStart(body, self.orbit.n / Omega0, 1.0, m.k2, m.kind, m.sigma, delta, lam, m.phase,
-                          math.atan2(Rz[1, 0], Rz[0, 0]), self.orbit.nu0, self.orbit.paper, Omega0, m.G, m.axes,
-                          self.orbit.to_inertial())
+        """The paper's nondimensional start (a :class:`SymmetricBody` for two equal moments; a ``ValueError`` for a
+        state it does not describe: at rest, exactly on a triaxial body's separatrix)."""
+        return paper_start(self._in_orbit_axes, self.orbit)
 
     def torque(self, *, gravity_gradient: bool = True, drag: Any = None, dipole: Any = None, field: Any = None,
-               torque: Any = None) -> Any:
+               torque: Any = None, eddy: Any = None) -> Any:
         r"""The torques in the paper's scaling, a torque object (``None``: no torque).
 
         Parameters
@@ -371,15 +201,20 @@ class Spacecraft:
             (3x3, or its diagonal); its symmetric part positive definite.
         dipole, field : array_like, optional
             A magnet: its moment in A m^2 (user's body axes) and the field in T in the inertial frame (3
-            components, or a function ``field(nu) -> (..., 3)`` of the true anomaly); both or neither.
+            components, or a function ``field(nu) -> (..., 3)`` of the true anomaly; a :class:`DipoleField` is
+            already in the orbital axes and is taken as it is); both or neither (``field`` also for ``eddy``).
         torque : array_like, optional
             A torque constant in the body, N m (user's body axes).
+        eddy : float or array_like, optional
+            Eddy currents (:class:`EddyCurrent`): the magnetic tensor :math:`P` in S m^4 (the torque
+            :math:`(P(\boldsymbol\omega\times\mathbf B))\times\mathbf B` in N m for rad/s and T; a number, 3 diagonal
+            entries or 3x3 in the user's body axes), in ``field``.
 
         Returns
         -------
         Torque or None
-            :class:`GravityGradient`, :class:`LinearDrag`, :class:`MagneticDipole`, :class:`ConstantTorque` of the
-            paper's start (:attr:`paper`), summed.
+            :class:`GravityGradient`, :class:`LinearDrag`, :class:`MagneticDipole`, :class:`ConstantTorque`,
+            :class:`EddyCurrent` of the paper's start (:attr:`paper`), summed.
 
         Examples
         --------
@@ -395,10 +230,10 @@ class Spacecraft:
         """
         if not isinstance(gravity_gradient, bool):
             raise TypeError(f"gravity_gradient must be True or False, got {gravity_gradient!r}")
-        if (dipole is None) != (field is None):
-            raise ValueError("dipole (A m^2, body axes) and field (T, inertial frame) go together: give both or "
-                             "neither")
-        if not gravity_gradient and drag is None and dipole is None and torque is None:
+        if (dipole is None and eddy is None) != (field is None):
+            raise ValueError("field (T, inertial frame) goes with dipole (A m^2, body axes) or eddy (S m^4): give "
+                             "the field with them, and only with them")
+        if not gravity_gradient and drag is None and dipole is None and torque is None and eddy is None:
             return None
         p = self.paper
         P, c = p.axes, 1.0 / p.torque_unit
@@ -410,16 +245,24 @@ class Spacecraft:
             if I.shape not in ((3,), (3, 3)):
                 raise ValueError(f"drag must be a 3x3 tensor in N m s (or its diagonal), got shape {I.shape}")
             parts.append(LinearDrag(P.T @ (np.diag(I) if I.shape == (3,) else I) @ P * (c * p.Omega0)))
+        B = None if field is None else field if isinstance(field, DipoleField) else self.orbit.field_in_orbit_axes(
+            field if callable(field) else _vector(field, "field"))
         if dipole is not None:
-            parts.append(MagneticDipole(P.T @ _vector(dipole, "dipole") * c, self.orbit.field_in_orbit_axes(
-                field if callable(field) else _vector(field, "field"))))
+            parts.append(MagneticDipole(P.T @ _vector(dipole, "dipole") * c, B))
+        if eddy is not None:
+            Pm = finite_array(eddy, "eddy")
+            if Pm.shape not in ((), (3,), (3, 3)):
+                raise ValueError(f"eddy must be a number, 3 diagonal entries or a 3x3 tensor in S m^4, got shape "
+                                 f"{Pm.shape}")
+            Pm = Pm * np.eye(3) if Pm.shape == () else np.diag(Pm) if Pm.shape == (3,) else Pm
+            parts.append(EddyCurrent(P.T @ Pm @ P * (c * p.Omega0), B))
         if torque is not None:
             parts.append(ConstantTorque(P.T @ _vector(torque, "torque") * c))
         return sum(parts[1:], parts[0]) if parts else None
 
     def averaged(self, t_span: Any, t_eval: Any = None, *, gravity_gradient: bool = True, drag: Any = None,
-                 dipole: Any = None, field: Any = None, torque: Any = None, orbit_averaged: bool = False,
-                 **options: Any) -> SpacecraftSolution:
+                 dipole: Any = None, field: Any = None, torque: Any = None, eddy: Any = None,
+                 orbit_averaged: bool = False, **options: Any) -> SpacecraftSolution:
         r"""The slow evolution (the averaged system (9) of any torque) in SI units.
 
         Parameters
@@ -428,7 +271,7 @@ class Spacecraft:
             Start and end time in s: the spacecraft's state (and ``orbit.nu0``) is the one at ``t_span[0]``.
         t_eval : array_like, optional
             Output times in s (default the integrator's steps).
-        gravity_gradient, drag, dipole, field, torque
+        gravity_gradient, drag, dipole, field, torque, eddy
             The torques in SI units, as in :meth:`torque`.
         orbit_averaged : bool
             Average the torques over the orbit too (the paper's :math:`\varepsilon = 0`); default: the true
@@ -453,19 +296,20 @@ class Spacecraft:
         0 G 1.0526 -> 0.8971 N m s max
         """
         torques = {"gravity_gradient": gravity_gradient, "drag": drag, "dipole": dipole, "field": field,
-                   "torque": torque}
+                   "torque": torque, "eddy": eddy}
         _check_options(options, "averaged")
         if not isinstance(orbit_averaged, bool):
             raise TypeError(f"orbit_averaged must be True or False, got {orbit_averaged!r}")
         return self._run(averaged, t_span, t_eval, torques, False, orbit_averaged=orbit_averaged, **options)
 
     def simulate(self, t_span: Any, t_eval: Any = None, *, gravity_gradient: bool = True, drag: Any = None,
-                 dipole: Any = None, field: Any = None, torque: Any = None, **options: Any) -> SpacecraftSolution:
+                 dipole: Any = None, field: Any = None, torque: Any = None, eddy: Any = None,
+                 **options: Any) -> SpacecraftSolution:
         r"""The full motion (Euler's equations with a quaternion, :func:`simulate`) in SI units.
 
         Parameters
         ----------
-        t_span, t_eval, gravity_gradient, drag, dipole, field, torque
+        t_span, t_eval, gravity_gradient, drag, dipole, field, torque, eddy
             As in :meth:`averaged`.
         **options
             Passed to :func:`simulate` (``rtol``, ``atol``, ``k2_max``, ``min_spin_ratio``, ...; the formulation
@@ -489,8 +333,10 @@ class Spacecraft:
         """
         _check_options(options, "simulate")
         torques = {"gravity_gradient": gravity_gradient, "drag": drag, "dipole": dipole, "field": field,
-                   "torque": torque}
-        if self.motion.paper is not None:
+                   "torque": torque, "eddy": eddy}
+        if self.motion.kind != "rest" and symmetry_axes(self.motion.moments) is not None:  # a SymmetricBody
+            options = {"phi0": self.paper.u0, "psi0": self.paper.psi0, **options}
+        elif self.motion.paper is not None:
             options = {"u0": self.paper.u0, "psi0": self.paper.psi0, **options}
         return self._run(simulate, t_span, t_eval, torques, True, **options)
 
@@ -513,8 +359,10 @@ class Spacecraft:
         s = p.tau_per_second
         M = M if M is not None else ConstantTorque([0.0, 0.0, 0.0])
         tau_eval = None if t_eval is None else (t_eval - t0) * s
-        sol = run(p.body, M, 0.0 if orbit_averaged else p.eps, p.G0, p.k2_0, p.delta0, p.lam0, (0.0, (t1 - t0) * s),
-                  tau_eval, p.nu0, kind=p.kind, orbit=p.orbit, sigma=p.sigma, **kwargs)
+        start = ({"theta0": p.theta0} if isinstance(p.body, SymmetricBody) else
+                 {"k2_0": p.k2_0, "kind": p.kind, "sigma": p.sigma})
+        sol = run(p.body, M, 0.0 if orbit_averaged else p.eps, p.G0, delta0=p.delta0, lam0=p.lam0,
+                  tau_span=(0.0, (t1 - t0) * s), tau_eval=tau_eval, nu0=p.nu0, orbit=p.orbit, **start, **kwargs)
         return self._result(sol, p, t0, with_attitude)
 
     def _result(self, sol: Solution, p: PaperStart, t0: float, with_attitude: bool) -> SpacecraftSolution:
@@ -538,7 +386,7 @@ class Spacecraft:
         """The torque-free motion of a body the paper's problem does not describe, in closed form."""
         m = self.motion
         ones = np.ones(len(t))
-        delta, lam = _angles(self._in_orbit_axes.momentum / m.G) if m.G > 0.0 else (0.0, 0.0)
+        delta, lam = angles_of(self._in_orbit_axes.momentum / m.G) if m.G > 0.0 else (0.0, 0.0)
         G, T = m.G * ones, m.T * ones
         return SpacecraftSolution(
             t, G, T, _spin(T, G), np.outer(ones, m.momentum), m.k2 * ones,
@@ -550,7 +398,7 @@ class Spacecraft:
 
 #: What the spacecraft's state, orbit and the body-frame equations set (not options of its runs).
 _FROM_STATE = ("eps", "G0", "k2_0", "delta0", "lam0", "tau_span", "tau_eval", "nu0", "kind", "T0", "orbit", "sigma",
-               "u0", "psi0", "formulation")
+               "u0", "psi0", "formulation", "theta0", "phi0")
 
 
 def _check_options(options: dict[str, Any], method: str) -> None:

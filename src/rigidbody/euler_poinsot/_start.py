@@ -19,7 +19,8 @@ from ._model import Body, check_kind, labelled
 from ._separatrix import K2_SWITCH
 from ._spin import K2_SPIN_CAP, nutation_frequency
 
-__all__ = ["StartRules", "check_start", "initial_kind"]
+__all__ = ["StartRules", "check_direction", "check_eps_G0", "check_full_eps", "check_spin", "check_start",
+           "initial_kind"]
 
 
 @dataclass(frozen=True)
@@ -51,21 +52,13 @@ def check_start(rules: StartRules, kind: str, eps: Any, G0: Any, k2_0: Any, delt
         Naming the first value that is not finite or out of its range, a start at (or beyond the stop next to)
         the separatrix, or a rotation too slow for ``eps`` (the way out in the message).
     """
-    eps = real(eps, "eps")
-    if eps < 0:
-        raise ValueError(f"eps must be >= 0 (eps = omega0/omega), got {eps}")
-    G0 = real(G0, "G0")
-    if G0 <= 0:
-        raise ValueError(f"G0 must be positive, got {G0}")
+    eps, G0 = check_eps_G0(eps, G0)
     k2_0 = real(k2_0, "k2_0")
     if not (0.0 <= k2_0 < 1.0):
         raise ValueError(f"k2_0 must lie in [0, 1) (k2 = 1 is the separatrix), got {k2_0}")
-    delta0 = real(delta0, "delta0")
-    if not (0.0 <= delta0 <= math.pi):
-        raise ValueError(f"delta0 (polar angle of G from x3) must lie in [0, pi], got {delta0}")
-    lam0, nu0 = real(lam0, "lam0"), real(nu0, "nu0")
-    if rules.full and eps <= 0:
-        raise ValueError("eps must be positive for the full equations (eps = 0 has no fast rotation to resolve)")
+    delta0, lam0, nu0 = check_direction(delta0, lam0, nu0)
+    if rules.full:
+        check_full_eps(eps)
     if rules.k2_max is None:
         if not rules.full and k2_0 >= K2_SWITCH:
             raise ValueError(f"k2_0 = {k2_0!r} lies within 1e-9 of the separatrix: start on either side of it "
@@ -78,16 +71,47 @@ def check_start(rules: StartRules, kind: str, eps: Any, G0: Any, k2_0: Any, delt
         # within 0.01 of the separatrix a run through it takes the period at K2_SPIN_CAP (see there)
         cap = K2_SPIN_CAP if rules.k2_max is None else 1.0
         ratio = nutation_frequency(labelled(rules.body, kind), G0, min(k2_0, cap)) / eps
-        if ratio <= r:
-            raise ValueError(
-                f"eps = {eps:g} is too large for this state: the Euler-Poinsot frequency over the orbital rate is "
-                f"{ratio:.3g} <= min_spin_ratio = {r:g} (the rotation is not fast); lower eps, or pass "
-                "min_spin_ratio=0 to integrate anyway outside the theory"
-            )
+        check_spin(eps, ratio, r, "the Euler-Poinsot frequency")
     if rules.full:
         real(u0, "u0")
         real(psi0, "psi0")
     return eps, G0, k2_0, delta0, lam0, nu0
+
+
+def check_eps_G0(eps: Any, G0: Any) -> tuple[float, float]:
+    """``eps >= 0`` and ``G0 > 0`` as floats (the first checks of every start)."""
+    eps = real(eps, "eps")
+    if eps < 0:
+        raise ValueError(f"eps must be >= 0 (eps = omega0/omega), got {eps}")
+    G0 = real(G0, "G0")
+    if G0 <= 0:
+        raise ValueError(f"G0 must be positive, got {G0}")
+    return eps, G0
+
+
+def check_direction(delta0: Any, lam0: Any, nu0: Any) -> tuple[float, float, float]:
+    """The direction of G (``delta0`` in [0, pi], ``lam0``) and the true anomaly ``nu0`` as floats."""
+    delta0 = real(delta0, "delta0")
+    if not (0.0 <= delta0 <= math.pi):
+        raise ValueError(f"delta0 (polar angle of G from x3) must lie in [0, pi], got {delta0}")
+    return delta0, real(lam0, "lam0"), real(nu0, "nu0")
+
+
+def check_full_eps(eps: float) -> None:
+    """The full equations need ``eps > 0``."""
+    if eps <= 0:
+        raise ValueError("eps must be positive for the full equations (eps = 0 has no fast rotation to resolve)")
+
+
+def check_spin(eps: float, ratio: float, min_spin_ratio: float, what: str) -> None:
+    """The start's rotation must be fast: ``ratio`` (``what``, the body's frequency, over the orbital rate ``eps``)
+    above ``min_spin_ratio``."""
+    if ratio <= min_spin_ratio:
+        raise ValueError(
+            f"eps = {eps:g} is too large for this state: {what} over the orbital rate is {ratio:.3g} <= "
+            f"min_spin_ratio = {min_spin_ratio:g} (the rotation is not fast); lower eps, or pass min_spin_ratio=0 to "
+            "integrate anyway outside the theory"
+        )
 
 
 def initial_kind(body: Body, G0: float, k2_0: float | None, kind: str | None, T0: float | None

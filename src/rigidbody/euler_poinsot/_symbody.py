@@ -9,10 +9,10 @@ sphere is :math:`A = C`. With :math:`\mathbf G` of magnitude :math:`G` at the nu
 .. math::
     \boldsymbol\omega = (g_1/A, g_2/A, g_3/C),\qquad
     2T = G^2\Bigl(\frac{1-c^2}{A} + \frac{c^2}{C}\Bigr),\qquad
-    \dot\psi = G/A,\qquad \dot\varphi = Gc\Bigl(\frac1A - \frac1C\Bigr)
+    \dot\psi = G/A,\qquad \dot\varphi = Gc\Bigl(\frac1C - \frac1A\Bigr)
 
 (:math:`\psi` the precession angle about :math:`\mathbf G`, :math:`\varphi` the azimuth of :math:`\mathbf G` in the
-body about :math:`z_3`, turning at minus the body's proper rate). The attitude (body -> orbital axes) is
+body about :math:`z_3`, turning opposite to the body's proper rotation). The attitude (body -> orbital axes) is
 :math:`C = Y R_3(\psi) R_1(\theta) R_3(\varphi)` with :math:`Y = (\mathbf y_1, \mathbf y_2, \mathbf n)` of
 :func:`._model.frame_y`. Under a torque :math:`\mathbf M` (body components) the symmetry-axis component obeys
 :math:`\dot g_3 = M_3` exactly (the gyroscopic term :math:`(\mathbf g\times\boldsymbol\omega)_3` vanishes when
@@ -24,14 +24,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, TypeGuard
 
 import numpy as np
 
 from ..core.validate import real
 from ._model import Body
 
-__all__ = ["SymmetricBody", "attitude", "check_any_body", "cos_theta_of", "energy", "is_symmetric", "omega_body"]
+__all__ = ["SymmetricBody", "attitude", "check_any_body", "cos_theta_of", "energy", "is_symmetric", "kind_fields",
+           "omega_body"]
 
 
 @dataclass(frozen=True)
@@ -114,17 +115,39 @@ class SymmetricBody:
     @property
     def A1(self) -> float:
         """The moment about :math:`z_1` (the transverse one; ``A1``, ``A2``, ``A3`` in body order, as :class:`Body`'s
-        attributes, for the torques built from a body's moments)."""
+        attributes, for the torques built from a body's moments).
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> b = ep.SymmetricBody(3.0, 5.0)
+        >>> b.A1, b.A2, b.A3
+        (3.0, 3.0, 5.0)
+        """
         return self.transverse
 
     @property
     def A2(self) -> float:
-        """The moment about :math:`z_2` (the transverse one)."""
+        """The moment about :math:`z_2` (the transverse one).
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> ep.SymmetricBody(3.0, 5.0).A2
+        3.0
+        """
         return self.transverse
 
     @property
     def A3(self) -> float:
-        """The moment about the symmetry axis :math:`z_3`."""
+        """The moment about the symmetry axis :math:`z_3`.
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> ep.SymmetricBody(3.0, 5.0).A3
+        5.0
+        """
         return self.axial
 
     @property
@@ -148,7 +171,7 @@ def check_any_body(body: Any) -> Any:
     return body
 
 
-def is_symmetric(body: Any) -> bool:
+def is_symmetric(body: Any) -> TypeGuard[SymmetricBody]:
     """Whether ``body`` is a :class:`SymmetricBody` (the runs' one test of which system to integrate)."""
     return isinstance(body, SymmetricBody)
 
@@ -169,6 +192,15 @@ def cos_theta_of(body: SymmetricBody, G: float, T: float, sigma: int) -> float:
         raise ValueError("the sphere's energy does not fix the nutation angle: give theta0")
     c2 = (2.0 * T / (G * G) - 1.0 / A) / (1.0 / C - 1.0 / A)
     return sigma * math.sqrt(min(max(c2, 0.0), 1.0))
+
+
+def kind_fields(body: SymmetricBody, c: Any) -> dict[str, np.ndarray]:
+    """The triaxial fields a symmetric body's result carries at the nutation cosines ``c`` (the limits of a
+    near-symmetric body's): ``k2`` 0, ``kind`` ``'max'`` (oblate, the sphere) or ``'min'`` (prolate), ``sigma`` the
+    sign of ``c`` (+1 at 0)."""
+    c = np.asarray(c, dtype=float)
+    return {"k2": np.zeros(c.shape), "kind": np.full(c.shape, "max" if body.axial >= body.transverse else "min"),
+            "sigma": np.where(c < 0.0, -1, 1)}
 
 
 def omega_body(body: SymmetricBody, g: np.ndarray) -> np.ndarray:
@@ -194,3 +226,4 @@ def attitude(Y: np.ndarray, psi: np.ndarray, theta: float, phi: np.ndarray) -> n
     R[..., 2, 1] = st * cf
     R[..., 2, 2] = ct
     return np.einsum("ij,...jk->...ik", Y, R)
+

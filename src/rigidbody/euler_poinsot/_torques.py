@@ -55,7 +55,7 @@ from ._gravity import drag_gravity
 from ._model import Body, Orbit, as_drag, as_orbit
 from ._protocol import FunctionTorque, Torque, TorqueSum, evaluate
 from ._state import Mean, State
-from ._symbody import check_any_body
+from ._symbody import SymmetricBody, check_any_body
 
 __all__ = [
     "ArrayEq",
@@ -207,7 +207,7 @@ class GravityGradient(ArrayEq):
 
     _broadcasts: ClassVar[bool] = True
 
-    body: Body
+    body: Body | SymmetricBody
     orbit: Orbit | None = None
     omega0: float = 1.0
 
@@ -311,7 +311,7 @@ _WHAT = ("torque must be a drag tensor (3x3 matrix, its diagonal or a Drag: drag
          "a torque object (LinearDrag, GravityGradient, ...) or a callable torque(omega, C, nu) -> M")
 
 
-def drag_as_torque(drag: Any, body: Body, orbit: Orbit, omega0: float = 1.0) -> Torque:
+def drag_as_torque(drag: Any, body: Body | SymmetricBody, orbit: Orbit, omega0: float = 1.0) -> Torque:
     """The torque object equivalent to a drag tensor's meaning: linear drag plus gravity gradient."""
     return LinearDrag(drag) + GravityGradient(body, orbit, omega0)
 
@@ -327,6 +327,6 @@ def probe(torque: Torque, omega: np.ndarray, C: np.ndarray, nu: Any) -> np.ndarr
         raise type(exc)(f"the torque failed on omega of shape {omega.shape}, C of shape {C.shape}: {exc}") from exc
 
 
-def check_same_body(name: str, own: Body, body: Body) -> None:
+def check_same_body(name: str, own: Body | SymmetricBody, body: Body | SymmetricBody) -> None:
     if body != own:
         raise ValueError(f"{name} was built for {own!r}, but the run is for {body!r}")
