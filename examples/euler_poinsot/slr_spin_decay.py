@@ -10,15 +10,15 @@ Stella 48 kg, 24 cm, perigee 800 km, 98.6 deg, 0.0007567 (altitudes taken above 
 ``R_EARTH``). The field is the axial dipole of IGRF-13 (epoch 2020.0, ``DipoleField``).
 
 The model: a sphere (moment ``A = 2 m r^2 / 5``, magnetic tensor ``P = p I``) under the eddy-current torque,
-averaged over the spin and the orbit (:func:`rigidbody.euler_poinsot.averaged` with ``EddyCurrent``, through
-:func:`rigidbody.studies.predicted_period`). The spin across the orbit's mean field decays:
-``dG/dt = -(p/A)(tr S - S) G`` with ``S`` the mean of ``B B^T``, so the rate depends on the spin axis, which the
-sources do not give; nor do they give the conductivity and geometry that make ``p``. So ``p/A`` is **fitted**
-(:func:`rigidbody.studies.fitted_eddy_rate`: the rate averaged over directions is the observed one; Larets
-``p/A`` = 299, Stella 72.1 per s per T^2), and the figure shows what the model then says: the spin-down for a spin
-axis along each principal direction of ``S`` (fastest: the weakest mean field, near the orbit normal; slowest:
-the strongest, in the orbit's plane) against the published fit, drawn over two observed decay times (the span of
-the measurements is not in the abstract; the line is the fit, not the data).
+averaged over the spin and the orbit: :func:`rigidbody.studies.predicted_period` runs ``Spacecraft([A, A, A], omega,
+orbit=...).averaged(..., eddy=p, field=DipoleField(...), orbit_averaged=True)``. The spin across the orbit's mean
+field decays: ``dG/dt = -(p/A)(tr S - S) G`` with ``S`` the mean of ``B B^T``, so the rate depends on the spin axis,
+which the sources do not give; nor do they give the conductivity and geometry that make ``p``. So ``p/A`` is
+**fitted** (:func:`rigidbody.studies.fitted_eddy_rate`: the rate averaged over directions is the observed one;
+Larets ``p/A`` = 299, Stella 72.1 per s per T^2), and the figure shows what the model then says: the spin-down for a
+spin axis along each principal direction of ``S`` (fastest: the weakest mean field, near the orbit normal; slowest:
+the strongest, in the orbit's plane) against the published fit, drawn over two observed decay times (the span of the
+measurements is not in the abstract; the line is the fit, not the data).
 
 The ratio of the predicted to the observed decay time is 0.67 to 1.47 with the axis (1 on average over directions,
 by the fit). The fitted ``p/A`` corresponds to a homogeneous sphere of conductivity 3.8e6 S/m (Larets) and

@@ -25,7 +25,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from .. import euler_poinsot as ep
 from ..core.validate import finite_array, positive, real
@@ -35,11 +34,6 @@ __all__ = ["LARETS", "SECONDS_PER_DAY", "STELLA", "SpinDecayCase", "decay_time_r
 
 #: seconds in a day (the published fits count days since launch)
 SECONDS_PER_DAY = 86400.0
-
-#: the relative asphericity of the triaxial stand-in for the sphere in the averaged run (the averaged system of
-#: :class:`rigidbody.euler_poinsot.Body` needs three distinct moments): it changes the decay rates by this much,
-#: far below the model's own errors
-_STAND_IN = 1e-8
 
 
 @dataclass(frozen=True)
@@ -268,10 +262,9 @@ def predicted_period(case: SpinDecayCase, days: Any, axis: Any, p_over_A: float 
     r"""The spin period (s) at ``days`` since launch under the orbit- and spin-averaged eddy-current torque of the
     sphere in the axial dipole, from :attr:`SpinDecayCase.period0` about ``axis``.
 
-    A run of :func:`rigidbody.euler_poinsot.averaged` with ``eps = 0`` (the orbit average), the torque
-    :class:`~rigidbody.euler_poinsot.EddyCurrent` ``(p, case.field)`` and the sphere's moment
-    :math:`A = \tfrac25 mr^2`, on a triaxial body within :math:`10^{-8}` of the sphere (the averaged system needs
-    distinct moments; the rates move by as much); the period of a sphere is :math:`2\pi A/G`.
+    A run of :meth:`rigidbody.euler_poinsot.Spacecraft.averaged` of the sphere (moment :math:`A = \tfrac25 mr^2`)
+    with ``eddy`` :math:`= p` (S m^4) in ``field=case.field`` and ``orbit_averaged=True``, no gravity gradient;
+    the period of a sphere is :math:`2\pi A/G`.
 
     Parameters
     ----------
@@ -296,7 +289,7 @@ def predicted_period(case: SpinDecayCase, days: Any, axis: Any, p_over_A: float 
 
     See Also
     --------
-    rigidbody.euler_poinsot.averaged : the run.
+    rigidbody.euler_poinsot.Spacecraft.averaged : the run.
     decay_time_ratio : its e-folding time against the observed one.
 
     Examples
@@ -313,17 +306,11 @@ def predicted_period(case: SpinDecayCase, days: Any, axis: Any, p_over_A: float 
         raise ValueError(f"days must be two or more days since launch increasing from 0, got {days!r}")
     rate = fitted_eddy_rate(case) if p_over_A is None else positive(p_over_A, "p_over_A")
     A = 0.4 * case.mass * case.radius**2
-    attitude, _ = Rotation.align_vectors([_axis(axis)], [[1.0, 0.0, 0.0]])
-    sc = ep.Spacecraft([A * (1.0 + _STAND_IN), A, A * (1.0 - _STAND_IN)], [2.0 * math.pi / case.period0, 0.0, 0.0],
-                       attitude, orbit=case.orbit)
-    p = sc.paper
-    eddy = ep.EddyCurrent(rate * A / (p.G_unit * p.eps**2), case.field)  # P in the paper's scaling, B in tesla
-    s = p.tau_per_second
-    sol = ep.averaged(p.body, eddy, 0.0, p.G0, p.k2_0, p.delta0, p.lam0, (0.0, t[-1] * s),
-                      t * s, p.nu0, kind=p.kind, orbit=p.orbit, sigma=p.sigma)
+    sc = ep.Spacecraft([A, A, A], 2.0 * math.pi / case.period0 * _axis(axis), orbit=case.orbit)
+    sol = sc.averaged((0.0, t[-1]), t, gravity_gradient=False, eddy=rate * A, field=case.field, orbit_averaged=True)
     if sol.status < 0:
         raise RuntimeError(f"predicted_period({case.name}): the averaged run ended early: {sol.message}")
-    return case.period0 / np.asarray(sol.G, dtype=float)[: t.size]
+    return 2.0 * math.pi * A / np.asarray(sol.G, dtype=float)
 
 
 def decay_time_ratio(case: SpinDecayCase, axis: Any, p_over_A: float | None = None) -> float:
