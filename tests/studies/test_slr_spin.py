@@ -91,7 +91,8 @@ def test_the_fitted_rate_gives_the_observed_decay_on_average_over_the_spin_axis(
 @pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
 def test_field_square_against_the_circular_orbit_closed_form(case):
     # on a circular orbit <|B|^2> = B0^2 (1 + 3 <(z.r)^2>) = B0^2 (1 + 3 sin^2 i / 2), B0 = |g10| (a_E/a)^3;
-    # the eccentricities (< 1e-3) move it by 3 e^2-ish relative, < 1e-5 (the cube of r averaged in time)
+    # the eccentricities (< 1e-3) move it by the time mean of (a/r)^6, 1 + O(10 e^2) < 1 + 1e-5: 2e-5 bounds it,
+    # while a wrong power of a_E/r or a factor of the sin^2 i term moves it by percents
     B0 = 29404.8e-9 * (6371.2e3 / case.a) ** 3
     closed = B0**2 * (1.0 + 1.5 * math.sin(case.inclination) ** 2)
     own = np.trace(field_square_inertial(case))

@@ -233,9 +233,10 @@ def equivalent_conductivity(case: SpinDecayCase, p_over_A: float) -> float:
     r"""The conductivity (S/m) of a homogeneous solid sphere of the satellite's mass and radius with this
     :math:`p/A`.
 
-    A solid sphere has :math:`p = 2\pi\sigma r^5/15` (Gómez & Walker 2015; :class:`~rigidbody.euler_poinsot.
-    EddyCurrent`) and :math:`A = \tfrac25 mr^2`, so :math:`\sigma = 3m\,(p/A)/(\pi r^3)`: what the fitted rate
-    means as a material property, for a satellite that is *not* homogeneous (a dense core in a lighter shell).
+    A solid sphere has :math:`p = 2\pi\sigma r^5/15` (Gómez & Walker 2015;
+    :class:`~rigidbody.euler_poinsot.EddyCurrent`) and :math:`A = \tfrac25 mr^2`, so
+    :math:`\sigma = 3m\,(p/A)/(\pi r^3)`: what the fitted rate means as a material property, for a satellite that
+    is *not* homogeneous (a dense core in a lighter shell).
 
     See Also
     --------
