@@ -31,6 +31,7 @@ MODULES = [
     "rigidbody.paperfigs.studies",
     "rigidbody.sweep",
     "rigidbody.studies",
+    "rigidbody.studies.explorer1",
 ] + [f"rigidbody.core.{name}" for name in importlib.import_module("rigidbody.core").__all__]
 
 

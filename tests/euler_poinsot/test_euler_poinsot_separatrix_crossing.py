@@ -230,8 +230,8 @@ def test_output_of_a_run_through_the_separatrix():
     assert c.status == 1 and c.event == "separatrix" and c.tau[-1] < tc
 
 
-def test_explorer1_example_data():
-    # the data behind examples/euler_poinsot/explorer1.py (the script itself is run): a minor-axis spin that
+def test_separatrix_passage_example_data():
+    # the data behind examples/euler_poinsot/separatrix_passage.py (the script itself is run): a minor-axis spin that
     # loses energy at constant G crosses into a major-axis spin, averaged and full alike
     import runpy
     from pathlib import Path
@@ -239,7 +239,7 @@ def test_explorer1_example_data():
     import matplotlib
 
     matplotlib.use("Agg")
-    script = Path(__file__).resolve().parents[2] / "examples" / "euler_poinsot" / "explorer1.py"
+    script = Path(__file__).resolve().parents[2] / "examples" / "euler_poinsot" / "separatrix_passage.py"
     g = runpy.run_path(str(script), run_name="__main__")
     full, avg, eps, body = g["full"], g["avg"], g["EPS"], g["body"]
     assert full.status == 0 and avg.status == 0

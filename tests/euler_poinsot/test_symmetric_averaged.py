@@ -234,3 +234,15 @@ def test_bad_input_is_refused_by_name(kwargs, match):
 def test_theta0_for_a_triaxial_body_is_refused():
     with pytest.raises(ValueError, match="theta0"):
         ep.averaged(ep.Body(3.2, 2.6, 1.67), np.eye(3), 0.0, theta0=0.3)
+
+
+def test_the_standard_plot_shows_the_nutation_angle():
+    """sol.plot() of a symmetric body's run draws theta where a triaxial run has k2 (identically 0 here)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    body = ep.SymmetricBody(2.0, 1.0)
+    s = ep.averaged(body, ep.LinearDrag([0.1, 0.1, 0.3]), 0.0, theta0=1.0, tau_span=(0, 3), tau_eval=[0, 1, 2, 3])
+    axes = s.plot()
+    assert axes[2].get_ylabel() == "$\\theta$"
+    assert np.array_equal(axes[2].lines[0].get_ydata(), s.theta)

@@ -28,6 +28,7 @@ from typing import Any, TypeGuard
 
 import numpy as np
 
+from ..core import euler
 from ..core.validate import real
 from ._model import Body
 
@@ -209,21 +210,8 @@ def omega_body(body: SymmetricBody, g: np.ndarray) -> np.ndarray:
 
 
 def attitude(Y: np.ndarray, psi: np.ndarray, theta: float, phi: np.ndarray) -> np.ndarray:
-    """:math:`C = Y R_3(\\psi) R_1(\\theta) R_3(\\varphi)` on the grid ``psi[:, None], phi[None, :]``: shape
+    r""":math:`C = Y R_3(\psi) R_1(\theta) R_3(\varphi)` on the grid ``psi[:, None], phi[None, :]``: shape
     ``(n_psi, n_phi, 3, 3)``."""
-    cp, sp = np.cos(psi)[:, None], np.sin(psi)[:, None]
-    cf, sf = np.cos(phi)[None, :], np.sin(phi)[None, :]
-    ct, st = math.cos(theta), math.sin(theta)
-    # R3(psi) R1(theta) R3(phi), written out
-    R = np.empty((*np.broadcast_shapes(cp.shape, cf.shape), 3, 3))
-    R[..., 0, 0] = cp * cf - sp * ct * sf
-    R[..., 0, 1] = -cp * sf - sp * ct * cf
-    R[..., 0, 2] = sp * st
-    R[..., 1, 0] = sp * cf + cp * ct * sf
-    R[..., 1, 1] = -sp * sf + cp * ct * cf
-    R[..., 1, 2] = -cp * st
-    R[..., 2, 0] = st * sf
-    R[..., 2, 1] = st * cf
-    R[..., 2, 2] = ct
+    R = euler.dcm(psi[:, None], theta, phi[None, :])
     return np.einsum("ij,...jk->...ik", Y, R)
 

@@ -373,7 +373,8 @@ def hodograph_side_view(sol: Any, ax: Any = None, axis: Any = (0.0, 0.0, 1.0), *
 
 
 def slow_variables(sol: Any, axes: Any = None, label: str | None = None, **kw: Any) -> Any:
-    """Plot G, T, k², δ, λ against τ on five axes (created when ``axes`` is None); returns the axes.
+    """Plot G, T, k², δ, λ against τ on five axes (created when ``axes`` is None); returns the axes. A run of a
+    :class:`~rigidbody.euler_poinsot.SymmetricBody` (``k2`` is 0 there) shows its nutation angle θ instead of k².
 
     Parameters
     ----------
@@ -418,7 +419,8 @@ def slow_variables(sol: Any, axes: Any = None, label: str | None = None, **kw: A
         import matplotlib.pyplot as plt
 
         _, axes = plt.subplots(5, 1, figsize=(6.0, 9.0), sharex=True)
-    names = [("G", "$G$"), ("T", "$T$"), ("k2", "$k^2$"), ("delta", "$\\delta$"), ("lam", "$\\lambda$")]
+    third = ("theta", "$\\theta$") if "theta" in getattr(sol, "fields", ()) else ("k2", "$k^2$")
+    names = [("G", "$G$"), ("T", "$T$"), third, ("delta", "$\\delta$"), ("lam", "$\\lambda$")]
     for ax, (f, lab) in zip(axes, names):
         ax.plot(sol.tau, getattr(sol, f), label=label, **kw)
         ax.set_ylabel(lab)
@@ -490,7 +492,7 @@ def separatrix_passage(body: Any, full: Any, averaged: Any = None, axes: Any = N
 
     Examples
     --------
-    A minor-axis spin losing energy at constant :math:`G` (the gallery's ``explorer1``, shortened); panel
+    A minor-axis spin losing energy at constant :math:`G` (the gallery's ``separatrix_passage``, shortened); panel
     (a) starts at :math:`2T_0A_2/G_0^2` and carries the levels :math:`A_2/A_3`, 1 and :math:`A_2/A_1`:
 
     >>> import numpy as np
