@@ -52,6 +52,12 @@ and three lines through ``(1, 1)`` organise the plane (derived here from (7)-(8)
 :func:`spin_end_predicted` gives the regime from the equilibria of (8) alone
 (:func:`rigidbody.euler_poinsot.k2_equilibria`), the analytic counterpart of the integrated map.
 
+*Observed spin-down* — the exponential spin-down of the passive laser-ranged spheres Larets and Stella
+(:data:`LARETS`, :data:`STELLA`: published mass, size, orbit and fit of the spin period) against the averaged
+eddy-current torque in the geomagnetic dipole: :func:`predicted_period` and :func:`decay_time_ratio` (the
+library's averaged run), :func:`observed_period` (the published fit), :func:`fitted_eddy_rate` (the one fitted
+constant, :math:`p/A`), :func:`equivalent_conductivity`, :func:`field_axes`. See :ref:`ep-spin-history`.
+
 The maps of the figures (``python -m rigidbody figures --only studies``) use the quick grids of
 :data:`GRIDS`; the full grids are for a cluster (:ref:`sweeps-averaging` says how).
 """
@@ -59,24 +65,46 @@ The maps of the figures (``python -m rigidbody figures --only studies``) use the
 from ._averaging import averaging_error_euler_poinsot, averaging_error_lagrange
 from ._common import GRIDS, PAPER_BODY, PAPER_DRAG_CASE1
 from ._maps import Field, StudyMap, as_study_map, evaluate, fitted_order, grid_values
+from ._slr_spin import (
+    LARETS,
+    SECONDS_PER_DAY,
+    STELLA,
+    SpinDecayCase,
+    decay_time_ratio,
+    equivalent_conductivity,
+    field_axes,
+    fitted_eddy_rate,
+    observed_period,
+    predicted_period,
+)
 from ._spin import REGIMES, chi_minus_3_line, drag_from_ratios, equilibrium_line, spin_end, spin_end_predicted
 
 __all__ = [
     "GRIDS",
+    "LARETS",
     "PAPER_BODY",
     "PAPER_DRAG_CASE1",
     "REGIMES",
+    "SECONDS_PER_DAY",
+    "STELLA",
     "Field",
+    "SpinDecayCase",
     "StudyMap",
     "as_study_map",
     "averaging_error_euler_poinsot",
     "averaging_error_lagrange",
     "chi_minus_3_line",
+    "decay_time_ratio",
     "drag_from_ratios",
     "equilibrium_line",
+    "equivalent_conductivity",
     "evaluate",
+    "field_axes",
+    "fitted_eddy_rate",
     "fitted_order",
     "grid_values",
+    "observed_period",
+    "predicted_period",
     "spin_end",
     "spin_end_predicted",
 ]
