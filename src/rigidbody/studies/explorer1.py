@@ -118,6 +118,10 @@ def cylinder_moments(mass: float, length: float, diameter: float) -> tuple[float
     TypeError, ValueError
         If an argument is not a positive finite real number (the message names it).
 
+    See Also
+    --------
+    explorer1_case : Explorer 1's scaled start from these moments.
+
     Examples
     --------
     Explorer 1's published mass and envelope: the transverse moment is about 119 times the axial one.
@@ -174,6 +178,11 @@ class AntennaDamping(Torque):
     ValueError
         If ``kappa`` is negative or not finite.
 
+    See Also
+    --------
+    nutation_angle : the nutation angle it gives, in closed form.
+    fitted_kappa : its constant fitted to the flat spin.
+
     Examples
     --------
     The torque is across G, and it takes energy away:
@@ -206,7 +215,20 @@ class AntennaDamping(Torque):
         return -self.kappa * across
 
     def check_setup(self, body: Any, orbit: Any) -> None:
-        """Refuse a run whose body has other moments than the torque's (its ``g = A omega`` would be wrong)."""
+        """Refuse a run whose body has other moments than the torque's (its ``g = A omega`` would be wrong).
+
+        Examples
+        --------
+        >>> from rigidbody import euler_poinsot as ep
+        >>> from rigidbody.studies.explorer1 import AntennaDamping
+        >>> damping = AntennaDamping(ep.SymmetricBody(2.0, 1.0), 1.0)
+        >>> damping.check_setup(ep.SymmetricBody(2.0, 1.0), ep.Orbit())  # the same body: accepted
+        >>> try:
+        ...     damping.check_setup(ep.SymmetricBody(3.0, 1.0), ep.Orbit())
+        ... except ValueError:
+        ...     print("refused")
+        refused
+        """
         if not np.array_equal(np.asarray(body.A, dtype=float), np.asarray(self.body.A, dtype=float)):
             raise ValueError(f"AntennaDamping was built for {self.body!r}, the run's body is {body!r}")
 
@@ -234,6 +256,11 @@ def nutation_angle(body: SymmetricBody, kappa: float, theta0: float, tau: Any) -
     -------
     float or numpy.ndarray
         :math:`\theta(\tau)` (rad).
+
+    See Also
+    --------
+    fitted_kappa : its inverse.
+    AntennaDamping : the torque.
 
     Examples
     --------
@@ -271,6 +298,10 @@ def fitted_kappa(body: SymmetricBody, theta0: float, theta_flat: float, tau_flat
     ------
     ValueError
         If the angles or the time are outside their ranges, or the body is not prolate.
+
+    See Also
+    --------
+    nutation_angle : the law it inverts.
 
     Examples
     --------
@@ -313,6 +344,17 @@ class Explorer1Case:
         :math:`\Omega_0` in rpm (the unit of the scaled rates).
     moments : tuple of float
         The physical ``(A, C)`` (kg m^2).
+
+    See Also
+    --------
+    explorer1_case : builds it.
+
+    Examples
+    --------
+    >>> from rigidbody.studies.explorer1 import explorer1_case
+    >>> case = explorer1_case()
+    >>> print(f"{case.omega0_rpm:.0f} rpm, kappa = {case.kappa:.0f} (fitted)")
+    750 rpm, kappa = 79910 (fitted)
     """
 
     body: SymmetricBody
@@ -338,7 +380,15 @@ class Explorer1Case:
 
     @property
     def torque(self) -> AntennaDamping:
-        """The fitted :class:`AntennaDamping` of the case's body."""
+        """The fitted :class:`AntennaDamping` of the case's body.
+
+        Examples
+        --------
+        >>> from rigidbody.studies.explorer1 import explorer1_case
+        >>> case = explorer1_case()
+        >>> case.torque.kappa == case.kappa and case.torque.body == case.body
+        True
+        """
         return AntennaDamping(self.body, self.kappa)
 
 
@@ -365,6 +415,11 @@ def explorer1_case(theta0: float = THETA0, theta_flat: float = THETA_FLAT, *, ma
     Returns
     -------
     Explorer1Case
+
+    See Also
+    --------
+    Explorer1Case : what it returns.
+    rigidbody.euler_poinsot.Spacecraft : the same start from the physical state in SI units.
 
     Examples
     --------
