@@ -142,15 +142,8 @@ def test_averaged_follows_the_full_motion_at_small_eps():
     a = ep.R_EARTH + 700e3
     sc = ep.Spacecraft(J, w0, R0, orbit=ep.KeplerOrbit(radius=a))
     eps = sc.paper.eps  # 0.021
-    t_end = 0.2 / sc.paper.tau_per_second  # tau = 0.2: 8900 s, 70 turns, 1.5 orbits
-    t = np.linspace(0.0, t_end, 5)
     drag = np.diag([1.0, 2.0, 1.5]) * 1e-4  # N m s
-    av = sc.averaged((0.0, t_end), t, drag=drag)
-    assert av.status == 0
-    w, R, _ = integrate_si(J, w0, R0, t, a=a, mu=ep.MU_EARTH, drag=drag, rtol=1e-10)
-    G = R.apply(w @ J.T)
-    Gn = np.linalg.norm(G, axis=1)
-    T = 0.5 * np.einsum("ij,ij->i", w, w @ J.T)
+    av, G, Gn, T = _averaged_and_full(sc, J, w0, R0, a, drag=drag)  # tau = 0.2: 8900 s, 70 turns, 1.5 orbits
     # First-order averaging with the true anomaly kept explicit: the slow variables G, T of the averaged system (9)
     # follow the osculating ones of the full motion to O(eps^2) over tau = O(1) (the oscillation they carry is of
     # relative size eps^2: the torques are eps^2 of the spin's scale; docs/euler_poinsot.md, "Averaged vs full",
@@ -164,6 +157,18 @@ def test_averaged_follows_the_full_motion_at_small_eps():
     # (45 times the bound), the gravity gradient turns G by 8 times the bound
     assert Gn[-1] <= (1.0 - 30 * 5 * eps**2) * Gn[0]
     assert angles(G[:1], G[-1:])[0] >= 4 * 0.25 * eps
+
+
+def _averaged_and_full(sc, J, w0, R0, a, **torques):
+    """The averaged run of ``sc`` over tau = 0.2 (5 samples) and the independent full motion at the same times:
+    the averaged run, and the full motion's angular momentum (inertial), its magnitude and the kinetic energy."""
+    t_end = 0.2 / sc.paper.tau_per_second
+    t = np.linspace(0.0, t_end, 5)
+    av = sc.averaged((0.0, t_end), t, **torques)
+    assert av.status == 0
+    w, R, _ = integrate_si(J, w0, R0, t, a=a, mu=ep.MU_EARTH, rtol=1e-10, **torques)
+    G = R.apply(w @ J.T)
+    return av, G, np.linalg.norm(G, axis=1), 0.5 * np.einsum("ij,ij->i", w, w @ J.T)
 
 
 def angles(U, V):
@@ -189,14 +194,7 @@ def test_averaged_of_a_symmetric_body_follows_the_full_motion(moments):
     sc = ep.Spacecraft(J, w0, R0, orbit=ep.KeplerOrbit(radius=a))
     assert isinstance(sc.paper.body, ep.SymmetricBody)
     eps = sc.paper.eps  # 0.021
-    t_end = 0.2 / sc.paper.tau_per_second
-    t = np.linspace(0.0, t_end, 5)
-    av = sc.averaged((0.0, t_end), t, eddy=P, field=field)
-    assert av.status == 0
-    w, R, _ = integrate_si(J, w0, R0, t, a=a, mu=ep.MU_EARTH, eddy=P, field=field, rtol=1e-10)
-    G = R.apply(w @ J.T)
-    Gn = np.linalg.norm(G, axis=1)
-    T = 0.5 * np.einsum("ij,ij->i", w, w @ J.T)
+    av, G, Gn, T = _averaged_and_full(sc, J, w0, R0, a, eddy=P, field=field)
     assert np.abs(av.G / Gn - 1.0).max() <= 5 * eps**2
     assert np.abs(av.T / T - 1.0).max() <= 5 * eps**2
     assert angles(G, av.momentum).max() <= 0.25 * eps
