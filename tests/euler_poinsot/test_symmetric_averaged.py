@@ -268,3 +268,40 @@ def test_a_torque_that_turns_bad_part_way_ends_its_run_with_a_status():
     assert list(b.status) == [0, 0]  # neither reaches G = 0.9 within tau = 0.3 (G(0.3) is 0.94 and 9.4)
     b = ep.averaged(body, turns_bad, 0.0, G0=[1.0, 10.0], theta0=1.0, tau_span=(0, 3), tau_eval=[0.0, 3.0])
     assert b.status[0] == -1 and b.status[1] == 0
+
+
+@pytest.mark.parametrize("shape", ["prolate", "oblate", "sphere"])
+@pytest.mark.parametrize("nu", [0.4, None])
+def test_eddy_current_mean_over_the_regular_precession_is_its_closed_form(shape, nu):
+    """The eddy-current torque M = (P (omega x b)) x b averaged over the regular precession (the engine: psi, phi
+    and, for nu=None, the orbit) against the closed form of docs/euler_poinsot.md, "Eddy currents":
+    <C M> = -cbar (tr S - S) n, cbar = <tr P gamma.omega - gamma.P omega>/2, gamma = g/G; on the regular precession
+    gamma.omega = G (s^2/A + c^2/C) and <gamma.P omega> = G (s^2 (P1 + P2)/2A + P3 c^2/C) (the mean of sin^2 phi and
+    cos^2 phi is 1/2), S = B B^T at nu or its time mean over the orbit (our own trapezoid mean in the true anomaly
+    with Kepler's weights on 4096 nodes, exact to rounding for the dipole's trigonometric polynomial). The engine's
+    quadrature is exact for this trigonometric polynomial, so both agree to rounding: 1e-12 relative."""
+    A, C = {"prolate": (2.0, 1.0), "oblate": (1.0, 1.6), "sphere": (1.5, 1.5)}[shape]
+    body = ep.SymmetricBody(A, C)
+    P = np.array([0.3, 0.5, 0.2])
+    orbit = Orbit(0.1)
+    field = ep.DipoleField(1.1, 0.4, 7.5e6, orbit=orbit, scale=1e5)  # a field of order 1 (units of 10 uT)
+    tq = ep.EddyCurrent(P, field)
+    th = 0.7
+    c, s = math.cos(th), math.sin(th)
+    gb, n = np.array([0.0, s, c]), _n(DELTA, LAM)
+    _, m = choose_grid(tq, body, G, gb, n, nu, orbit, 1e-13)
+    if nu is None:
+        x = np.arange(4096) * 2 * math.pi / 4096
+        w = (1 + orbit.e * np.cos(x)) ** -2.0
+        B = field(x)
+        S = np.einsum("k,ki,kj->ij", w / w.sum(), B, B)
+    else:
+        b = field(nu)
+        S = np.outer(b, b)
+    if shape == "sphere":  # no proper rotation: gamma.P omega at the body azimuth phi = 0 of gb (g in the z2-z3 plane)
+        gPw = G * (P[1] * s * s / A + P[2] * c * c / C)
+    else:
+        gPw = G * (s * s * (P[0] + P[1]) / (2 * A) + P[2] * c * c / C)
+    cbar = 0.5 * (P.sum() * G * (s * s / A + c * c / C) - gPw)
+    L = -cbar * (np.trace(S) * np.eye(3) - S) @ n
+    np.testing.assert_allclose(m.L, L, rtol=0, atol=1e-12 * np.abs(L).max())
