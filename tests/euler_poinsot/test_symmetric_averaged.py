@@ -12,8 +12,7 @@ from scipy.integrate import solve_ivp
 from scipy.spatial.transform import Rotation
 
 from rigidbody import euler_poinsot as ep
-from rigidbody.euler_poinsot._model import Orbit
-from rigidbody.euler_poinsot._symengine import choose_grid, sym_rates
+from rigidbody.euler_poinsot._symengine import choose_grid
 
 G, TH, DELTA, LAM, NU = 1.0, 0.8, 1.0, 0.3, 0.7
 
@@ -37,15 +36,14 @@ def _torques(body, axes=(0, 1, 2)):
 
 
 def _symmetric_rates(body, torque, theta):
-    c = math.cos(theta)
-    gb, n = np.array([0.0, math.sqrt(1 - c * c), c]), _n(DELTA, LAM)
-    _, m = choose_grid(torque, body, G, gb, n, NU, Orbit(), 1e-13)
-    r = sym_rates(body, m, G, gb, n)
-    # dT from the nutation equation (dc) and dG, by the chain rule of 2T = G^2 ((1 - c^2)/A + c^2/C): the same
-    # energy rate as <omega . M> only if the dc equation is right
+    r = ep.symmetric_rates(body, torque, G, theta, DELTA, LAM, NU, quad_tol=1e-13)
+    # dT from the nutation equation (dc = -sin(theta) dtheta) and dG, by the chain rule of
+    # 2T = G^2 ((1 - c^2)/A + c^2/C): the same energy rate as <omega . M> only if the dc equation is right
     A, C = body.transverse, body.axial
-    dT_c = G * r["dG"] * ((1 - c * c) / A + c * c / C) + G * G * c * r["dc"] * (1 / C - 1 / A)
-    return r["dG"], dT_c, r["dn"]
+    c, dc = math.cos(theta), -math.sin(theta) * r["dtheta"]
+    dT_c = G * r["dG"] * ((1 - c * c) / A + c * c / C) + G * G * c * dc * (1 / C - 1 / A)
+    assert dT_c == pytest.approx(r["dT"], rel=1e-12, abs=1e-13)
+    return r["dG"], dT_c, r["ddelta"], r["dlam"]
 
 
 @pytest.mark.parametrize("shape", ["prolate", "oblate"])
@@ -58,7 +56,7 @@ def test_rates_are_the_limits_of_the_triaxial_ones(shape, which):
     coefficient these cases show, and a rate wrong by a fraction of a percent fails it at d = 1e-6 and 1e-9."""
     A, C = (2.0, 1.0) if shape == "prolate" else (1.0, 1.6)
     sym = ep.SymmetricBody(A, C)
-    dG0, dT0, dn0 = _symmetric_rates(sym, _torques(sym)[which], TH)
+    dG0, dT0, ddelta0, dlam0 = _symmetric_rates(sym, _torques(sym)[which], TH)
     c = math.cos(TH)
     T = 0.5 * G * G * ((1 - c * c) / A + c * c / C)
     for d in (1e-3, 1e-6, 1e-9):
@@ -71,9 +69,6 @@ def test_rates_are_the_limits_of_the_triaxial_ones(shape, which):
         tq = _torques(body, axes)[which]
         k2 = ep.k2_from(body, G, T, kind)
         r = ep.averaged_rates(body, tq, G, k2, DELTA, LAM, NU, kind=kind)
-        n = _n(DELTA, LAM)
-        ddelta0 = -dn0[2] / math.sin(DELTA)
-        dlam0 = (n[0] * dn0[1] - n[1] * dn0[0]) / (n[0] ** 2 + n[1] ** 2)
         bound = 5 * d + 1e-10
         assert r["dG"] == pytest.approx(dG0, rel=0, abs=bound)
         assert r["dT"] == pytest.approx(dT0, rel=0, abs=bound)
@@ -283,7 +278,7 @@ def test_eddy_current_mean_over_the_regular_precession_is_its_closed_form(shape,
     A, C = {"prolate": (2.0, 1.0), "oblate": (1.0, 1.6), "sphere": (1.5, 1.5)}[shape]
     body = ep.SymmetricBody(A, C)
     P = np.array([0.3, 0.5, 0.2])
-    orbit = Orbit(0.1)
+    orbit = ep.Orbit(0.1)
     field = ep.DipoleField(1.1, 0.4, 7.5e6, orbit=orbit, scale=1e5)  # a field of order 1 (units of 10 uT)
     tq = ep.EddyCurrent(P, field)
     th = 0.7
@@ -305,3 +300,13 @@ def test_eddy_current_mean_over_the_regular_precession_is_its_closed_form(shape,
     cbar = 0.5 * (P.sum() * G * (s * s / A + c * c / C) - gPw)
     L = -cbar * (np.trace(S) * np.eye(3) - S) @ n
     np.testing.assert_allclose(m.L, L, rtol=0, atol=1e-12 * np.abs(L).max())
+
+
+def test_symmetric_rates_refuse_bad_input_by_name():
+    body = ep.SymmetricBody(2.0, 1.0)
+    with pytest.raises(TypeError, match="SymmetricBody"):
+        ep.symmetric_rates(ep.Body(3.2, 2.6, 1.67), np.eye(3), 1.0, 0.5, 0.5, 0.0, None)
+    for args, match in [((0.0, 0.5, 0.5), "G must be positive"), ((1.0, 4.0, 0.5), "theta"),
+                        ((1.0, 0.5, -0.1), "delta")]:
+        with pytest.raises(ValueError, match=match):
+            ep.symmetric_rates(body, np.eye(3), *args, 0.0, None)

@@ -105,6 +105,7 @@ from ._spacecraft import Spacecraft, SpacecraftSolution
 from ._spin import spin_ratio
 from ._state import Mean, State
 from ._symbody import SymmetricBody
+from ._symrates import symmetric_rates
 from ._torques import FunctionTorque, GravityGradient, LinearDrag, Torque, TorqueSum
 
 __all__ = [
@@ -162,4 +163,5 @@ __all__ = [
     "separatrix_limits",
     "simulate",
     "spin_ratio",
+    "symmetric_rates",
 ]

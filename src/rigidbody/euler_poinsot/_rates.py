@@ -88,6 +88,7 @@ def averaged_rates(
     --------
     averaged : integrates these right-hand sides.
     average_torque : the engine, with its error estimate.
+    symmetric_rates : the rates of a body with two equal moments (their limit).
     drag_rates, dk2_dtau, precession_rate : the closed forms of the paper's case.
 
     References
