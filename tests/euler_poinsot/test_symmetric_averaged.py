@@ -310,3 +310,48 @@ def test_symmetric_rates_refuse_bad_input_by_name():
                         ((1.0, 0.5, -0.1), "delta")]:
         with pytest.raises(ValueError, match=match):
             ep.symmetric_rates(body, np.eye(3), *args, 0.0, None)
+
+
+def test_fast_drift_stops_a_run_whose_torque_outgrows_the_fast_motion():
+    """At eps = 0.05 a drag that spins the body down makes the slow variables change faster and faster against the
+    precession period 2 pi A/G (the drift per period is eps^2 (2 pi A/G)(|dG|/G + |dT|/T + |dn|): it first falls
+    as theta grows, then grows as G falls):
+    the run ends with the 'fast_drift' stop and its message where that measure reaches drift_tol (twice its start
+    value here), before the slow-rotation stop (switched off); with drift_tol=None it goes on to the end. A start
+    already past drift_tol is refused, naming the option."""
+    body = ep.SymmetricBody(2.0, 1.0)
+    drag = ep.LinearDrag([0.2, 0.2, 0.6])
+
+    def drift(s, k):  # the measure at output k of a run, from the result's state and the public rates
+        G, T, delta = float(s.G[k]), float(s.T[k]), float(s.delta[k])
+        r = ep.symmetric_rates(body, drag, G, float(s.theta[k]), delta, float(s.lam[k]), None)
+        dn = math.hypot(r["ddelta"], math.sin(delta) * r["dlam"])
+        return 0.05**2 * (2 * math.pi * 2.0 / G) * (abs(r["dG"]) / G + abs(r["dT"]) / T + dn)
+
+    free = ep.averaged(body, drag, 0.05, theta0=1.0, tau_span=(0, 30), drift_tol=None, min_spin_ratio=0.0)
+    assert free.status == 0
+    tol = 2 * drift(free, 0)
+    s = ep.averaged(body, drag, 0.05, theta0=1.0, tau_span=(0, 30), drift_tol=tol, min_spin_ratio=0.0)
+    assert s.status == 1 and s.event == "fast_drift" and "drift_tol" in s.message
+    assert drift(s, -1) == pytest.approx(tol, rel=1e-6, abs=0)  # the event's root, to its location tolerance
+    with pytest.raises(ValueError, match="drift_tol"):
+        ep.averaged(body, drag, 0.05, theta0=1.0, tau_span=(0, 10), drift_tol=tol / 4)
+
+
+@pytest.mark.parametrize("nu", [0.3, None])
+def test_which_torques_need_the_proper_rotation(nu):
+    """A torque symmetric about the symmetry axis (axisymmetric drag and eddy tensor, the gravity gradient, a magnet
+    along the axis) has means over psi that do not depend on the body azimuth phi: the averaging needs no proper
+    rotation. One that is not (unequal transverse drag, an off-axis magnet) does. (The body components of M across
+    the axis turn with phi even for the first kind; they do not enter the rates.)"""
+    from rigidbody.euler_poinsot._symengine import phase_invariant
+
+    body = ep.SymmetricBody(2.0, 1.0)
+    n, gb = _n(DELTA, LAM), np.array([0.0, math.sin(1.0), math.cos(1.0)])
+    field = ep.DipoleField(1.0, 0.0, 7e6, scale=1e5)
+    cases = {ep.LinearDrag([0.2, 0.2, 0.6]): True, ep.GravityGradient(body): True,
+             ep.MagneticDipole([0.0, 0.0, 0.3], field): True, ep.EddyCurrent([0.2, 0.2, 0.5], field): True,
+             ep.LinearDrag([0.2, 0.3, 0.6]): False, ep.MagneticDipole([0.3, 0.0, 0.0], field): False}
+    for tq, invariant in cases.items():
+        grid, _ = choose_grid(tq, body, 1.0, gb, n, nu, ep.Orbit(), 1e-12)
+        assert phase_invariant(tq, body, grid, 1.0, n, nu, ep.Orbit()) is invariant, tq

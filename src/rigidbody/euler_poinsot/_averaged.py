@@ -242,8 +242,9 @@ def averaged(
     ``kind`` (``'max'`` for an oblate body, ``'min'`` for a prolate one), ``sigma`` (the sign of
     :math:`\cos\theta`), ``k2`` (0) and ``quad_error``; the stop ``min_spin_ratio`` compares the precession rate
     :math:`G/A` with :math:`\varepsilon` and, for a torque whose means depend on the body azimuth, the proper
-    rotation :math:`G|c||1/A - 1/C|` too. The options of the separatrix and of the drift and resonance checks do
-    not apply (the resonances between precession and proper rotation are not checked).
+    rotation :math:`G|c||1/A - 1/C|` too, and ``drift_tol`` the change of the slow variables in one period of
+    that slowest motion. The options of the separatrix and of the resonance check do not apply (the resonances
+    between precession and proper rotation are not checked).
 
     References
     ----------

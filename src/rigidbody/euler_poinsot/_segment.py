@@ -26,7 +26,7 @@ from ._protocol import Misfire
 from ._resonance import resonance_crossings
 from ._spin import K2_SPIN_CAP, nutation_frequency
 from ._state import Mean, State
-from ._stops import stop_message
+from ._stops import drift_refusal, slow_drift, stop_message
 
 __all__ = ["KindRun", "RunOptions", "Setup", "finish_kind", "rotation_number"]
 
@@ -102,11 +102,8 @@ def _state_of(setup: Setup, kind: str, sigma: int, tau: float, y: np.ndarray, ta
 def _slow_drift(setup: Setup, st: State, m: Mean) -> float:
     r"""Relative change of the slow variables in one Euler--Poinsot period, :math:`\varepsilon^2P(\ldots)`."""
     freq = nutation_frequency(st.a, st.G, min(st.k2, setup.spin_cap))  # next to the separatrix: see K2_SPIN_CAP
-    if freq <= 0.0:
-        return math.inf
     dG = float(st.n @ m.L)
-    dn = float(np.linalg.norm(m.L - dG * st.n)) / st.G
-    return setup.eps**2 * (2.0 * math.pi / freq) * (abs(dG) / st.G + abs(m.dT) / st.T + dn)
+    return slow_drift(setup.eps, freq, st.G, st.T, dG, m.dT, float(np.linalg.norm(m.L - dG * st.n)) / st.G)
 
 
 #: chart switches of the direction of G (torque objects): the polar angles (delta, lambda) about x3 while
@@ -395,11 +392,7 @@ def _check_drift(setup: Setup, st0: State, av: Averager) -> None:
     """Refuse a start where the slow variables change by more than ``drift_tol`` in one Euler--Poinsot period."""
     eps = setup.eps
     if eps > 0.0 and setup.drift_tol is not None and (d0 := _slow_drift(setup, st0, av.mean(st0))) > setup.drift_tol:
-        raise ValueError(
-            f"the torque is too strong for eps = {eps:g} at this state: the slow variables change by {d0:.3g} of "
-            f"themselves in one Euler-Poinsot period (> drift_tol = {setup.drift_tol:g}); the averaging needs a "
-            "separation of time scales. Lower eps or the torque, or pass drift_tol=None to integrate anyway"
-        )
+        raise ValueError(drift_refusal(eps, d0, setup.drift_tol))
 
 
 def _common_events(setup: Setup, a: tuple[float, float, float], z: float, c: float, ie: float) -> list[Event]:

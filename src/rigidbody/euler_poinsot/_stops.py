@@ -7,9 +7,10 @@ averaged runs and the full equations, single and batch, fill in the same templat
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
-__all__ = ["MAX_CROSSINGS", "STOPS", "stop_message"]
+__all__ = ["MAX_CROSSINGS", "STOPS", "drift_refusal", "slow_drift", "stop_message"]
 
 #: a run that crosses the separatrix more often than this ends with a status (the averaged motion stalls there:
 #: single runs and batches alike)
@@ -55,3 +56,19 @@ STOPS: dict[str, str] = {
 def stop_message(stop: str, **values: Any) -> str:
     """The message of ``stop`` (a key of :data:`STOPS`) with its fields filled in."""
     return STOPS[stop].format(**values)
+
+
+def slow_drift(eps: float, freq: float, G: float, T: float, dG: float, dT: float, dn: float) -> float:
+    r"""Relative change of the slow variables in one period :math:`P = 2\pi/` ``freq`` of the fast motion,
+    :math:`\varepsilon^2P(|\dot G|/G + |\dot T|/T + |\dot{\mathbf n}|)` (rates per unit of :math:`\tau`): the
+    measure of the ``'fast_drift'`` stop (``drift_tol``); infinite when the fast motion has stopped."""
+    if freq <= 0.0:
+        return math.inf
+    return eps**2 * (2.0 * math.pi / freq) * (abs(dG) / G + abs(dT) / T + abs(dn))
+
+
+def drift_refusal(eps: float, drift: float, drift_tol: float) -> str:
+    """The message refusing a start whose slow variables drift by ``drift`` per period (> ``drift_tol``)."""
+    return (f"the torque is too strong for eps = {eps:g} at this state: the slow variables change by {drift:.3g} of "
+            f"themselves in one period of the fast motion (> drift_tol = {drift_tol:g}); the averaging needs a "
+            "separation of time scales. Lower eps or the torque, or pass drift_tol=None to integrate anyway")

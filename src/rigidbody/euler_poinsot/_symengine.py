@@ -146,7 +146,9 @@ def phase_invariant(torque: Any, body: SymmetricBody, grid: SymGrid, G: float, n
     th = 1.0
     gb = np.array([0.0, math.sin(th), math.cos(th)])
     Q, w = _values(torque, body, SymGrid(grid.n_psi, max(grid.n_phi, 8), grid.n_nu), G, gb, n, nu, orbit)
-    per_phi = np.einsum("abcq,ab->cq", Q, w[:, :, 0] * Q.shape[2])  # the mean over nu and psi at each phi
+    # the mean over nu and psi at each phi of what the rates take: <C M>, M3, omega.M (the transverse body components
+    # of M turn with phi even for a torque symmetric about z3; only their phi-mean, unused, would be affected)
+    per_phi = np.einsum("abcq,ab->cq", Q[..., [0, 1, 2, 5, 6]], w[:, :, 0] * Q.shape[2])
     scale = float(np.abs(Q[..., 3:6]).max()) or 1.0
     return bool(np.abs(per_phi - per_phi.mean(axis=0)).max() <= 1e3 * 2.2e-16 * scale)
 

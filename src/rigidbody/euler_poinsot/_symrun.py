@@ -32,7 +32,7 @@ from ._model import Orbit, as_orbit
 from ._options import Stops
 from ._output import lam_unwrapped, unit_of_angles
 from ._protocol import Misfire
-from ._stops import stop_message
+from ._stops import drift_refusal, slow_drift, stop_message
 from ._symbody import SymmetricBody, cos_theta_of, energy, kind_fields
 from ._symengine import choose_grid, phase_invariant, sym_mean, sym_rates
 from ._symfull import symmetric_spin_frequency
@@ -40,8 +40,7 @@ from ._symfull import symmetric_spin_frequency
 __all__ = ["SYM_FIELDS", "SymMembers", "SymSetup", "averaged_symmetric", "run_symmetric"]
 
 #: the defaults of the triaxial-only options (a SymmetricBody refuses other values)
-_DEFAULTS = {"k2_max": Stops().k2_max, "drift_tol": Stops().drift_tol, "resonance_tol": Stops().resonance_tol,
-             "branch": "likely", "seed": None}
+_DEFAULTS = {"k2_max": Stops().k2_max, "resonance_tol": Stops().resonance_tol, "branch": "likely", "seed": None}
 
 PRODUCER = "euler_poinsot.averaged"
 
@@ -60,6 +59,7 @@ class SymSetup:
     method: str
     min_spin_ratio: float
     quad_tol: float
+    drift_tol: float | None
 
 
 @dataclass
@@ -95,11 +95,14 @@ class _Member:
         self.misfire = Misfire()  # a torque that misbehaves part-way ends the run with a status naming it
         y0 = [math.log(G0), *n0.tolist(), *(gb0.tolist() if self.sphere else [float(gb0[2])])]
         self.y0 = y0 + ([nu0] if self.nu_state else [])
+        self.memo: tuple[float, tuple[float, ...], dict[str, Any]] | None = None  # the last rates (the drift event)
         if self.held and run.min_spin_ratio > 0.0:
             r = self.spin_ratio(self.y0)
             if r < run.min_spin_ratio:
                 raise ValueError(f"the start is not a fast rotation: the spin ratio {r:.6g} is below "
                                  f"min_spin_ratio = {run.min_spin_ratio:g} (pass a smaller min_spin_ratio)")
+        if self.held and run.drift_tol is not None and (d0 := self.drift(t0, self.y0)) > run.drift_tol:
+            raise ValueError(drift_refusal(eps, d0, run.drift_tol))
 
     def unpack(self, t: float, y: Any) -> tuple[float, np.ndarray, np.ndarray, float | None]:
         G = math.exp(y[0])
@@ -114,35 +117,63 @@ class _Member:
         nu = None if not self.held else (float(y[-1]) if self.nu_state else self.nu_start + (t - self.t0) / self.eps)
         return G, n, gb, nu
 
-    def rhs(self, t: float, y: Any) -> list[float]:
+    def rates(self, t: float, y: Any) -> dict[str, Any]:
+        """The averaged rates at ``(t, y)`` (remembered: the drift event asks at the points of the steps)."""
+        key = tuple(float(v) for v in y)
+        if self.memo is not None and self.memo[0] == t and self.memo[1] == key:
+            return self.memo[2]
         G, n, gb, nu = self.unpack(t, y)
         run = self.run
+        r = sym_rates(run.body, sym_mean(run.torque, run.body, self.grid, G, gb, n, nu, run.orbit), G, gb, n)
+        self.memo = (t, key, r)
+        return r
+
+    def rhs(self, t: float, y: Any) -> list[float]:
         try:
-            m = sym_mean(run.torque, run.body, self.grid, G, gb, n, nu, run.orbit)
+            r = self.rates(t, y)
         except RESULT_ERRORS as exc:  # NaN rates: the step fails here, the run ends with misfire's message
             self.misfire.note(t, exc)
             return [math.nan] * len(y)
-        r = sym_rates(run.body, m, G, gb, n)
+        G = math.exp(y[0])
         out = [r["dG"] / G, *r["dn"].tolist(), *(r["dgb"].tolist() if self.sphere else [r["dc"]])]
         if self.nu_state:
-            out.append(run.orbit.nu_rate(float(y[-1])) / self.eps)
+            out.append(self.run.orbit.nu_rate(float(y[-1])) / self.eps)
         return out
 
-    def spin_ratio(self, y: Any) -> float:
-        """The slowest fast frequency the averaging needs, over the orbital rate."""
+    def frequency(self, y: Any) -> float:
+        """The slowest fast frequency the averaging needs."""
         body = self.run.body
         G = math.exp(y[0])
         f = symmetric_spin_frequency(body, G)
         if not self.invariant:
             f = min(f, G * abs(float(y[4])) * abs(1.0 / body.transverse - 1.0 / body.axial))
-        return f / self.eps
+        return f
+
+    def spin_ratio(self, y: Any) -> float:
+        """The slowest fast frequency the averaging needs, over the orbital rate."""
+        return self.frequency(y) / self.eps
+
+    def drift(self, t: float, y: Any) -> float:
+        """The relative change of the slow variables in one period of the slowest fast motion."""
+        r = self.rates(t, y)
+        G = math.exp(y[0])
+        c = float(y[6] if self.sphere else y[4])
+        T = float(energy(self.run.body, G, max(-1.0, min(1.0, c))))
+        return slow_drift(self.eps, self.frequency(y), G, T, r["dG"], r["dT"], float(np.linalg.norm(r["dn"])))
 
     def events(self) -> list[Event]:
-        if not self.held or self.run.min_spin_ratio <= 0.0:
+        if not self.held:
             return []
-        r = self.run.min_spin_ratio
-        return [Event(lambda t, y: self.spin_ratio(y) - r, "slow_rotation", True, -1.0,
-                      stop_message("slow_rotation", min_spin_ratio=r))]
+        run, evs = self.run, []
+        if run.min_spin_ratio > 0.0:
+            r = run.min_spin_ratio
+            evs.append(Event(lambda t, y: self.spin_ratio(y) - r, "slow_rotation", True, -1.0,
+                             stop_message("slow_rotation", min_spin_ratio=r)))
+        if run.drift_tol is not None:
+            tol = run.drift_tol
+            evs.append(Event(lambda t, y: self.drift(t, y) - tol, "fast_drift", True, 1.0,
+                             stop_message("fast_drift", drift_tol=tol)))
+        return evs
 
     def fields(self, tau: np.ndarray, y: np.ndarray) -> dict[str, Any]:
         body = self.run.body
@@ -230,7 +261,7 @@ def run_symmetric(run: SymSetup, mem: SymMembers, tau_span: tuple[float, float],
     return assemble(out, mem.batch_shape, te, SYM_FIELDS, PRODUCER)
 
 
-_TRIAXIAL_ONLY = ("k2_max", "drift_tol", "resonance_tol", "branch", "seed")
+_TRIAXIAL_ONLY = ("k2_max", "resonance_tol", "branch", "seed")
 
 
 def _start_direction(body: SymmetricBody, G0: float, theta0: Any, T0: Any, sigma: int) -> np.ndarray:
@@ -259,7 +290,7 @@ def averaged_symmetric(body: SymmetricBody, torque: Any, eps: Any, G0: Any, k2_0
     given = [k for k in _TRIAXIAL_ONLY if opts[k] != _DEFAULTS[k]]
     if given:
         raise ValueError(f"{', '.join(given)}: options of a triaxial Body's run (a SymmetricBody has no separatrix, "
-                         "and its run checks neither drift nor resonances)")
+                         "and its run does not check resonances)")
     t0, t1 = span(tau_span, "tau_span")
     check_tau_eval(tau_eval, (t0, t1))
     check_tol(opts["rtol"], opts["atol"])
@@ -267,8 +298,9 @@ def averaged_symmetric(body: SymmetricBody, torque: Any, eps: Any, G0: Any, k2_0
     check_averaging(opts["averaging"], "averaging")
     sigma = check_sigma(opts["sigma"])
     tq, _ = as_torque(torque, body, orb)
+    drift_tol = None if opts["drift_tol"] is None else positive(opts["drift_tol"], "drift_tol")
     run = SymSetup(tq, body, orb, float(opts["rtol"]), opts["method"], real(opts["min_spin_ratio"], "min_spin_ratio"),
-                   positive(opts["quad_tol"], "quad_tol"))
+                   positive(opts["quad_tol"], "quad_tol"), drift_tol)
     named = {"eps": eps, "G0": G0, "delta0": delta0, "lam0": lam0, "nu0": nu0,
              "theta0": theta0 if opts["T0"] is None else opts["T0"]}
     single = not any(np.ndim(v) for v in named.values())
