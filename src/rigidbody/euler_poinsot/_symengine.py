@@ -9,8 +9,13 @@ weights, :func:`._grid.nu_nodes`):
 
 .. math::
     \frac{d(G\mathbf n)}{d\tau} = \langle C\mathbf M\rangle,\qquad
-    \frac{dc}{d\tau} = \frac{\langle M_3\rangle - c\,\mathbf n\cdot\langle C\mathbf M\rangle}{G},\qquad
-    \frac{dT}{d\tau} = \langle\boldsymbol\omega\cdot\mathbf M\rangle .
+    \frac{d\theta}{d\tau} = \frac{c\,\langle M_\varphi\rangle - s\,\langle M_3\rangle}{G},\qquad
+    \frac{dT}{d\tau} = \langle\boldsymbol\omega\cdot\mathbf M\rangle
+
+(:math:`c = \cos\theta`, :math:`s = \sin\theta`, :math:`M_\varphi = M_1\sin\varphi + M_2\cos\varphi` the body
+torque along the transverse direction of :math:`\mathbf G`): it is :math:`\dot c = (M_3 - c\,\mathbf M\cdot
+\hat{\mathbf g})/G` divided by :math:`-s`, written without the division, so that it holds on the axis (:math:`s = 0`)
+too, where a spin about the symmetry axis decays or grows smoothly.
 
 The sphere (:math:`A = C`) has no proper rotation: :math:`\varphi` stands still, the mean is over :math:`\psi`
 alone and the direction :math:`\hat{\mathbf g}` of :math:`\mathbf G` in the body is a slow variable,
@@ -57,12 +62,14 @@ class SymGrid:
 @dataclass(frozen=True)
 class SymMean:
     """The means at one slow state: ``L`` = <C M> (orbital axes), ``Mb`` = <M> (body axes), ``dT`` = <omega.M>,
-    ``scale`` the mean size of the torque, ``error`` the estimate of the quadrature error of ``L``, ``Mb``, ``dT``
-    (absolute, the largest)."""
+    ``Mphi`` = <M1 sin(phi) + M2 cos(phi)> (the body torque along the transverse direction of G), ``scale`` the mean
+    size of the torque, ``error`` the estimate of the quadrature error of ``L``, ``Mb``, ``dT`` (absolute, the
+    largest)."""
 
     L: np.ndarray
     Mb: np.ndarray
     dT: float
+    Mphi: float
     scale: float
     error: float
 
@@ -73,12 +80,13 @@ def _nodes(n: int) -> np.ndarray:
 
 def _values(torque: Any, body: SymmetricBody, grid: SymGrid, G: float, gb: np.ndarray, n: np.ndarray,
             nu: float | None, orbit: Orbit) -> tuple[np.ndarray, np.ndarray]:
-    """The averaged quantities at every node (shape ``(n_nu, n_psi, n_phi, 7)``: C M, M, omega.M) and the node
+    """The averaged quantities at every node (shape ``(n_nu, n_psi, n_phi, 8)``: C M, M, omega.M, M_phi) and the node
     weights (same leading shape, sum 1)."""
-    theta = math.acos(max(-1.0, min(1.0, float(gb[2]))))
     if grid.n_phi == 1:  # the sphere: the body azimuth of G is a slow variable
+        theta = math.atan2(math.hypot(float(gb[0]), float(gb[1])), float(gb[2]))
         phi = np.array([math.atan2(float(gb[0]), float(gb[1]))])
-    else:
+    else:  # gb = (0, sin theta, cos theta), theta signed (past the axis: the same motion, phi shifted by pi)
+        theta = math.atan2(float(gb[1]), float(gb[2]))
         phi = _nodes(grid.n_phi)
     Y = frame_y(math.acos(max(-1.0, min(1.0, float(n[2])))), math.atan2(float(n[1]), float(n[0])))
     C = attitude(Y, _nodes(grid.n_psi), theta, phi)[None]  # (1, n_psi, n_phi, 3, 3)
@@ -92,10 +100,11 @@ def _values(torque: Any, body: SymmetricBody, grid: SymGrid, G: float, gb: np.nd
         nu_arr, w_nu = float(nu), np.ones(1)
     shape = (w_nu.size, grid.n_psi, grid.n_phi, 3)
     M = np.broadcast_to(evaluate(torque, omega, C, nu_arr, shape), shape)
-    Q = np.empty((*shape[:-1], 7))
+    Q = np.empty((*shape[:-1], 8))
     Q[..., 0:3] = np.einsum("...ij,...j->...i", C, M)
     Q[..., 3:6] = M
     Q[..., 6] = np.einsum("...i,...i->...", np.broadcast_to(omega, shape), M)
+    Q[..., 7] = M[..., 0] * np.sin(phi) + M[..., 1] * np.cos(phi)
     w = np.broadcast_to(w_nu[:, None, None] / (grid.n_psi * grid.n_phi), shape[:-1])
     return Q, w
 
@@ -119,7 +128,7 @@ def sym_mean(torque: Any, body: SymmetricBody, grid: SymGrid, G: float, gb: np.n
     m = _mean(Q, w)
     scale = float(np.einsum("abc,abc->", np.linalg.norm(Q[..., 3:6], axis=-1), w))
     err = float(np.abs(_coarse(Q, w) - m)[:6].max()) if estimate else math.nan
-    return SymMean(m[0:3], m[3:6], float(m[6]), scale, err)
+    return SymMean(m[0:3], m[3:6], float(m[6]), float(m[7]), scale, err)
 
 
 def choose_grid(torque: Any, body: SymmetricBody, G: float, gb: np.ndarray, n: np.ndarray, nu: float | None,
@@ -146,20 +155,20 @@ def phase_invariant(torque: Any, body: SymmetricBody, grid: SymGrid, G: float, n
     th = 1.0
     gb = np.array([0.0, math.sin(th), math.cos(th)])
     Q, w = _values(torque, body, SymGrid(grid.n_psi, max(grid.n_phi, 8), grid.n_nu), G, gb, n, nu, orbit)
-    # the mean over nu and psi at each phi of what the rates take: <C M>, M3, omega.M (the transverse body components
-    # of M turn with phi even for a torque symmetric about z3; only their phi-mean, unused, would be affected)
-    per_phi = np.einsum("abcq,ab->cq", Q[..., [0, 1, 2, 5, 6]], w[:, :, 0] * Q.shape[2])
+    # the mean over nu and psi at each phi of what the rates take: <C M>, M3, omega.M, M_phi (the transverse body
+    # components of M turn with phi even for a torque symmetric about z3; only their phi-mean, unused, would differ)
+    per_phi = np.einsum("abcq,ab->cq", Q[..., [0, 1, 2, 5, 6, 7]], w[:, :, 0] * Q.shape[2])
     scale = float(np.abs(Q[..., 3:6]).max()) or 1.0
     return bool(np.abs(per_phi - per_phi.mean(axis=0)).max() <= 1e3 * 2.2e-16 * scale)
 
 
 def sym_rates(body: SymmetricBody, m: SymMean, G: float, gb: np.ndarray, n: np.ndarray) -> dict[str, Any]:
-    """The averaged rates from the means: ``dG``, ``dn`` (3), ``dT``, and ``dc`` (the symmetric body) or ``dgb``
-    (3, the sphere)."""
+    """The averaged rates from the means: ``dG``, ``dn`` (3), ``dT``, and ``dtheta`` (the symmetric body, ``gb`` =
+    (0, sin theta, cos theta)) or ``dgb`` (3, the sphere)."""
     Ln = float(n @ m.L)
     out: dict[str, Any] = {"dG": Ln, "dn": (m.L - n * Ln) / G, "dT": m.dT}
     if body.shape == "sphere":
         out["dgb"] = (m.Mb - gb * float(gb @ m.Mb)) / G
     else:
-        out["dc"] = (float(m.Mb[2]) - float(gb[2]) * Ln) / G
+        out["dtheta"] = (float(gb[2]) * m.Mphi - float(gb[1]) * float(m.Mb[2])) / G
     return out

@@ -45,8 +45,8 @@ def symmetric_rates(body: SymmetricBody, torque: Any, G: float, theta: float, de
         ``dG``, ``dT``, ``dtheta``, ``ddelta``, ``dlam`` and ``quad_error`` (the estimated error of the means,
         relative to the torque's size). ``ddelta`` and ``dlam`` are those of the unit vector :math:`\mathbf n` of
         :math:`\mathbf G` (``dlam`` infinite at a pole where :math:`\mathbf n` moves off it). ``dtheta`` is
-        :math:`-\dot c/\sin\theta` (:math:`c = \cos\theta`; infinite on the axis where :math:`c` moves off
-        :math:`\pm 1`); for the sphere the rate of the angle of :math:`\mathbf G` from :math:`z_3` in the body.
+        :math:`(\cos\theta\,\langle M_\varphi\rangle - \sin\theta\,\langle M_3\rangle)/G`, finite on the axis
+        too; for the sphere the rate of the angle of :math:`\mathbf G` from :math:`z_3` in the body.
 
     Raises
     ------
@@ -90,12 +90,13 @@ def symmetric_rates(body: SymmetricBody, torque: Any, G: float, theta: float, de
     r = sym_rates(body, m, G, gb, n)
     dn = r["dn"]
     sd = math.sin(delta)
-    dc = float(r["dgb"][2]) if "dgb" in r else float(r["dc"])
-    st = math.sin(theta)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        dtheta = -dc / st if st > 0.0 else (0.0 if dc == 0.0 else math.copysign(math.inf, -dc * math.cos(theta)))
-        dlam = float(n[0] * dn[1] - n[1] * dn[0]) / (sd * sd) if sd > 0.0 else (
-            0.0 if np.hypot(dn[0], dn[1]) == 0.0 else math.inf)
+    if "dgb" in r:  # the sphere: the angle of G from z3 in the body
+        st, dc = math.sin(theta), float(r["dgb"][2])
+        dtheta = -dc / st if st > 0.0 else (0.0 if dc == 0.0 else math.inf)
+    else:
+        dtheta = float(r["dtheta"])
+    dlam = float(n[0] * dn[1] - n[1] * dn[0]) / (sd * sd) if sd > 0.0 else (
+        0.0 if np.hypot(dn[0], dn[1]) == 0.0 else math.inf)
     return {"dG": float(r["dG"]), "dT": float(r["dT"]), "dtheta": float(dtheta),
             "ddelta": float(-dn[2] / sd) if sd > 0.0 else math.copysign(float(np.hypot(dn[0], dn[1])), n[2]),
             "dlam": float(dlam),

@@ -1,12 +1,13 @@
 r"""The averaged system of a body with two equal moments (:class:`SymmetricBody`) as a problem for the piecewise
 driver :func:`rigidbody.core.piecewise.run_pieces`: one run and a batch (:func:`averaged` dispatches here).
 
-State of a member: :math:`(\ln G, \mathbf n, c)` (:math:`\mathbf n` the unit vector of :math:`\mathbf G` in the
-orbital axes, :math:`c = \cos\theta` the nutation cosine), for the sphere :math:`(\ln G, \mathbf n,
+State of a member: :math:`(\ln G, \mathbf n, \theta)` (:math:`\mathbf n` the unit vector of :math:`\mathbf G` in the
+orbital axes, :math:`\theta` the nutation angle: its equation is regular on the axis, where :math:`\cos\theta` would
+stall against 1), for the sphere :math:`(\ln G, \mathbf n,
 \hat{\mathbf g})` (:math:`\hat{\mathbf g}` the direction of :math:`\mathbf G` in the body), and :math:`\nu` on an
-eccentric orbit with :math:`\varepsilon > 0`; rates from :mod:`._symengine`. There is no separatrix: :math:`c`
-passes 0 (a spin about a transverse axis) smoothly, and a run is one piece. ``rtol`` is the relative accuracy of
-:math:`G` and the absolute one (per step) of :math:`\mathbf n` and :math:`c`.
+eccentric orbit with :math:`\varepsilon > 0`; rates from :mod:`._symengine`. There is no separatrix: :math:`\theta`
+passes :math:`\pi/2` (a spin about a transverse axis) smoothly, and a run is one piece. ``rtol`` is the relative
+accuracy of :math:`G` and the absolute one (per step) of :math:`\mathbf n` and :math:`\theta`.
 
 The one stop (``eps > 0``): ``'slow_rotation'``, when the fast motion is no longer fast against the orbital rate
 :math:`\varepsilon`: the precession :math:`G/A` and, for a torque whose means depend on the body azimuth
@@ -93,7 +94,7 @@ class _Member:
         self.invariant = self.sphere or phase_invariant(run.torque, body, self.grid, G0, n0, nu, run.orbit)
         self.errors = [m0.error / m0.scale if m0.scale > 0.0 else 0.0]
         self.misfire = Misfire()  # a torque that misbehaves part-way ends the run with a status naming it
-        y0 = [math.log(G0), *n0.tolist(), *(gb0.tolist() if self.sphere else [float(gb0[2])])]
+        y0 = [math.log(G0), *n0.tolist(), *(gb0.tolist() if self.sphere else [math.atan2(gb0[1], gb0[2])])]
         self.y0 = y0 + ([nu0] if self.nu_state else [])
         self.memo: tuple[float, tuple[float, ...], dict[str, Any]] | None = None  # the last rates (the drift event)
         if self.held and run.min_spin_ratio > 0.0:
@@ -112,8 +113,7 @@ class _Member:
             gb = np.array(y[4:7], dtype=float)
             gb /= np.linalg.norm(gb)
         else:
-            c = max(-1.0, min(1.0, float(y[4])))
-            gb = np.array([0.0, math.sqrt(1.0 - c * c), c])
+            gb = np.array([0.0, math.sin(y[4]), math.cos(y[4])])
         nu = None if not self.held else (float(y[-1]) if self.nu_state else self.nu_start + (t - self.t0) / self.eps)
         return G, n, gb, nu
 
@@ -129,13 +129,15 @@ class _Member:
         return r
 
     def rhs(self, t: float, y: Any) -> list[float]:
+        if not all(map(math.isfinite, y)):  # a stage after a misfire (NaN rates): NaN again
+            return [math.nan] * len(y)
         try:
             r = self.rates(t, y)
         except RESULT_ERRORS as exc:  # NaN rates: the step fails here, the run ends with misfire's message
             self.misfire.note(t, exc)
             return [math.nan] * len(y)
         G = math.exp(y[0])
-        out = [r["dG"] / G, *r["dn"].tolist(), *(r["dgb"].tolist() if self.sphere else [r["dc"]])]
+        out = [r["dG"] / G, *r["dn"].tolist(), *(r["dgb"].tolist() if self.sphere else [r["dtheta"]])]
         if self.nu_state:
             out.append(self.run.orbit.nu_rate(float(y[-1])) / self.eps)
         return out
@@ -146,7 +148,7 @@ class _Member:
         G = math.exp(y[0])
         f = symmetric_spin_frequency(body, G)
         if not self.invariant:
-            f = min(f, G * abs(float(y[4])) * abs(1.0 / body.transverse - 1.0 / body.axial))
+            f = min(f, G * abs(math.cos(y[4])) * abs(1.0 / body.transverse - 1.0 / body.axial))
         return f
 
     def spin_ratio(self, y: Any) -> float:
@@ -157,8 +159,7 @@ class _Member:
         """The relative change of the slow variables in one period of the slowest fast motion."""
         r = self.rates(t, y)
         G = math.exp(y[0])
-        c = float(y[6] if self.sphere else y[4])
-        T = float(energy(self.run.body, G, max(-1.0, min(1.0, c))))
+        T = float(energy(self.run.body, G, 1.0 if self.sphere else math.cos(y[4])))  # the sphere's T: G^2/2A
         return slow_drift(self.eps, self.frequency(y), G, T, r["dG"], r["dT"], float(np.linalg.norm(r["dn"])))
 
     def events(self) -> list[Event]:
@@ -183,7 +184,7 @@ class _Member:
             gb = y[4:7] / np.linalg.norm(y[4:7], axis=0)
             c = gb[2]
         else:
-            c = np.clip(y[4], -1.0, 1.0)
+            c = np.cos(y[4])
         nu = (y[-1] if self.nu_state else self.nu_start + (tau - self.t0) / self.eps) if self.held else \
             np.full(tau.size, self.nu_start)
         lam = lam_unwrapped(tau, n, float(math.atan2(n[1, 0], n[0, 0]))) if tau.size else np.empty(0)
