@@ -194,13 +194,17 @@ def test_round_trip_of_a_symmetric_body(moments, seed):
     vals, vecs = np.linalg.eigh(J)
     distinct = 0 if abs(vals[1] - vals[2]) < 1e-9 else 2  # the moment that differs (any for the sphere)
     scale = np.linalg.norm(w) / np.linalg.norm(J @ w)
+    # two eigensolvers (ours through principal_axes, numpy's here) on a tensor of condition ~2: a few ulps of the
+    # moments; 1e-13 leaves a factor ~100 (and the equal pair is averaged: their rounding split is 1e-16)
     assert p.body.axial == pytest.approx(vals[distinct] * scale, rel=1e-13, abs=0)
     assert p.body.transverse == pytest.approx(vals[1] * scale, rel=1e-13, abs=0)
     if moments[0] != moments[2]:
         g = J @ w
         cos_theta = abs(vecs[:, distinct] @ g) / np.linalg.norm(g)
+        # the symmetry axis is a well-separated eigenvector (gap ~0.5 of the moments): its rounding is ~1e-16 rad
         assert abs(math.cos(p.theta0)) == pytest.approx(cos_theta, rel=0, abs=1e-14)
     omega, attitude = p.state()
+    # the bound of the triaxial round trip above (a few rotations and the Euler angles, each a few ulps)
     assert np.abs(omega - w).max() <= 1e-13 * np.linalg.norm(w)
     assert angle_between(attitude, R) <= 1e-13
 

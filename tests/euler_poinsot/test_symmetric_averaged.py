@@ -42,6 +42,7 @@ def _symmetric_rates(body, torque, theta):
     A, C = body.transverse, body.axial
     c, dc = math.cos(theta), -math.sin(theta) * r["dtheta"]
     dT_c = G * r["dG"] * ((1 - c * c) / A + c * c / C) + G * G * c * dc * (1 / C - 1 / A)
+    # two combinations of means on one grid (terms of order 1): equal to rounding, 1e-12 leaves a factor 1000
     assert dT_c == pytest.approx(r["dT"], rel=1e-12, abs=1e-13)
     return r["dG"], dT_c, r["ddelta"], r["dlam"]
 
@@ -182,8 +183,10 @@ def test_sphere_keeps_the_direction_of_G_in_the_body_and_T():
     k = 0.4
     te = np.linspace(0.0, 2.0, 5)
     s = ep.averaged(body, ep.LinearDrag(k * np.eye(3)), 0.0, theta0=1.1, tau_span=(0, 2), tau_eval=te, rtol=1e-12)
+    # rtol 1e-12 per step over tau = 2 (tens of steps): ~1e-11 in ln G, bound 1e-10
     np.testing.assert_allclose(s.G, np.exp(-k * te / 1.5), rtol=1e-10, atol=0)
-    np.testing.assert_allclose(s.T, s.G**2 / 3.0, rtol=1e-14, atol=0)
+    np.testing.assert_allclose(s.T, s.G**2 / 3.0, rtol=1e-14, atol=0)  # the sphere's energy: rounding only
+    # M = -k omega is along G: the rates of both directions are zero up to the rounding of the means (1e-16 each)
     np.testing.assert_allclose(s.theta, 1.1, rtol=0, atol=1e-12)
     np.testing.assert_allclose(s.delta, math.pi / 4, rtol=0, atol=1e-12)
 
@@ -196,6 +199,8 @@ def test_batch_equals_single_runs():
     batch = ep.averaged(body, tq, [0.0, 0.02], theta0=[0.5, 2.0], tau_span=(0, 0.5), tau_eval=te)
     for i, (eps, th) in enumerate([(0.0, 0.5), (0.02, 2.0)]):
         one = ep.averaged(body, tq, eps, theta0=th, tau_span=(0, 0.5), tau_eval=te)
+        # each member runs alone on the scalar integrator, as its single call: the same arithmetic up to the
+        # evaluation order of the output interpolation; 1e-12 (not bitwise: the house bans two-route equality)
         np.testing.assert_allclose(batch.G[i], one.G, rtol=1e-12, atol=0)
         np.testing.assert_allclose(batch.theta[i], one.theta, rtol=0, atol=1e-12)
 
@@ -258,6 +263,8 @@ def test_a_torque_that_turns_bad_part_way_ends_its_run_with_a_status():
 
     s = ep.averaged(body, turns_bad, 0.0, theta0=1.0, tau_span=(0, 3))
     assert s.status == -1 and "turns_bad" in s.message and "at tau = " in s.message
+    # the failing steps shrink onto the turn (the last step measured 2e-15 in tau; dG/dtau ~ 0.2): 1e-6 is generous
+    # yet far below the 0.1 a stop at the wrong place (the start, the end) would be off
     assert s.G[-1] == pytest.approx(0.9, rel=0, abs=1e-6)
     b = ep.averaged(body, turns_bad, 0.0, G0=[1.0, 10.0], theta0=1.0, tau_span=(0, 0.3), tau_eval=[0.0, 0.3])
     assert list(b.status) == [0, 0]  # neither reaches G = 0.9 within tau = 0.3 (G(0.3) is 0.94 and 9.4)
@@ -355,3 +362,14 @@ def test_which_torques_need_the_proper_rotation(nu):
     for tq, invariant in cases.items():
         grid, _ = choose_grid(tq, body, 1.0, gb, n, nu, ep.Orbit(), 1e-12)
         assert phase_invariant(tq, body, grid, 1.0, n, nu, ep.Orbit()) is invariant, tq
+
+
+def test_symmetric_rates_at_a_pole_are_the_limit_along_the_meridian():
+    """At the pole delta = 0 the gravity gradient's mean torque vanishes, and dlam is its limit along the meridian
+    lam (one rule with the triaxial averaged_rates): it equals the rate just off the pole (delta = 1e-4) to O(delta^2)
+    = 1e-8 relative, bound 1e-6."""
+    body = ep.SymmetricBody(2.0, 1.0)
+    gg = ep.GravityGradient(body)
+    at, near = (ep.symmetric_rates(body, gg, 1.0, 0.8, d, 0.3, None) for d in (0.0, 1e-4))
+    assert math.isfinite(at["dlam"]) and at["dlam"] != 0.0
+    assert at["dlam"] == pytest.approx(near["dlam"], rel=1e-6, abs=0)

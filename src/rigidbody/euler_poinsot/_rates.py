@@ -15,7 +15,7 @@ from ._engine import Averager, TorqueAverage, error_of, mean_of
 from ._model import Body, Orbit, as_orbit, check_body, check_kind, frame_y, labelled
 from ._state import Mean, State
 
-__all__ = ["average_torque", "averaged_rates", "precession_rate"]
+__all__ = ["average_torque", "averaged_rates", "direction_rates", "precession_rate"]
 
 
 def averaged_rates(
@@ -138,23 +138,30 @@ def averaged_rates(
         raise ValueError("k2 = 1 is the separatrix: the Euler-Poinsot period is infinite and a torque object "
                          "has no average there (the drag tensor's closed forms have a limit)")
 
-    def L_y(d: float) -> np.ndarray:
-        Y = frame_y(d, lam)
-        st = State(body, kind, sigma, G, k2, Y[:, 2], nu, orb)
-        return Y.T @ _once(tq, st, method)[0].L
+    def L_at(d: float) -> np.ndarray:
+        return _once(tq, State(body, kind, sigma, G, k2, frame_y(d, lam)[:, 2], nu, orb), method)[0].L
 
-    st = State(body, kind, sigma, G, k2, frame_y(delta, lam)[:, 2], nu, orb)
-    mean, _, _ = _once(tq, st, method)
-    L = frame_y(delta, lam).T @ mean.L
+    mean, _, _ = _once(tq, State(body, kind, sigma, G, k2, frame_y(delta, lam)[:, 2], nu, orb), method)
+    dG, ddelta, dlam = direction_rates(mean.L, G, delta, lam, L_at)
+    return {"dG": dG, "dT": mean.dT, "dk2": mean.dk2, "ddelta": ddelta, "dlam": dlam}
+
+
+def direction_rates(L: np.ndarray, G: float, delta: float, lam: float, L_at: Any) -> tuple[float, float, float]:
+    r"""``dG``, ``ddelta``, ``dlam`` of the mean torque ``L`` (orbital axes) at the direction ``(delta, lam)`` of G:
+    its components in the frame of G, :math:`(L_1/G, L_2/(G\sin\delta))` and :math:`L_3`. At a pole
+    (:math:`\sin\delta = 0`) ``dlam`` is infinite where :math:`L_2 \ne 0`, else the limit along the meridian
+    :math:`\lambda`, by a central difference of ``L_at(delta)`` (the mean torque at another polar angle; error
+    :math:`O(h^2)`)."""
+    Ly = frame_y(delta, lam).T @ L
     sd = math.sin(delta)
     if sd != 0.0:
-        dlam = L[1] / (G * sd)
-    elif abs(L[1]) > 1e-12 * max(1.0, float(np.abs(mean.L).max())):
-        dlam = math.copysign(math.inf, L[1])
+        dlam = Ly[1] / (G * sd)
+    elif abs(Ly[1]) > 1e-12 * max(1.0, float(np.abs(L).max())):
+        dlam = math.copysign(math.inf, Ly[1])
     else:  # the limit L2(delta)/sin(delta) along the meridian: a central difference, error O(h^2)
         h = 1e-5
-        dlam = (L_y(h)[1] - L_y(-h)[1]) / (2.0 * math.sin(h) * G)
-    return {"dG": float(L[2]), "dT": mean.dT, "dk2": mean.dk2, "ddelta": float(L[0] / G), "dlam": float(dlam)}
+        dlam = ((frame_y(h, lam).T @ L_at(h))[1] - (frame_y(-h, lam).T @ L_at(-h))[1]) / (2.0 * math.sin(h) * G)
+    return float(Ly[2]), float(Ly[0] / G), float(dlam)
 
 
 #: quadrature tolerance of the engine (relative to the size of the torque on the grid)

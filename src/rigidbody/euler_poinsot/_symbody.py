@@ -33,7 +33,7 @@ from ..core.validate import real
 from ._model import Body
 
 __all__ = ["SymmetricBody", "attitude", "check_any_body", "cos_theta_of", "energy", "is_symmetric", "kind_fields",
-           "omega_body"]
+           "momentum_body", "omega_body"]
 
 
 @dataclass(frozen=True)
@@ -202,6 +202,14 @@ def kind_fields(body: SymmetricBody, c: Any) -> dict[str, np.ndarray]:
     c = np.asarray(c, dtype=float)
     return {"k2": np.zeros(c.shape), "kind": np.full(c.shape, "max" if body.axial >= body.transverse else "min"),
             "sigma": np.where(c < 0.0, -1, 1)}
+
+
+def momentum_body(G: float, theta: float, phi: Any) -> np.ndarray:
+    r"""The body components of G at the nutation angle ``theta`` and the body azimuths ``phi`` (shape
+    ``np.shape(phi) + (3,)``): :math:`G(\sin\theta\sin\varphi, \sin\theta\cos\varphi, \cos\theta)`."""
+    phi = np.asarray(phi, dtype=float)
+    s = math.sin(theta)
+    return G * np.stack([s * np.sin(phi), s * np.cos(phi), np.full_like(phi, math.cos(theta))], axis=-1)
 
 
 def omega_body(body: SymmetricBody, g: np.ndarray) -> np.ndarray:

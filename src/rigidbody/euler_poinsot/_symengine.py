@@ -40,7 +40,7 @@ import numpy as np
 from ._grid import nu_nodes
 from ._model import Orbit, frame_y
 from ._protocol import evaluate
-from ._symbody import SymmetricBody, attitude
+from ._symbody import SymmetricBody, attitude, momentum_body
 
 __all__ = ["SymGrid", "SymMean", "choose_grid", "phase_invariant", "sym_mean", "sym_rates"]
 
@@ -90,8 +90,7 @@ def _values(torque: Any, body: SymmetricBody, grid: SymGrid, G: float, gb: np.nd
         phi = _nodes(grid.n_phi)
     Y = frame_y(math.acos(max(-1.0, min(1.0, float(n[2])))), math.atan2(float(n[1]), float(n[0])))
     C = attitude(Y, _nodes(grid.n_psi), theta, phi)[None]  # (1, n_psi, n_phi, 3, 3)
-    st, ct = math.sin(theta), math.cos(theta)
-    g = G * np.stack([st * np.sin(phi), st * np.cos(phi), np.full_like(phi, ct)], axis=-1)  # (n_phi, 3)
+    g = momentum_body(G, theta, phi)  # (n_phi, 3)
     omega = (g / body.A)[None, None]  # (1, 1, n_phi, 3)
     if nu is None:
         nus, w_nu = nu_nodes(orbit.e, grid.n_nu)

@@ -28,7 +28,7 @@ from ._model import as_orbit, frame_y
 from ._options import Stops
 from ._start import check_direction, check_eps_G0, check_full_eps, check_spin
 from ._stops import stop_message
-from ._symbody import SymmetricBody, cos_theta_of, energy, kind_fields
+from ._symbody import SymmetricBody, cos_theta_of, energy, kind_fields, momentum_body
 
 __all__ = ["SymmetricKinds", "check_symmetric_start", "simulate_symmetric", "symmetric_spin_frequency",
            "symmetric_start"]
@@ -78,11 +78,10 @@ def symmetric_start(body: SymmetricBody, G0: float, theta0: float, delta0: float
     >>> print(f"{np.arccos(n @ st['R'][:, 2]):.12f}")
     0.400000000000
     """
-    s, c = math.sin(theta0), math.cos(theta0)
-    g = G0 * np.array([s * math.sin(phi0), s * math.cos(phi0), c])
+    g = momentum_body(G0, theta0, phi0)
     R = frame_y(delta0, lam0) @ euler.dcm(psi0, theta0, phi0)
     return {"g": g, "R": R, "q": euler.quat_from_dcm(R), "theta": theta0, "phi": phi0, "psi": psi0,
-            "T": energy(body, G0, c)}
+            "T": energy(body, G0, math.cos(theta0))}
 
 
 def symmetric_spin_frequency(body: SymmetricBody, G: Any) -> Any:

@@ -11,8 +11,9 @@ from ..core.validate import positive, real
 from ._boundary import as_torque
 from ._model import Orbit, as_orbit
 from ._output import unit_of_angles
+from ._rates import direction_rates
 from ._symbody import SymmetricBody
-from ._symengine import choose_grid, sym_rates
+from ._symengine import choose_grid, sym_mean, sym_rates
 
 __all__ = ["symmetric_rates"]
 
@@ -43,8 +44,8 @@ def symmetric_rates(body: SymmetricBody, torque: Any, G: float, theta: float, de
     -------
     dict
         ``dG``, ``dT``, ``dtheta``, ``ddelta``, ``dlam`` and ``quad_error`` (the estimated error of the means,
-        relative to the torque's size). ``ddelta`` and ``dlam`` are those of the unit vector :math:`\mathbf n` of
-        :math:`\mathbf G` (``dlam`` infinite at a pole where :math:`\mathbf n` moves off it). ``dtheta`` is
+        relative to the torque's size). ``ddelta`` and ``dlam`` as in :func:`averaged_rates` (at a pole ``dlam`` is
+        infinite where :math:`\mathbf n` moves off it, else its limit along the meridian). ``dtheta`` is
         :math:`(\cos\theta\,\langle M_\varphi\rangle - \sin\theta\,\langle M_3\rangle)/G`, finite on the axis
         too; for the sphere the rate of the angle of :math:`\mathbf G` from :math:`z_3` in the body.
 
@@ -85,19 +86,18 @@ def symmetric_rates(body: SymmetricBody, torque: Any, G: float, theta: float, de
     tq, _ = as_torque(torque, body, orb)
     tq.check_setup(body, orb)
     gb = np.array([0.0, math.sin(theta), math.cos(theta)])
-    n = np.array(unit_of_angles(delta, lam))
-    _, m = choose_grid(tq, body, G, gb, n, nu, orb, positive(quad_tol, "quad_tol"))
-    r = sym_rates(body, m, G, gb, n)
-    dn = r["dn"]
-    sd = math.sin(delta)
+    tol = positive(quad_tol, "quad_tol")
+    grid, m = choose_grid(tq, body, G, gb, np.array(unit_of_angles(delta, lam)), nu, orb, tol)
+
+    def L_at(d: float) -> np.ndarray:  # the mean torque at another polar angle of G (the limit at a pole)
+        return sym_mean(tq, body, grid, G, gb, np.array(unit_of_angles(d, lam)), nu, orb).L
+
+    dG, ddelta, dlam = direction_rates(m.L, G, delta, lam, L_at)
+    r = sym_rates(body, m, G, gb, np.array(unit_of_angles(delta, lam)))
     if "dgb" in r:  # the sphere: the angle of G from z3 in the body
         st, dc = math.sin(theta), float(r["dgb"][2])
         dtheta = -dc / st if st > 0.0 else (0.0 if dc == 0.0 else math.inf)
     else:
         dtheta = float(r["dtheta"])
-    dlam = float(n[0] * dn[1] - n[1] * dn[0]) / (sd * sd) if sd > 0.0 else (
-        0.0 if np.hypot(dn[0], dn[1]) == 0.0 else math.inf)
-    return {"dG": float(r["dG"]), "dT": float(r["dT"]), "dtheta": float(dtheta),
-            "ddelta": float(-dn[2] / sd) if sd > 0.0 else math.copysign(float(np.hypot(dn[0], dn[1])), n[2]),
-            "dlam": float(dlam),
+    return {"dG": dG, "dT": float(r["dT"]), "dtheta": float(dtheta), "ddelta": ddelta, "dlam": dlam,
             "quad_error": m.error / m.scale if m.scale > 0.0 else 0.0}
